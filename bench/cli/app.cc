@@ -1,0 +1,44 @@
+#include "bench/cli/app.h"
+
+#include <exception>
+#include <iostream>
+#include <stdexcept>
+
+#include "bench/cli/version.h"
+
+namespace ocpb {
+namespace {
+bool g_some_failed = false;
+}  // namespace
+
+void ReportSomeFailed() { g_some_failed = true; }
+
+int RunOcpbench(int argc, char** argv) {
+  g_some_failed = false;
+  CLI::App app{"OCPBench: optimal-control problems solved by Hamiltonian descent and by sparse NLPs",
+               "ocpbench"};
+  app.set_version_flag("--version", VersionString());
+  app.require_subcommand(1);
+  AddListCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "ocpbench: error: " << e.what() << " (see ocpbench --help)\n";
+    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "ocpbench: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "ocpbench: error: " << e.what() << "\n";
+    return kExitInternalError;
+  }
+  return g_some_failed ? kExitSomeFailed : kExitOk;
+}
+
+}  // namespace ocpb

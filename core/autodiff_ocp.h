@@ -1,0 +1,190 @@
+// AutoDiffOcp: write a problem once, as templates on the scalar type, and get every
+// first and second derivative the Ocp interface asks for by forward-mode AD (core/jet.h).
+#pragma once
+
+#include "core/jet.h"
+#include "core/ocp.h"
+
+namespace ocpb {
+
+/// CRTP base. `Derived` provides, for T in {double, Jet1<.>, Jet2<.>}:
+///
+///   template <class T> void EvalDynamics(double t, const VecT<T, NX>& x, const VecT<T, NU>& u,
+///                                        VecT<T, NX>* f) const;
+///   template <class T> T EvalRunningCost(double t, const VecT<T, NX>& x,
+///                                        const VecT<T, NU>& u) const;
+///   template <class T> T EvalTerminalCost(const VecT<T, NX>& x) const;            // optional
+///   template <class T> void EvalTerminalConstraints(const VecT<T, NX>& x,
+///                                                   VecT<T, NPSI>* psi) const;   // if NPSI > 0
+///   template <class T> void EvalPathConstraints(double t, const VecT<T, NX>& x,
+///                                               const VecT<T, NU>& u,
+///                                               VecT<T, NC>* c) const;         // if NC > 0
+///
+/// Derivatives with respect to z = (x, u) use Jet1<NX+NU> (first order) and
+/// Jet2<NX+NU> (Hessians); terminal functions use Jet1<NX> / Jet2<NX>.
+/// A problem may still override any virtual with hand-written derivatives.
+template <class Derived, int NX, int NU, int NPSI = 0, int NC = 0>
+class AutoDiffOcp : public Ocp {
+ public:
+  static constexpr int kNz = NX + NU;
+  using Z1 = Jet1<kNz>;
+  using Z2 = Jet2<kNz>;
+  using X1 = Jet1<NX>;
+  using X2 = Jet2<NX>;
+
+  // Defaults for the optional pieces.
+  template <class T>
+  T EvalTerminalCost(const VecT<T, NX>&) const {
+    return T(0.0);
+  }
+  template <class T>
+  void EvalTerminalConstraints(const VecT<T, NX>&, VecT<T, NPSI>*) const {
+    static_assert(NPSI == 0, "a problem with NPSI > 0 must define EvalTerminalConstraints");
+  }
+  template <class T>
+  void EvalPathConstraints(double, const VecT<T, NX>&, const VecT<T, NU>&, VecT<T, NC>*) const {
+    static_assert(NC == 0, "a problem with NC > 0 must define EvalPathConstraints");
+  }
+
+  // ---- values -------------------------------------------------------------------
+  void Dynamics(double t, ConstVecRef x, ConstVecRef u, VecRef f) const override {
+    VecT<double, NX> fx;
+    self().EvalDynamics(t, VecT<double, NX>(x), VecT<double, NU>(u), &fx);
+    f = fx;
+  }
+  double RunningCost(double t, ConstVecRef x, ConstVecRef u) const override {
+    return self().EvalRunningCost(t, VecT<double, NX>(x), VecT<double, NU>(u));
+  }
+  double TerminalCost(ConstVecRef x) const override {
+    return self().EvalTerminalCost(VecT<double, NX>(x));
+  }
+  void TerminalConstraints(ConstVecRef x, VecRef psi) const override {
+    if constexpr (NPSI > 0) {
+      VecT<double, NPSI> out;
+      self().EvalTerminalConstraints(VecT<double, NX>(x), &out);
+      psi = out;
+    }
+  }
+  void PathConstraints(double t, ConstVecRef x, ConstVecRef u, VecRef c) const override {
+    if constexpr (NC > 0) {
+      VecT<double, NC> out;
+      self().EvalPathConstraints(t, VecT<double, NX>(x), VecT<double, NU>(u), &out);
+      c = out;
+    }
+  }
+
+  // ---- first derivatives ---------------------------------------------------------
+  void DynamicsJacobian(double t, ConstVecRef x, ConstVecRef u, VecRef f, MatRef fx,
+                        MatRef fu) const override {
+    VecT<Z1, NX> xz;
+    VecT<Z1, NU> uz;
+    Seed(x, u, &xz, &uz);
+    VecT<Z1, NX> out;
+    self().EvalDynamics(t, xz, uz, &out);
+    for (int i = 0; i < NX; ++i) {
+      f[i] = out[i].a;
+      fx.row(i) = out[i].g.template head<NX>().transpose();
+      fu.row(i) = out[i].g.template tail<NU>().transpose();
+    }
+  }
+  void RunningCostGradient(double t, ConstVecRef x, ConstVecRef u, double* L, VecRef Lx,
+                           VecRef Lu) const override {
+    VecT<Z1, NX> xz;
+    VecT<Z1, NU> uz;
+    Seed(x, u, &xz, &uz);
+    const Z1 out = self().EvalRunningCost(t, xz, uz);
+    *L = out.a;
+    Lx = out.g.template head<NX>();
+    Lu = out.g.template tail<NU>();
+  }
+  void TerminalCostGradient(ConstVecRef x, double* phi, VecRef phix) const override {
+    const X1 out = self().EvalTerminalCost(SeedX<X1>(x));
+    *phi = out.a;
+    phix = out.g;
+  }
+  void TerminalConstraintsJacobian(ConstVecRef x, VecRef psi, MatRef psix) const override {
+    if constexpr (NPSI > 0) {
+      VecT<X1, NPSI> out;
+      self().EvalTerminalConstraints(SeedX<X1>(x), &out);
+      for (int i = 0; i < NPSI; ++i) {
+        psi[i] = out[i].a;
+        psix.row(i) = out[i].g.transpose();
+      }
+    }
+  }
+  void PathConstraintsJacobian(double t, ConstVecRef x, ConstVecRef u, VecRef c, MatRef cx,
+                               MatRef cu) const override {
+    if constexpr (NC > 0) {
+      VecT<Z1, NX> xz;
+      VecT<Z1, NU> uz;
+      Seed(x, u, &xz, &uz);
+      VecT<Z1, NC> out;
+      self().EvalPathConstraints(t, xz, uz, &out);
+      for (int i = 0; i < NC; ++i) {
+        c[i] = out[i].a;
+        cx.row(i) = out[i].g.template head<NX>().transpose();
+        cu.row(i) = out[i].g.template tail<NU>().transpose();
+      }
+    }
+  }
+
+  // ---- second derivatives -------------------------------------------------------
+  void PointHessian(double t, ConstVecRef x, ConstVecRef u, double sigma, ConstVecRef lambda,
+                    ConstVecRef mu, MatRef hess) const override {
+    VecT<Z2, NX> xz;
+    VecT<Z2, NU> uz;
+    Seed(x, u, &xz, &uz);
+    Eigen::Matrix<double, kNz, kNz> h = Eigen::Matrix<double, kNz, kNz>::Zero();
+    if (sigma != 0.0) h += sigma * self().EvalRunningCost(t, xz, uz).h;
+    if (lambda.size() > 0 && lambda.any()) {
+      VecT<Z2, NX> f;
+      self().EvalDynamics(t, xz, uz, &f);
+      for (int i = 0; i < NX; ++i) h += lambda[i] * f[i].h;
+    }
+    if constexpr (NC > 0) {
+      if (mu.size() > 0 && mu.any()) {
+        VecT<Z2, NC> c;
+        self().EvalPathConstraints(t, xz, uz, &c);
+        for (int i = 0; i < NC; ++i) h += mu[i] * c[i].h;
+      }
+    }
+    CopyTo(h, hess);
+  }
+  void TerminalHessian(ConstVecRef x, double sigma, ConstVecRef nu, MatRef hess) const override {
+    const VecT<X2, NX> xs = SeedX<X2>(x);
+    Eigen::Matrix<double, NX, NX> h = Eigen::Matrix<double, NX, NX>::Zero();
+    if (sigma != 0.0) h += sigma * self().EvalTerminalCost(xs).h;
+    if constexpr (NPSI > 0) {
+      VecT<X2, NPSI> psi;
+      self().EvalTerminalConstraints(xs, &psi);
+      for (int i = 0; i < NPSI; ++i) h += nu[i] * psi[i].h;
+    }
+    CopyTo(h, hess);
+  }
+
+ private:
+  // Element-wise copy: GCC 12 warns (falsely, -Warray-bounds) on Eigen's vectorized copy of
+  // 1x1 fixed-size matrices into a Ref, which -Werror would turn into a build failure.
+  template <class Fixed>
+  static void CopyTo(const Fixed& from, MatRef to) {
+    for (int j = 0; j < from.cols(); ++j) {
+      for (int i = 0; i < from.rows(); ++i) to(i, j) = from(i, j);
+    }
+  }
+
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
+
+  template <class J>
+  static void Seed(ConstVecRef x, ConstVecRef u, VecT<J, NX>* xz, VecT<J, NU>* uz) {
+    for (int i = 0; i < NX; ++i) (*xz)[i] = J::Variable(x[i], i);
+    for (int j = 0; j < NU; ++j) (*uz)[j] = J::Variable(u[j], NX + j);
+  }
+  template <class J>
+  static VecT<J, NX> SeedX(ConstVecRef x) {
+    VecT<J, NX> xs;
+    for (int i = 0; i < NX; ++i) xs[i] = J::Variable(x[i], i);
+    return xs;
+  }
+};
+
+}  // namespace ocpb

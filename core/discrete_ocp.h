@@ -1,0 +1,54 @@
+// The finite-dimensional problem in the control samples that one-step integration makes of an Ocp.
+#pragma once
+
+#include "core/integrator.h"
+#include "core/ocp.h"
+#include "core/time_grid.h"
+
+namespace ocpb {
+
+/// With piecewise-constant controls u_k on the grid's intervals, an integrator turns the Ocp into
+///
+///   J(U) = sum_{k<N} ell_k(x_k, u_k) + Phi(x_N),    x_{k+1} = F_k(x_k, u_k),  x_0 = x0,
+///
+/// with Phi = phi (+ the terminal penalty in TerminalMode::kPenalty). Euler:
+/// F_k = x_k + h_k f(t_k, x_k, u_k), ell_k = h_k L(t_k, x_k, u_k). RK4: the classical stages, with
+/// L integrated by the same stages.
+///
+/// Adjoint() is the exact reverse-mode derivative of this J: costates
+///   lambda_N = grad Phi(x_N),  lambda_k = dF_k/dx^T lambda_{k+1} + d ell_k/dx,
+/// and the gradient g_k = dJ/du_k = dF_k/du^T lambda_{k+1} + d ell_k/du, all in one backward pass.
+/// For Euler this is lambda_k = lambda_{k+1} + h_k (f_x^T lambda_{k+1} + L_x) and
+/// g_k = h_k d/du H(t_k, x_k, u_k, lambda_{k+1}), with H = p^T f + L.
+class DiscreteOcp {
+ public:
+  DiscreteOcp(const Ocp& ocp, const TimeGrid& grid, Integrator integrator, TerminalMode mode);
+
+  const Ocp& ocp() const { return ocp_; }
+  const TimeGrid& grid() const { return grid_; }
+  Integrator integrator() const { return integrator_; }
+  TerminalMode terminal_mode() const { return mode_; }
+  int intervals() const { return grid_.intervals(); }
+
+  /// Simulates from x0 with controls U (nu x N). Fills X (nx x (N+1)) when non-null, and the
+  /// running part sum ell_k when `running` is non-null. Returns J; NaN or inf when the
+  /// trajectory is not finite (callers treat that as a failed evaluation).
+  double Simulate(const Mat& U, Mat* X, double* running = nullptr) const;
+
+  /// Costates Lambda (nx x (N+1)) and gradient G = dJ/dU (nu x N) at U, given X from Simulate.
+  void Adjoint(const Mat& U, const Mat& X, Mat* Lambda, Mat* G) const;
+
+ private:
+  // One RK4 step: x_next and the cost increment; with `bar_x`, `bar_u` non-null also the
+  // reverse sweep for the cotangent `bar_next` of x_next (and 1 for the cost increment).
+  void Rk4Step(int k, const Vec& x, const Vec& u, Vec* x_next, double* ell) const;
+  void Rk4StepAdjoint(int k, const Vec& x, const Vec& u, const Vec& bar_next, Vec* bar_x,
+                      Vec* bar_u) const;
+
+  const Ocp& ocp_;
+  TimeGrid grid_;
+  Integrator integrator_;
+  TerminalMode mode_;
+};
+
+}  // namespace ocpb

@@ -1,0 +1,320 @@
+// Forward-mode automatic differentiation with fixed-size derivative vectors.
+//
+// Jet1<N> carries a value a and its gradient g = da/dz for z in R^N.
+// Jet2<N> also carries the Hessian H = d^2a/dz^2 (second-order forward mode).
+//
+// Every elementary function is written once, through the chain rule for a scalar
+// function phi applied to a jet x:
+//   value  phi(a)
+//   grad   phi'(a) g
+//   Hess   phi'(a) H + phi''(a) g g^T
+// and products through the Leibniz rule. A problem that is written once as a
+// template on its scalar type is thereby differentiated twice without tapes.
+// N is small here (nx + nu), so the O(N^2) cost per operation of Jet2 is cheap.
+#pragma once
+
+#include <cmath>
+#include <type_traits>
+
+#include <Eigen/Core>
+
+namespace ocpb {
+
+template <int N>
+struct Jet1 {
+  using Grad = Eigen::Matrix<double, N, 1>;
+  double a = 0.0;
+  Grad g = Grad::Zero();
+
+  Jet1() = default;
+  Jet1(double value) : a(value) {}  // NOLINT: constants convert implicitly
+  Jet1(double value, const Grad& grad) : a(value), g(grad) {}
+  static Jet1 Variable(double value, int index) {
+    Jet1 j(value);
+    j.g[index] = 1.0;
+    return j;
+  }
+  // Applies a scalar function with derivatives d1 = phi'(a), d2 = phi''(a) (d2 unused).
+  Jet1 Chain(double value, double d1, double /*d2*/) const { return Jet1(value, d1 * g); }
+};
+
+template <int N>
+struct Jet2 {
+  using Grad = Eigen::Matrix<double, N, 1>;
+  using Hess = Eigen::Matrix<double, N, N>;
+  double a = 0.0;
+  Grad g = Grad::Zero();
+  Hess h = Hess::Zero();
+
+  Jet2() = default;
+  Jet2(double value) : a(value) {}  // NOLINT: constants convert implicitly
+  Jet2(double value, const Grad& grad, const Hess& hess) : a(value), g(grad), h(hess) {}
+  static Jet2 Variable(double value, int index) {
+    Jet2 j(value);
+    j.g[index] = 1.0;
+    return j;
+  }
+  Jet2 Chain(double value, double d1, double d2) const {
+    return Jet2(value, d1 * g, d1 * h + d2 * g * g.transpose());
+  }
+};
+
+template <typename T>
+struct IsJet : std::false_type {};
+template <int N>
+struct IsJet<Jet1<N>> : std::true_type {};
+template <int N>
+struct IsJet<Jet2<N>> : std::true_type {};
+template <typename T>
+concept JetType = IsJet<T>::value;
+
+/// The value part of a double or a jet.
+inline double ValueOf(double x) { return x; }
+template <JetType J>
+double ValueOf(const J& x) {
+  return x.a;
+}
+
+// ---- arithmetic -------------------------------------------------------------
+template <int N>
+Jet1<N> operator+(const Jet1<N>& x, const Jet1<N>& y) {
+  return Jet1<N>(x.a + y.a, x.g + y.g);
+}
+template <int N>
+Jet2<N> operator+(const Jet2<N>& x, const Jet2<N>& y) {
+  return Jet2<N>(x.a + y.a, x.g + y.g, x.h + y.h);
+}
+template <int N>
+Jet1<N> operator-(const Jet1<N>& x, const Jet1<N>& y) {
+  return Jet1<N>(x.a - y.a, x.g - y.g);
+}
+template <int N>
+Jet2<N> operator-(const Jet2<N>& x, const Jet2<N>& y) {
+  return Jet2<N>(x.a - y.a, x.g - y.g, x.h - y.h);
+}
+template <int N>
+Jet1<N> operator-(const Jet1<N>& x) {
+  return Jet1<N>(-x.a, -x.g);
+}
+template <int N>
+Jet2<N> operator-(const Jet2<N>& x) {
+  return Jet2<N>(-x.a, -x.g, -x.h);
+}
+template <int N>
+Jet1<N> operator*(const Jet1<N>& x, const Jet1<N>& y) {
+  return Jet1<N>(x.a * y.a, y.a * x.g + x.a * y.g);
+}
+template <int N>
+Jet2<N> operator*(const Jet2<N>& x, const Jet2<N>& y) {
+  const auto cross = x.g * y.g.transpose();
+  return Jet2<N>(x.a * y.a, y.a * x.g + x.a * y.g, y.a * x.h + x.a * y.h + cross + cross.transpose());
+}
+template <JetType J>
+J Reciprocal(const J& x) {
+  const double r = 1.0 / x.a;
+  return x.Chain(r, -r * r, 2.0 * r * r * r);
+}
+template <JetType J>
+J operator/(const J& x, const J& y) {
+  return x * Reciprocal(y);
+}
+
+// Mixed jet/double arithmetic.
+template <JetType J>
+J operator+(const J& x, double c) {
+  J r = x;
+  r.a += c;
+  return r;
+}
+template <JetType J>
+J operator+(double c, const J& x) {
+  return x + c;
+}
+template <JetType J>
+J operator-(const J& x, double c) {
+  return x + (-c);
+}
+template <JetType J>
+J operator-(double c, const J& x) {
+  return (-x) + c;
+}
+template <JetType J>
+J operator*(const J& x, double c) {
+  return x.Chain(x.a * c, c, 0.0);
+}
+template <JetType J>
+J operator*(double c, const J& x) {
+  return x * c;
+}
+template <JetType J>
+J operator/(const J& x, double c) {
+  return x * (1.0 / c);
+}
+template <JetType J>
+J operator/(double c, const J& x) {
+  return c * Reciprocal(x);
+}
+template <JetType J>
+J& operator+=(J& x, const J& y) {
+  return x = x + y;
+}
+template <JetType J>
+J& operator-=(J& x, const J& y) {
+  return x = x - y;
+}
+template <JetType J>
+J& operator*=(J& x, const J& y) {
+  return x = x * y;
+}
+template <JetType J>
+J& operator+=(J& x, double c) {
+  return x = x + c;
+}
+template <JetType J>
+J& operator*=(J& x, double c) {
+  return x = x * c;
+}
+
+// Comparisons look at values only (branches are taken on the value).
+template <JetType J>
+bool operator<(const J& x, const J& y) {
+  return x.a < y.a;
+}
+template <JetType J>
+bool operator>(const J& x, const J& y) {
+  return x.a > y.a;
+}
+template <JetType J>
+bool operator<(const J& x, double c) {
+  return x.a < c;
+}
+template <JetType J>
+bool operator>(const J& x, double c) {
+  return x.a > c;
+}
+template <JetType J>
+bool operator<=(const J& x, double c) {
+  return x.a <= c;
+}
+template <JetType J>
+bool operator>=(const J& x, double c) {
+  return x.a >= c;
+}
+
+// ---- elementary functions ---------------------------------------------------
+// Plain-double versions in this namespace, so that a problem written as a template
+// calls `exp(x)` unqualified for both doubles and jets.
+inline double exp(double x) { return std::exp(x); }
+inline double log(double x) { return std::log(x); }
+inline double sqrt(double x) { return std::sqrt(x); }
+inline double sin(double x) { return std::sin(x); }
+inline double cos(double x) { return std::cos(x); }
+inline double tan(double x) { return std::tan(x); }
+inline double atan(double x) { return std::atan(x); }
+inline double pow(double x, double p) { return std::pow(x, p); }
+inline double abs(double x) { return std::abs(x); }
+
+template <JetType J>
+J exp(const J& x) {
+  const double e = std::exp(x.a);
+  return x.Chain(e, e, e);
+}
+template <JetType J>
+J log(const J& x) {
+  return x.Chain(std::log(x.a), 1.0 / x.a, -1.0 / (x.a * x.a));
+}
+template <JetType J>
+J sqrt(const J& x) {
+  const double s = std::sqrt(x.a);
+  return x.Chain(s, 0.5 / s, -0.25 / (s * x.a));
+}
+template <JetType J>
+J sin(const J& x) {
+  const double s = std::sin(x.a), c = std::cos(x.a);
+  return x.Chain(s, c, -s);
+}
+template <JetType J>
+J cos(const J& x) {
+  const double s = std::sin(x.a), c = std::cos(x.a);
+  return x.Chain(c, -s, -c);
+}
+template <JetType J>
+J tan(const J& x) {
+  const double t = std::tan(x.a), sec2 = 1.0 + t * t;
+  return x.Chain(t, sec2, 2.0 * t * sec2);
+}
+template <JetType J>
+J atan(const J& x) {
+  const double d = 1.0 / (1.0 + x.a * x.a);
+  return x.Chain(std::atan(x.a), d, -2.0 * x.a * d * d);
+}
+/// x^p for a constant exponent p.
+template <JetType J>
+J pow(const J& x, double p) {
+  const double v = std::pow(x.a, p);
+  const double d1 = p * std::pow(x.a, p - 1.0);
+  const double d2 = p * (p - 1.0) * std::pow(x.a, p - 2.0);
+  return x.Chain(v, d1, d2);
+}
+/// c^x for a constant base c > 0.
+template <JetType J>
+J pow(double c, const J& x) {
+  const double lc = std::log(c), v = std::pow(c, x.a);
+  return x.Chain(v, lc * v, lc * lc * v);
+}
+/// |x|: the derivative at 0 is taken as 0 (a problem that crosses 0 must smooth it).
+template <JetType J>
+J abs(const J& x) {
+  return x.a >= 0.0 ? x : -x;
+}
+template <JetType J>
+J square(const J& x) {
+  return x * x;
+}
+inline double square(double x) { return x * x; }
+
+/// A jet of a function of two jets whose value, gradient and Hessian are known
+/// numerically (for example a channel map s(q)): the chain rule for phi(x, y).
+template <JetType J>
+J ApplyBinary(const J& x,
+              const J& y,
+              double value,
+              const Eigen::Vector2d& grad,
+              const Eigen::Matrix2d& hess) {
+  J r;
+  r.a = value;
+  r.g = grad[0] * x.g + grad[1] * y.g;
+  if constexpr (requires { r.h; }) {
+    r.h = grad[0] * x.h + grad[1] * y.h + hess(0, 0) * x.g * x.g.transpose() +
+          hess(1, 1) * y.g * y.g.transpose() +
+          hess(0, 1) * (x.g * y.g.transpose() + y.g * x.g.transpose());
+  }
+  return r;
+}
+inline double ApplyBinary(double /*x*/,
+                          double /*y*/,
+                          double value,
+                          const Eigen::Vector2d& /*grad*/,
+                          const Eigen::Matrix2d& /*hess*/) {
+  return value;
+}
+
+}  // namespace ocpb
+
+// Let Eigen hold jets in its fixed-size matrices.
+namespace Eigen {
+template <int N>
+struct NumTraits<ocpb::Jet1<N>> : NumTraits<double> {
+  using Real = ocpb::Jet1<N>;
+  using NonInteger = ocpb::Jet1<N>;
+  using Nested = ocpb::Jet1<N>;
+  enum { IsComplex = 0, RequireInitialization = 1, ReadCost = 1, AddCost = 2, MulCost = 4 };
+};
+template <int N>
+struct NumTraits<ocpb::Jet2<N>> : NumTraits<double> {
+  using Real = ocpb::Jet2<N>;
+  using NonInteger = ocpb::Jet2<N>;
+  using Nested = ocpb::Jet2<N>;
+  enum { IsComplex = 0, RequireInitialization = 1, ReadCost = 1, AddCost = 2, MulCost = 4 };
+};
+}  // namespace Eigen

@@ -1,0 +1,90 @@
+#include "core/ocp.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace ocpb {
+
+const char* ToString(TerminalMode mode) {
+  return mode == TerminalMode::kPenalty ? "penalty" : "hard";
+}
+
+void Ocp::MinimizeHamiltonian(double, ConstVecRef, ConstVecRef, VecRef) const {
+  throw std::logic_error("problem '" + name() + "' has no closed-form Hamiltonian minimizer");
+}
+
+double Ocp::TerminalPenalty(ConstVecRef x) const {
+  if (npsi_ == 0) return 0.0;
+  Vec psi(npsi_);
+  TerminalConstraints(x, psi);
+  return terminal_weights_.dot(psi.cwiseAbs2());
+}
+
+double Ocp::TerminalObjective(ConstVecRef x, TerminalMode mode) const {
+  double value = TerminalCost(x);
+  if (mode == TerminalMode::kPenalty) value += TerminalPenalty(x);
+  return value;
+}
+
+void Ocp::TerminalObjectiveGradient(ConstVecRef x, TerminalMode mode, double* value,
+                                    VecRef grad) const {
+  TerminalCostGradient(x, value, grad);
+  if (mode == TerminalMode::kPenalty && npsi_ > 0) {
+    Vec psi(npsi_);
+    Mat psix(npsi_, nx_);
+    TerminalConstraintsJacobian(x, psi, psix);
+    *value += terminal_weights_.dot(psi.cwiseAbs2());
+    grad += psix.transpose() * (2.0 * terminal_weights_.cwiseProduct(psi));
+  }
+}
+
+double Ocp::Hamiltonian(double t, ConstVecRef x, ConstVecRef u, ConstVecRef p) const {
+  Vec f(nx_);
+  Dynamics(t, x, u, f);
+  return p.dot(f) + RunningCost(t, x, u);
+}
+
+void Ocp::SetDimensions(int nx, int nu, int npsi, int nc) {
+  if (nx < 1 || nu < 1 || npsi < 0 || nc < 0) {
+    throw std::invalid_argument("problem dimensions must satisfy nx >= 1, nu >= 1, npsi >= 0, nc >= 0");
+  }
+  nx_ = nx;
+  nu_ = nu;
+  npsi_ = npsi;
+  nc_ = nc;
+  x0_ = Vec::Zero(nx);
+  terminal_weights_ = Vec::Ones(npsi);
+  control_set_ = ControlSet::Unbounded(nu);
+}
+
+void Ocp::SetHorizon(double t0, double tf) {
+  if (!std::isfinite(t0) || !std::isfinite(tf)) {
+    throw std::invalid_argument("horizon: t0 and tf must be finite");
+  }
+  if (!(tf > t0)) throw std::invalid_argument("horizon: need tf > t0");
+  t0_ = t0;
+  tf_ = tf;
+}
+
+void Ocp::SetInitialState(const Vec& x0) {
+  if (x0.size() != nx_) throw std::invalid_argument("initial state: size must equal nx");
+  if (!x0.allFinite()) throw std::invalid_argument("initial state: values must be finite");
+  x0_ = x0;
+}
+
+void Ocp::SetTerminalWeights(const Vec& w) {
+  if (w.size() != npsi_) throw std::invalid_argument("terminal weights: size must equal npsi");
+  for (int i = 0; i < w.size(); ++i) {
+    if (!std::isfinite(w[i]) || w[i] <= 0.0) {
+      throw std::invalid_argument("terminal weights: every weight must be finite and > 0");
+    }
+  }
+  terminal_weights_ = w;
+}
+
+void Ocp::SetControlSet(const ControlSet& set) {
+  if (set.dimension() != nu_) throw std::invalid_argument("control set: dimension must equal nu");
+  control_set_ = set;
+}
+
+}  // namespace ocpb

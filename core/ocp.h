@@ -1,0 +1,118 @@
+// The optimal-control problem every method of OCPBench consumes.
+#pragma once
+
+#include <string>
+
+#include "core/control_set.h"
+#include "core/types.h"
+
+namespace ocpb {
+
+/// How a method treats the terminal constraints psi(x(tf)) = 0.
+enum class TerminalMode {
+  kPenalty,  ///< add sum_i w_i psi_i(x(tf))^2 to the cost (the paper's form)
+  kHard,     ///< enforce psi(x(tf)) = 0 as constraints
+};
+const char* ToString(TerminalMode mode);
+
+/// An optimal-control problem in Bolza form on a fixed horizon [t0, tf]:
+///
+///   minimize    J = int_{t0}^{tf} L(t, x, u) dt + phi(x(tf)) [+ sum_i w_i psi_i(x(tf))^2]
+///   subject to  x' = f(t, x, u),  x(t0) = x0,
+///               u(t) in U                       (a ControlSet),
+///               c(t, x, u) <= 0                 (path constraints, state bounds among them),
+///               psi(x(tf)) = 0                  (hard form only).
+///
+/// The penalized cost J and the unpenalized cost Jbar = int L + phi come from the same
+/// definition; `terminal_weights()` holds the w_i. The Hamiltonian is H = p^T f + L.
+///
+/// Derivatives: every first and second derivative below is exact (forward-mode AD in
+/// AutoDiffOcp, or hand-written by a problem and then tested against finite differences).
+/// Outputs are written into caller-owned storage of the right size; inputs are not resized.
+/// The interface is const and keeps no mutable state, so one problem may be shared by threads.
+class Ocp {
+ public:
+  virtual ~Ocp() = default;
+
+  /// Registry name of the problem (for example "double-integrator").
+  virtual std::string name() const = 0;
+
+  int nx() const { return nx_; }
+  int nu() const { return nu_; }
+  int num_terminal() const { return npsi_; }
+  int num_path() const { return nc_; }
+  double t0() const { return t0_; }
+  double tf() const { return tf_; }
+  const Vec& x0() const { return x0_; }
+  const Vec& terminal_weights() const { return terminal_weights_; }
+  const ControlSet& control_set() const { return control_set_; }
+
+  // ---- values ------------------------------------------------------------------
+  virtual void Dynamics(double t, ConstVecRef x, ConstVecRef u, VecRef f) const = 0;
+  virtual double RunningCost(double t, ConstVecRef x, ConstVecRef u) const = 0;
+  /// phi(x(tf)), without the terminal penalty.
+  virtual double TerminalCost(ConstVecRef x) const = 0;
+  /// psi(x(tf)) (size num_terminal()).
+  virtual void TerminalConstraints(ConstVecRef x, VecRef psi) const = 0;
+  /// c(t, x, u) <= 0 (size num_path()).
+  virtual void PathConstraints(double t, ConstVecRef x, ConstVecRef u, VecRef c) const = 0;
+
+  // ---- first derivatives ---------------------------------------------------------
+  /// f, f_x (nx x nx) and f_u (nx x nu).
+  virtual void DynamicsJacobian(double t, ConstVecRef x, ConstVecRef u, VecRef f, MatRef fx,
+                                MatRef fu) const = 0;
+  /// L, L_x and L_u.
+  virtual void RunningCostGradient(double t, ConstVecRef x, ConstVecRef u, double* L, VecRef Lx,
+                                   VecRef Lu) const = 0;
+  virtual void TerminalCostGradient(ConstVecRef x, double* phi, VecRef phix) const = 0;
+  /// psi and psi_x (npsi x nx).
+  virtual void TerminalConstraintsJacobian(ConstVecRef x, VecRef psi, MatRef psix) const = 0;
+  /// c, c_x (nc x nx), c_u (nc x nu).
+  virtual void PathConstraintsJacobian(double t, ConstVecRef x, ConstVecRef u, VecRef c, MatRef cx,
+                                       MatRef cu) const = 0;
+
+  // ---- second derivatives -------------------------------------------------------
+  /// The Hessian with respect to z = (x, u) ((nx+nu) x (nx+nu), full and symmetric) of
+  ///   sigma L(t, x, u) + lambda^T f(t, x, u) + mu^T c(t, x, u).
+  virtual void PointHessian(double t, ConstVecRef x, ConstVecRef u, double sigma,
+                            ConstVecRef lambda, ConstVecRef mu, MatRef hess) const = 0;
+  /// The Hessian with respect to x (nx x nx) of sigma phi(x) + nu^T psi(x).
+  virtual void TerminalHessian(ConstVecRef x, double sigma, ConstVecRef nu,
+                               MatRef hess) const = 0;
+
+  // ---- pointwise Hamiltonian minimizer -------------------------------------------
+  /// True when MinimizeHamiltonian is available in closed form.
+  virtual bool HasHamiltonianMinimizer() const { return false; }
+  /// u* = argmin_{u in U} H(t, x, u, p) = p^T f(t, x, u) + L(t, x, u).
+  /// Only called when HasHamiltonianMinimizer(); the default throws std::logic_error.
+  virtual void MinimizeHamiltonian(double t, ConstVecRef x, ConstVecRef p, VecRef u) const;
+
+  // ---- conveniences built on the above -------------------------------------------
+  /// The terminal penalty sum_i w_i psi_i(x)^2.
+  double TerminalPenalty(ConstVecRef x) const;
+  /// phi(x) + TerminalPenalty(x) in penalty mode, phi(x) in hard mode.
+  double TerminalObjective(ConstVecRef x, TerminalMode mode) const;
+  /// The gradient of TerminalObjective.
+  void TerminalObjectiveGradient(ConstVecRef x, TerminalMode mode, double* value,
+                                 VecRef grad) const;
+  /// H(t, x, u, p) = p^T f + L.
+  double Hamiltonian(double t, ConstVecRef x, ConstVecRef u, ConstVecRef p) const;
+
+ protected:
+  /// Problems call this from their constructor; it validates sizes and values and
+  /// throws std::invalid_argument with a one-line message on bad input.
+  void SetDimensions(int nx, int nu, int npsi, int nc);
+  void SetHorizon(double t0, double tf);
+  void SetInitialState(const Vec& x0);
+  void SetTerminalWeights(const Vec& w);
+  void SetControlSet(const ControlSet& set);
+
+ private:
+  int nx_ = 0, nu_ = 0, npsi_ = 0, nc_ = 0;
+  double t0_ = 0.0, tf_ = 1.0;
+  Vec x0_;
+  Vec terminal_weights_;
+  ControlSet control_set_;
+};
+
+}  // namespace ocpb

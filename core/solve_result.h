@@ -1,0 +1,60 @@
+// Status and result types every solver returns.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/control_trajectory.h"
+#include "core/types.h"
+
+namespace ocpb {
+
+/// OCPBench's summary of how a solve ended. The backend's own code is kept verbatim in
+/// SolveResult::solver_status; this enum only groups it, it never replaces it.
+enum class SolveStatus {
+  kConverged,         ///< the solver's convergence test passed
+  kAcceptable,        ///< converged to the solver's "acceptable" (looser) level
+  kMaxIterations,     ///< iteration limit reached; controls are the last iterate
+  kMaxTime,           ///< time or evaluation limit reached; controls are the last iterate
+  kStepTooSmall,      ///< line search failed (e.g. Armijo exponent beyond its limit)
+  kRoundoffLimited,   ///< progress limited by roundoff; the result is usually still useful
+  kInfeasible,        ///< the solver declared the problem (locally) infeasible
+  kNumericalFailure,  ///< NaN/inf or a solver-internal numerical error
+  kInvalidInput,      ///< the request was rejected before solving
+  kNotApplicable,     ///< the method cannot solve this problem (stated reason in message)
+  kError,             ///< any other failure reported by the backend
+};
+
+const char* ToString(SolveStatus status);
+/// Converged or acceptable.
+bool IsSuccess(SolveStatus status);
+
+/// One row of a solver's iteration history. Fields a solver does not have stay NaN / -1.
+struct IterationRecord {
+  int iteration = 0;
+  double J = -1.0;            ///< the solver's objective at this iterate
+  double theta = NAN;         ///< Hamiltonian descent: theta(u) = int H(u*) - H(u) dt
+  int armijo_j = -1;          ///< Hamiltonian descent: Armijo exponent accepted
+  double primal_inf = NAN;    ///< NLP solvers: constraint violation
+  double dual_inf = NAN;      ///< NLP solvers: dual infeasibility
+  double cpu_seconds = 0.0;   ///< cumulative CPU time since the solve started
+};
+
+/// Everything a user needs from a solve. Numbers start at -1 ("not computed").
+struct SolveResult {
+  std::string solver;           ///< registry name ("hamiltonian", "ipopt", ...)
+  SolveStatus status = SolveStatus::kError;
+  std::string solver_status;    ///< the backend's own status, verbatim
+  std::string message;          ///< human-readable detail
+  ControlTrajectory controls;   ///< the controls the evaluator judges
+  TimeGrid state_grid;          ///< grid of `states` / `costates`
+  Mat states;                   ///< the method's own states (nx x points), if it has them
+  Mat costates;                 ///< costates or multiplier-based estimates, if any
+  double objective = -1.0;      ///< the objective value the method reports about itself
+  int iterations = -1;
+  std::vector<IterationRecord> history;
+  double cpu_seconds = -1.0;
+  double wall_seconds = -1.0;
+};
+
+}  // namespace ocpb

@@ -1,0 +1,54 @@
+#include "core/parameters.h"
+
+#include <gtest/gtest.h>
+
+#include "problems/registry.h"
+
+namespace ocpb {
+namespace {
+
+std::string ErrorOf(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(Parameters, SetFromStringParsesScalarsAndVectors) {
+  Parameters p({{"S", {20.0, 40.0}, "start"}, {"tf", {40.0}, "horizon", 0.0, 1e6, true}});
+  p.SetFromString("S=1.5,-2");
+  p.SetFromString("tf=12");
+  EXPECT_EQ(p.Vector("S")[1], -2.0);
+  EXPECT_EQ(p.Scalar("tf"), 12.0);
+}
+
+TEST(Parameters, InvalidValuesAreRejectedWithOneLineMessages) {
+  Parameters p({{"S", {20.0, 40.0}, "start"}, {"tf", {40.0}, "horizon", 0.0, 1e6, true}});
+  EXPECT_EQ(ErrorOf([&] { p.SetFromString("tf=-1"); }),
+            "parameter 'tf' = -1 out of range: need > 0 and <= 1e+06");
+  EXPECT_EQ(ErrorOf([&] { p.SetFromString("tf=nan"); }),
+            "parameter 'tf' must be finite (got NaN or inf)");
+  EXPECT_EQ(ErrorOf([&] { p.SetFromString("S=1"); }), "parameter 'S' takes 2 value(s), got 1");
+  EXPECT_EQ(ErrorOf([&] { p.SetFromString("gamma=1"); }),
+            "unknown parameter 'gamma' (valid: S, tf)");
+  EXPECT_EQ(ErrorOf([&] { p.SetFromString("tf"); }),
+            "malformed --set 'tf': expected key=value or key=v1,v2");
+  EXPECT_EQ(ErrorOf([&] { p.SetFromString("tf=4x"); }),
+            "malformed --set 'tf=4x': '4x' is not a number");
+  EXPECT_EQ(p.Scalar("tf"), 40.0);  // failed sets change nothing
+}
+
+TEST(ProblemRegistry, UnknownNameListsTheValidOnes) {
+  const std::string msg = ErrorOf([] { FindProblem("no-such-problem"); });
+  EXPECT_NE(msg.find("unknown problem 'no-such-problem' (valid: "), std::string::npos);
+  EXPECT_NE(msg.find("double-integrator"), std::string::npos);
+}
+
+TEST(ProblemRegistry, HorizonMustBePositive) {
+  EXPECT_THROW(MakeProblem("double-integrator", {"tf=0"}, 0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ocpb

@@ -1,0 +1,1 @@
+#include "transcriptions/transcription.h"

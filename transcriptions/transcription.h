@@ -1,0 +1,49 @@
+// Transcriptions: an Ocp on a grid becomes an Nlp, and an NLP solution becomes controls again.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/control_trajectory.h"
+#include "core/nlp.h"
+#include "core/ocp.h"
+#include "core/time_grid.h"
+
+namespace ocpb {
+
+/// An Nlp that knows the optimal-control meaning of its variables.
+class TranscribedNlp : public Nlp {
+ public:
+  /// The controls encoded in z, with the interpolation rule of this transcription; this is
+  /// what the common evaluator judges.
+  virtual ControlTrajectory Controls(ConstVecRef z) const = 0;
+  /// The grid on which States() and Costates() are given.
+  virtual const TimeGrid& state_grid() const = 0;
+  /// The states encoded in z (nx x state_grid().size()); empty for single shooting.
+  virtual Mat States(ConstVecRef z) const = 0;
+  /// A costate estimate from the constraint multipliers lambda (nx x state_grid().size()),
+  /// in the convention H = p^T f + L; empty when the transcription has none.
+  virtual Mat Costates(ConstVecRef /*z*/, ConstVecRef /*lambda*/) const { return Mat(); }
+};
+
+/// What a transcription needs besides the problem.
+struct TranscriptionOptions {
+  TimeGrid grid;                                 ///< mesh on [t0, tf]
+  TerminalMode terminal = TerminalMode::kPenalty;
+  std::optional<ControlTrajectory> initial_guess; ///< controls to start from (states by simulation)
+  int degree = 3;                                ///< LGR: collocation points per interval
+};
+
+/// A scheme, by name ("euler", "trapezoid", "hermite-simpson", "lgr", "single-shooting").
+class Transcription {
+ public:
+  virtual ~Transcription() = default;
+  virtual std::string name() const = 0;
+  /// Throws std::invalid_argument on an invalid request (for example a grid that does not span
+  /// the problem's horizon).
+  virtual std::unique_ptr<TranscribedNlp> Transcribe(const Ocp& ocp,
+                                                     const TranscriptionOptions& options) const = 0;
+};
+
+}  // namespace ocpb
