@@ -20,6 +20,8 @@ int RunOcpbench(int argc, char** argv) {
   app.set_version_flag("--version", VersionString());
   app.require_subcommand(1);
   AddListCommand(app);
+  AddSolveCommand(app);
+  AddRunCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

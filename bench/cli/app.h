@@ -15,6 +15,10 @@ enum ExitCode : int {
 
 /// `ocpbench list problems|solvers|transcriptions`.
 void AddListCommand(CLI::App& app);
+/// `ocpbench solve --problem P --solver S [...] [--json FILE]`.
+void AddSolveCommand(CLI::App& app);
+/// `ocpbench run SUITE.json [--out DIR] [--resume|--overwrite] [--shard i/n]`, `ocpbench merge DIR`.
+void AddRunCommand(CLI::App& app);
 
 /// Builds the app with every subcommand and runs it on argv; returns the process exit code.
 /// All errors are reported as one line "ocpbench: error: ..." on stderr.

@@ -1,0 +1,349 @@
+#include "bench/cli/case_runner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <set>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "bench/cli/version.h"
+#include "core/evaluator.h"
+#include "core/parameters.h"
+#include "core/timer.h"
+#include "problems/registry.h"
+#include "solvers/registry.h"
+
+namespace ocpb {
+namespace {
+
+using nlohmann::json;
+
+// NaN and infinities have no JSON form: they become null ("not computed" / "never").
+json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json MatrixRows(const Mat& m) {
+  json rows = json::array();
+  for (int i = 0; i < m.rows(); ++i) {
+    json row = json::array();
+    for (int j = 0; j < m.cols(); ++j) row.push_back(Number(m(i, j)));
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+json VectorJson(const Vec& v) {
+  json a = json::array();
+  for (int i = 0; i < v.size(); ++i) a.push_back(Number(v[i]));
+  return a;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+TerminalMode ParseTerminal(const std::string& s) {
+  if (s == "penalty") return TerminalMode::kPenalty;
+  if (s == "hard") return TerminalMode::kHard;
+  throw std::invalid_argument("terminal: unknown form '" + s + "' (valid: penalty, hard)");
+}
+
+std::string OptionValueToString(const json& v, const std::string& where) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_integer()) return std::to_string(v.get<long long>());
+  if (v.is_number_float()) {
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) throw std::invalid_argument(where + ": must be finite");
+    return fmt::format("{}", d);
+  }
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  throw std::invalid_argument(where + ": must be a string, number or boolean");
+}
+
+}  // namespace
+
+std::string CaseSpec::Key() const {
+  std::string key = fmt::format("{}|seed={}|{}|{}|{}|N={}|deg={}|{}|{}|eval={}", problem, seed,
+                                solver, transcription, algorithm, intervals, degree,
+                                ToString(terminal), ToString(integrator), ToString(evaluate_with));
+  for (const std::string& s : set) key += "|set:" + s;
+  for (const auto& [k, v] : options) key += "|opt:" + k + "=" + v;
+  return key;
+}
+
+void CaseSpec::Validate() const {
+  if (problem.empty()) throw std::invalid_argument("problem: required");
+  if (solver.empty()) throw std::invalid_argument("solver: required");
+  if (intervals < 0) throw std::invalid_argument("N: must be >= 1 (or omitted for the default)");
+  if (intervals > 2000000) {
+    throw std::invalid_argument("N: " + std::to_string(intervals) +
+                                " intervals is beyond this machine's memory budget (max 2000000)");
+  }
+  if (degree < 1 || degree > 20) throw std::invalid_argument("degree: must be in 1..20");
+  if (repeats < 1 || repeats > 1000) throw std::invalid_argument("repeats: must be in 1..1000");
+}
+
+bool IsFailure(SolveStatus status) {
+  return status == SolveStatus::kNumericalFailure || status == SolveStatus::kInfeasible ||
+         status == SolveStatus::kError || status == SolveStatus::kInvalidInput;
+}
+
+CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
+  if (!j.is_object()) throw std::invalid_argument(where + ": a case must be a JSON object");
+  static const std::set<std::string> kKeys = {
+      "problem",  "set",    "seed",       "solver",    "transcription", "algorithm",
+      "N",        "degree", "terminal",   "integrator", "evaluate_with", "options",
+      "repeats",  "keep_trajectory"};
+  for (const auto& [k, v] : j.items()) {
+    if (!kKeys.count(k)) {
+      std::string valid;
+      for (const auto& key : kKeys) valid += (valid.empty() ? "" : ", ") + key;
+      throw std::invalid_argument(where + ": unknown key '" + k + "' (valid: " + valid + ")");
+    }
+  }
+  auto field = [&](const char* name) { return where + "." + name; };
+  auto get_string = [&](const char* name, std::string* out) {
+    if (!j.contains(name)) return;
+    if (!j[name].is_string()) throw std::invalid_argument(field(name) + ": must be a string");
+    *out = j[name].get<std::string>();
+  };
+  auto get_int = [&](const char* name, long long lo, long long hi, long long* out) {
+    if (!j.contains(name)) return;
+    const json& v = j[name];
+    if (!v.is_number_integer()) {
+      throw std::invalid_argument(field(name) + ": must be an integer");
+    }
+    const long long x = v.get<long long>();
+    if (x < lo || x > hi) {
+      throw std::invalid_argument(fmt::format("{}: {} out of range [{}, {}]", field(name), x, lo, hi));
+    }
+    *out = x;
+  };
+  CaseSpec spec;
+  get_string("problem", &spec.problem);
+  get_string("solver", &spec.solver);
+  get_string("transcription", &spec.transcription);
+  get_string("algorithm", &spec.algorithm);
+  long long seed = 1, n = 0, degree = 3, repeats = 1;
+  get_int("seed", 0, (1LL << 53), &seed);
+  get_int("N", 1, 2000000, &n);
+  get_int("degree", 1, 20, &degree);
+  get_int("repeats", 1, 1000, &repeats);
+  spec.seed = static_cast<std::uint64_t>(seed);
+  spec.intervals = static_cast<int>(n);
+  spec.degree = static_cast<int>(degree);
+  spec.repeats = static_cast<int>(repeats);
+  std::string s;
+  if (j.contains("terminal")) {
+    get_string("terminal", &s);
+    try {
+      spec.terminal = ParseTerminal(s);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(where + "." + e.what());
+    }
+  }
+  for (const char* name : {"integrator", "evaluate_with"}) {
+    if (!j.contains(name)) continue;
+    s.clear();
+    get_string(name, &s);
+    try {
+      (std::string(name) == "integrator" ? spec.integrator : spec.evaluate_with) = ParseIntegrator(s);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(field(name) + ": " + e.what());
+    }
+  }
+  if (j.contains("keep_trajectory")) {
+    if (!j["keep_trajectory"].is_boolean()) {
+      throw std::invalid_argument(field("keep_trajectory") + ": must be true or false");
+    }
+    spec.keep_trajectory = j["keep_trajectory"].get<bool>();
+  }
+  if (j.contains("set")) {
+    const json& set = j["set"];
+    if (!set.is_object()) {
+      throw std::invalid_argument(field("set") + ": must be an object {\"key\": value or [values]}");
+    }
+    for (const auto& [k, v] : set.items()) {
+      const std::string where_k = field("set") + "." + k;
+      std::vector<double> values;
+      auto push = [&](const json& x) {
+        if (!x.is_number()) throw std::invalid_argument(where_k + ": must be a number or a list of numbers");
+        const double d = x.get<double>();
+        if (!std::isfinite(d)) throw std::invalid_argument(where_k + ": must be finite");
+        values.push_back(d);
+      };
+      if (v.is_array()) {
+        if (v.empty()) throw std::invalid_argument(where_k + ": empty list");
+        for (const json& x : v) push(x);
+      } else {
+        push(v);
+      }
+      std::string text = k + "=";
+      for (size_t i = 0; i < values.size(); ++i) text += (i ? "," : "") + fmt::format("{}", values[i]);
+      spec.set.push_back(text);
+    }
+  }
+  if (j.contains("options")) {
+    const json& opts = j["options"];
+    if (!opts.is_object()) throw std::invalid_argument(field("options") + ": must be an object");
+    for (const auto& [k, v] : opts.items()) {
+      spec.options[k] = OptionValueToString(v, field("options") + "." + k);
+    }
+  }
+  if (spec.problem.empty()) throw std::invalid_argument(field("problem") + ": required");
+  if (spec.solver.empty()) throw std::invalid_argument(field("solver") + ": required");
+  return spec;
+}
+
+json VersionsJson() {
+  return json{{"ocpbench", OCPB_VERSION},
+              {"commit", GitCommit()},
+              {"compiler", CompilerVersion()},
+              {"ipopt", IpoptVersion()},
+              {"nlopt", NloptVersion()}};
+}
+
+json RunCase(const CaseSpec& spec) {
+  spec.Validate();
+  // Resolve every name and parameter before solving: bad input fails fast and whole.
+  const ProblemInfo& pinfo = FindProblem(spec.problem);
+  const SolverInfo& sinfo = FindSolver(spec.solver);
+  if (sinfo.uses_transcription) {
+    if (spec.transcription.empty()) {
+      throw std::invalid_argument("solver '" + spec.solver + "' needs a transcription (--transcription)");
+    }
+    FindTranscription(spec.transcription);
+  } else if (!spec.transcription.empty()) {
+    throw std::invalid_argument("solver '" + spec.solver + "' takes no transcription");
+  }
+  Parameters params;
+  const std::unique_ptr<Ocp> ocp = MakeProblem(spec.problem, spec.set, spec.seed, &params);
+  const int N = spec.intervals > 0 ? spec.intervals : pinfo.default_intervals;
+  const TimeGrid grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), N);
+
+  SolveRequest request;
+  request.grid = grid;
+  request.terminal = spec.terminal;
+  request.integrator = spec.integrator;
+  request.transcription = spec.transcription;
+  request.algorithm = spec.algorithm;
+  request.degree = spec.degree;
+  request.options = spec.options;
+
+  const std::unique_ptr<Solver> solver = sinfo.make();
+  SolveResult result;
+  std::vector<double> cpu, wall;
+  for (int r = 0; r < spec.repeats; ++r) {
+    try {
+      result = solver->Solve(*ocp, request);
+    } catch (const std::invalid_argument&) {
+      throw;  // an invalid request (options): bad input, reported by the caller
+    } catch (const std::exception& e) {
+      result = SolveResult();
+      result.solver = spec.solver;
+      result.status = SolveStatus::kError;
+      result.solver_status = "exception";
+      result.message = e.what();
+    }
+    cpu.push_back(result.cpu_seconds);
+    wall.push_back(result.wall_seconds);
+  }
+
+  json rec;
+  rec["problem"] = spec.problem;
+  json pj = json::object();
+  for (const auto& [k, v] : params.values()) pj[k] = v.size() == 1 ? json(v[0]) : json(v);
+  rec["parameters"] = pj;
+  rec["seed"] = spec.seed;
+  rec["uses_seed"] = pinfo.uses_seed;
+  rec["solver"] = spec.solver;
+  rec["transcription"] = spec.transcription;
+  rec["algorithm"] = spec.algorithm;
+  rec["N"] = N;
+  if (spec.transcription == "lgr") rec["degree"] = spec.degree;
+  rec["terminal"] = ToString(spec.terminal);
+  rec["integrator"] = ToString(spec.integrator);
+  rec["evaluated_with"] = ToString(spec.evaluate_with);
+  json oj = json::object();
+  for (const auto& [k, v] : spec.options) oj[k] = v;
+  rec["options"] = oj;
+  rec["key"] = spec.Key();
+  rec["status"] = ToString(result.status);
+  rec["solver_status"] = result.solver_status;
+  rec["message"] = result.message;
+  rec["objective"] = Number(result.objective);
+  rec["iterations"] = result.iterations;
+  rec["cpu_seconds"] = Number(Median(cpu));
+  rec["cpu_seconds_repeats"] = cpu;
+  rec["wall_seconds"] = Number(Median(wall));
+  rec["repeats"] = spec.repeats;
+  json stats = json::object();
+  for (const auto& [k, v] : result.solver_stats) stats[k] = Number(v);
+  rec["solver_stats"] = stats;
+
+  const bool has_controls = result.controls.nu() == ocp->nu();
+  if (has_controls) {
+    const Evaluation ev = Evaluate(*ocp, result.controls, grid, spec.evaluate_with);
+    const Evaluation fine = Evaluate(*ocp, result.controls, grid.Refined(10), Integrator::kRk4);
+    rec["J"] = Number(ev.J);
+    rec["Jbar"] = Number(ev.Jbar);
+    rec["terminal_violation"] = Number(ev.terminal_violation);
+    rec["terminal_residual"] = VectorJson(ev.terminal_residual);
+    rec["control_violation"] = Number(ev.control_violation);
+    rec["path_violation"] = Number(ev.path_violation);
+    rec["final_state"] = VectorJson(ev.X.col(N));
+    rec["J_fine"] = Number(fine.J);
+    rec["Jbar_fine"] = Number(fine.Jbar);
+    rec["terminal_violation_fine"] = Number(fine.terminal_violation);
+    const bool has_states = result.states.rows() == ocp->nx() &&
+                            result.states.cols() == result.state_grid.size() &&
+                            result.state_grid.size() >= 2;
+    rec["resimulation_defect"] =
+        has_states ? Number(ResimulationDefect(*ocp, result.controls, result.state_grid, result.states))
+                   : json(nullptr);
+    if (!ev.finite && !IsFailure(result.status) && result.status != SolveStatus::kNotApplicable) {
+      rec["status"] = ToString(SolveStatus::kNumericalFailure);
+      rec["message"] = result.message + " (evaluator: trajectory or cost not finite)";
+    }
+    if (spec.keep_trajectory) {
+      json traj;
+      traj["t"] = grid.points();
+      traj["x"] = MatrixRows(ev.X);
+      traj["u"] = MatrixRows(result.controls.SampleIntervals(grid));
+      traj["u_rule"] = "value at each interval's left end; piecewise " +
+                       std::string(result.controls.InterpolationName());
+      rec["trajectory"] = traj;
+    }
+  } else {
+    for (const char* k : {"J", "Jbar", "terminal_violation", "control_violation", "path_violation",
+                          "J_fine", "Jbar_fine", "terminal_violation_fine", "resimulation_defect"}) {
+      rec[k] = nullptr;
+    }
+    rec["final_state"] = json::array();
+  }
+  if (pinfo.reference_value) {
+    json ref{{"value", *pinfo.reference_value},
+             {"quantity", pinfo.reference_quantity},
+             {"source", pinfo.reference_source}};
+    rec["reference"] = ref;
+  }
+  json hist = json::array();
+  for (const IterationRecord& h : result.history) {
+    hist.push_back(json{{"iteration", h.iteration},
+                        {"J", Number(h.J)},
+                        {"theta", Number(h.theta)},
+                        {"armijo_j", h.armijo_j},
+                        {"primal_inf", Number(h.primal_inf)},
+                        {"dual_inf", Number(h.dual_inf)},
+                        {"cpu_seconds", Number(h.cpu_seconds)}});
+  }
+  rec["history"] = hist;
+  rec["versions"] = VersionsJson();
+  return rec;
+}
+
+}  // namespace ocpb

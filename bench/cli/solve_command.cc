@@ -1,0 +1,105 @@
+// `ocpbench solve`: one problem, one method, one JSON record.
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "bench/cli/app.h"
+#include "bench/cli/case_runner.h"
+#include "bench/cli/io.h"
+
+namespace ocpb {
+namespace {
+
+struct SolveArgs {
+  CaseSpec spec;
+  std::string terminal = "penalty";
+  std::string integrator = "euler";
+  std::string evaluate_with = "euler";
+  std::vector<std::string> options;
+  std::string json_path;
+  bool no_trajectory = false;
+};
+
+std::string Fmt(const nlohmann::json& v) {
+  return v.is_number() ? fmt::format("{:.10g}", v.get<double>()) : std::string("n/a");
+}
+
+void PrintReport(const nlohmann::json& r) {
+  std::cout << fmt::format("{} / {}{}: status {} ({})\n", r["problem"].get<std::string>(),
+                           r["solver"].get<std::string>(),
+                           r["transcription"].get<std::string>().empty()
+                               ? ""
+                               : " + " + r["transcription"].get<std::string>(),
+                           r["status"].get<std::string>(), r["solver_status"].get<std::string>());
+  std::cout << fmt::format("  J = {}   Jbar = {}   terminal violation = {}\n", Fmt(r["J"]),
+                           Fmt(r["Jbar"]), Fmt(r["terminal_violation"]));
+  std::cout << fmt::format("  fine RK4: J = {}   Jbar = {}   re-simulation defect = {}\n",
+                           Fmt(r["J_fine"]), Fmt(r["Jbar_fine"]), Fmt(r["resimulation_defect"]));
+  std::cout << fmt::format("  iterations = {}   CPU = {} s   N = {}\n", r["iterations"].dump(),
+                           Fmt(r["cpu_seconds"]), r["N"].dump());
+  if (!r["final_state"].empty()) std::cout << "  final state = " << r["final_state"].dump() << "\n";
+  if (!r["message"].get<std::string>().empty()) {
+    std::cout << "  message: " << r["message"].get<std::string>() << "\n";
+  }
+}
+
+}  // namespace
+
+void AddSolveCommand(CLI::App& app) {
+  auto args = std::make_shared<SolveArgs>();
+  CLI::App* cmd = app.add_subcommand("solve", "Solve one problem with one method");
+  cmd->add_option("--problem", args->spec.problem, "problem name (ocpbench list problems)")->required();
+  cmd->add_option("--solver", args->spec.solver, "solver name (ocpbench list solvers)")->required();
+  cmd->add_option("--transcription", args->spec.transcription,
+                  "NLP solvers: transcription (ocpbench list transcriptions)");
+  cmd->add_option("--algorithm", args->spec.algorithm, "NLopt algorithm (LD_SLSQP, LD_MMA, ...)");
+  CLI::Option* n_option =
+      cmd->add_option("--N", args->spec.intervals, "grid intervals (default: the problem's)");
+  cmd->add_option("--degree", args->spec.degree, "LGR collocation degree")->capture_default_str();
+  cmd->add_option("--terminal", args->terminal, "terminal constraints: penalty | hard")
+      ->capture_default_str();
+  cmd->add_option("--integrator", args->integrator, "Hamiltonian descent integrator: euler | rk4")
+      ->capture_default_str();
+  cmd->add_option("--evaluate-with", args->evaluate_with,
+                  "common evaluator's integrator on the method's grid: euler | rk4")
+      ->capture_default_str();
+  cmd->add_option("--set", args->spec.set, "problem parameter, key=value or key=v1,v2 (repeatable)");
+  cmd->add_option("--option", args->options, "solver option, key=value (repeatable)");
+  cmd->add_option("--seed", args->spec.seed, "channel realization")->capture_default_str();
+  cmd->add_option("--repeats", args->spec.repeats, "timing repeats (median CPU reported)")
+      ->capture_default_str();
+  cmd->add_option("--json", args->json_path, "write the JSON record to this file");
+  cmd->add_flag("--no-trajectory", args->no_trajectory, "leave t, x, u out of the JSON");
+  cmd->callback([args, n_option]() {
+    CaseSpec spec = args->spec;
+    if (n_option->count() > 0 && spec.intervals < 1) {
+      throw std::invalid_argument("N: must be >= 1 (or omitted for the problem's default)");
+    }
+    spec.terminal = args->terminal == "hard"      ? TerminalMode::kHard
+                    : args->terminal == "penalty" ? TerminalMode::kPenalty
+                                                  : throw std::invalid_argument(
+                                                        "--terminal: unknown form '" + args->terminal +
+                                                        "' (valid: penalty, hard)");
+    spec.integrator = ParseIntegrator(args->integrator);
+    spec.evaluate_with = ParseIntegrator(args->evaluate_with);
+    spec.keep_trajectory = !args->no_trajectory;
+    for (const std::string& o : args->options) {
+      const auto eq = o.find('=');
+      if (eq == std::string::npos || eq == 0) {
+        throw std::invalid_argument("malformed --option '" + o + "': expected key=value");
+      }
+      spec.options[o.substr(0, eq)] = o.substr(eq + 1);
+    }
+    const nlohmann::json record = RunCase(spec);
+    PrintReport(record);
+    if (!args->json_path.empty()) WriteFileAtomically(args->json_path, record.dump(1) + "\n");
+    const std::string status = record["status"].get<std::string>();
+    for (SolveStatus s : {SolveStatus::kNumericalFailure, SolveStatus::kInfeasible, SolveStatus::kError,
+                          SolveStatus::kInvalidInput}) {
+      if (status == ToString(s)) ReportSomeFailed();
+    }
+  });
+}
+
+}  // namespace ocpb

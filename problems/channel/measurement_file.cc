@@ -1,0 +1,86 @@
+#include "problems/channel/measurement_file.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace ocpb {
+namespace {
+
+constexpr size_t kMaxRows = 1000000;
+
+std::string_view Trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+bool ParseNumber(std::string_view field, double* out) {
+  field = Trim(field);
+  if (field.empty()) return false;
+  // std::from_chars for double is in GCC 12's libstdc++; it rejects leading '+', so allow it.
+  if (field.front() == '+') field.remove_prefix(1);
+  const char* end = field.data() + field.size();
+  const auto [ptr, ec] = std::from_chars(field.data(), end, *out);
+  return ec == std::errc() && ptr == end && std::isfinite(*out);
+}
+
+}  // namespace
+
+MeasurementSet ParseMeasurementsCsv(std::string_view text, const std::string& source) {
+  MeasurementSet set;
+  bool header_seen = false;
+  size_t line_no = 0;
+  while (!text.empty()) {
+    const size_t nl = text.find('\n');
+    const std::string_view raw = text.substr(0, nl);
+    text.remove_prefix(nl == std::string_view::npos ? text.size() : nl + 1);
+    ++line_no;
+    const std::string_view line = Trim(raw);
+    if (line.empty() || line.front() == '#') continue;
+    const std::string where = source + ":" + std::to_string(line_no) + ": ";
+    if (!header_seen) {
+      if (line != "x_m,y_m,gain_db") {
+        throw std::invalid_argument(where + "expected the header 'x_m,y_m,gain_db'");
+      }
+      header_seen = true;
+      continue;
+    }
+    double v[3];
+    std::string_view rest = line;
+    for (int i = 0; i < 3; ++i) {
+      const size_t comma = rest.find(',');
+      if ((i < 2) != (comma != std::string_view::npos)) {
+        throw std::invalid_argument(where + "expected 3 comma-separated numbers x_m,y_m,gain_db");
+      }
+      const std::string_view field = rest.substr(0, comma);
+      if (!ParseNumber(field, &v[i])) {
+        throw std::invalid_argument(where + "'" + std::string(Trim(field)) + "' is not a finite number");
+      }
+      rest.remove_prefix(comma == std::string_view::npos ? rest.size() : comma + 1);
+    }
+    if (set.positions.size() >= kMaxRows) {
+      throw std::invalid_argument(where + "more than 1000000 measurements");
+    }
+    set.positions.emplace_back(v[0], v[1]);
+    set.values_db.push_back(v[2]);
+  }
+  if (!header_seen) throw std::invalid_argument(source + ": empty measurement file (no header)");
+  if (set.positions.size() < 3) {
+    throw std::invalid_argument(source + ": need at least 3 measurements, got " +
+                                std::to_string(set.positions.size()));
+  }
+  return set;
+}
+
+MeasurementSet LoadMeasurementsCsv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::invalid_argument("cannot read " + path);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ParseMeasurementsCsv(ss.str(), path);
+}
+
+}  // namespace ocpb

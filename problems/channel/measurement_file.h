@@ -1,0 +1,33 @@
+// Channel measurements from a CSV file (`ocpbench channel predict --measurements FILE`).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace ocpb {
+
+/// Measured channel values at positions in the workspace.
+struct MeasurementSet {
+  std::vector<Eigen::Vector2d> positions;  ///< metres
+  std::vector<double> values_db;           ///< channel gain in dB (received dBm for 0 dBm sent)
+};
+
+/// Parses the CSV format
+///
+///   # comments and blank lines are ignored
+///   x_m,y_m,gain_db          <- this header, exactly, first non-comment line
+///   12.5,30.1,-78.2
+///   ...
+///
+/// Every row has three finite numbers; at least 3 and at most 1,000,000 rows. Throws
+/// std::invalid_argument "SOURCE:LINE: rule" on the first violation. Coincident positions are
+/// accepted here; the predictor documents how it treats them.
+MeasurementSet ParseMeasurementsCsv(std::string_view text, const std::string& source);
+
+/// Reads and parses a file; throws std::invalid_argument when it cannot be read.
+MeasurementSet LoadMeasurementsCsv(const std::string& path);
+
+}  // namespace ocpb

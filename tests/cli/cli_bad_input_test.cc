@@ -1,0 +1,175 @@
+// Table-driven: every bad input gets exit code 2 and one clear line on stderr naming the field.
+#include <algorithm>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "tests/cli/run_ocpbench.h"
+
+namespace ocpb {
+namespace {
+
+using testing::ProgramRun;
+using testing::RunOcpbenchProgram;
+
+struct BadInput {
+  const char* name;
+  std::vector<std::string> args;  // "@SUITE" is replaced by the path of `suite`
+  const char* suite;              // suite file text, or nullptr
+  const char* expected;           // a substring of the one-line error
+};
+
+// A valid case object to mutate.
+#define CASE_OK R"("problem": "double-integrator", "solver": "hamiltonian")"
+
+const BadInput kBadInputs[] = {
+    {"unknown subcommand", {"frobnicate"}, nullptr, "frobnicate"},
+    {"list of nothing", {"list", "foo"}, nullptr, "foo not in {problems,solvers,transcriptions}"},
+    {"unknown problem", {"solve", "--problem", "nope", "--solver", "hamiltonian"}, nullptr,
+     "unknown problem 'nope' (valid: "},
+    {"unknown solver", {"solve", "--problem", "double-integrator", "--solver", "nope"}, nullptr,
+     "unknown solver 'nope' (valid: "},
+    {"unknown transcription",
+     {"solve", "--problem", "double-integrator", "--solver", "ipopt", "--transcription", "nope"}, nullptr,
+     "unknown transcription 'nope' (valid: "},
+    {"transcription for the Hamiltonian solver",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--transcription", "euler"},
+     nullptr, "solver 'hamiltonian' takes no transcription"},
+    {"unknown terminal form",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--terminal", "soft"}, nullptr,
+     "--terminal: unknown form 'soft' (valid: penalty, hard)"},
+    {"unknown integrator",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--integrator", "rk45"},
+     nullptr, "unknown integrator 'rk45' (valid: euler, rk4)"},
+    {"malformed --set",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--set", "tf"}, nullptr,
+     "malformed --set 'tf': expected key=value"},
+    {"unknown parameter",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--set", "gamma=1"}, nullptr,
+     "unknown parameter 'gamma' (valid: "},
+    {"NaN parameter",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--set", "C=nan"}, nullptr,
+     "parameter 'C' must be finite"},
+    {"infinite parameter",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--set", "C=inf"}, nullptr,
+     "parameter 'C' must be finite"},
+    {"negative horizon",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--set", "tf=-5"}, nullptr,
+     "parameter 'tf' = -5 out of range"},
+    {"zero umax",
+     {"solve", "--problem", "double-integrator-bounded", "--solver", "hamiltonian", "--set", "umax=0"},
+     nullptr, "parameter 'umax' = 0 out of range"},
+    {"wrong vector size",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--set", "x0=1"}, nullptr,
+     "parameter 'x0' takes 2 value(s), got 1"},
+    {"not a number",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--set", "C=1e3x"}, nullptr,
+     "'1e3x' is not a number"},
+    {"zero intervals", {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--N", "0"},
+     nullptr, "N: must be >= 1"},
+    {"N beyond memory",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--N", "900000000"}, nullptr,
+     "beyond this machine's memory budget"},
+    {"malformed --option",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--option", "alpha"}, nullptr,
+     "malformed --option 'alpha': expected key=value"},
+    {"zero repeats",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--repeats", "0"}, nullptr,
+     "repeats: must be in 1..1000"},
+    {"missing suite file", {"run", "/nonexistent/suite.json"}, nullptr, "cannot read /nonexistent/suite.json"},
+    {"suite is not JSON", {"run", "@SUITE"}, "{ not json", "not valid JSON"},
+    {"suite is a list", {"run", "@SUITE"}, "[1, 2]", "a suite must be a JSON object"},
+    {"suite without name", {"run", "@SUITE"}, R"({"groups": [{"methods": [{}]}]})", "name: required"},
+    {"suite name with a slash", {"run", "@SUITE"}, R"({"name": "a/b", "groups": [{"methods": [{}]}]})",
+     "name: only letters, digits"},
+    {"suite unknown top-level key", {"run", "@SUITE"}, R"({"name": "s", "groups": [], "gruops": 1})",
+     "unknown key 'gruops'"},
+    {"suite without groups", {"run", "@SUITE"}, R"({"name": "s", "groups": []})", "groups: required non-empty list"},
+    {"group without methods", {"run", "@SUITE"}, R"({"name": "s", "groups": [{"problem": "x"}]})",
+     "groups[0].methods: required non-empty list"},
+    {"case unknown key", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "methods": [{"sovler": "x"}]}]})", "unknown key 'sovler'"},
+    {"case unknown problem", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{"problem": "nope", "methods": [{"solver": "hamiltonian"}]}]})",
+     "groups[0].methods[0]: unknown problem 'nope'"},
+    {"case unknown solver", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{"problem": "double-integrator", "methods": [{"solver": "nope"}]}]})",
+     "groups[0].methods[0]: unknown solver 'nope'"},
+    {"case missing solver", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{"problem": "double-integrator", "methods": [{}]}]})", "solver: required"},
+    {"seed of the wrong type", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "seeds": ["one"], "methods": [{}]}]})",
+     "seed: must be an integer"},
+    {"negative seed", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "seeds": [-1], "methods": [{}]}]})", "seed: -1 out of range"},
+    {"zero N in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "N": [0], "methods": [{}]}]})", "N: 0 out of range"},
+    {"fractional N", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "N": 10.5, "methods": [{}]}]})", "N: must be an integer"},
+    {"parameter of the wrong type", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "set": {"tf": "long"}, "methods": [{}]}]})",
+     "set.tf: must be a number or a list of numbers"},
+    {"negative horizon in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "set": {"tf": -1}, "methods": [{}]}]})",
+     "parameter 'tf' = -1 out of range"},
+    {"unknown parameter in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "set": {"Rmax": 1}, "methods": [{}]}]})",
+     "unknown parameter 'Rmax'"},
+    {"options not an object", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "options": [1], "methods": [{}]}]})",
+     "options: must be an object"},
+    {"option value an object", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "options": {"alpha": {}}, "methods": [{}]}]})",
+     "options.alpha: must be a string, number or boolean"},
+    {"unknown terminal form in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "terminal": "soft", "methods": [{}]}]})",
+     "unknown form 'soft'"},
+    {"transcription missing for ipopt", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{"problem": "double-integrator", "methods": [{"solver": "ipopt"}]}]})",
+     "solver 'ipopt' needs a transcription"},
+    {"duplicate case", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "methods": [{}, {}]}]})", "duplicate case"},
+    {"bad shard", {"run", "@SUITE", "--shard", "3/2"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "methods": [{}]}]})", "--shard '3/2': expected i/n"},
+    {"resume and overwrite", {"run", "@SUITE", "--resume", "--overwrite"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "methods": [{}]}]})", "--resume and --overwrite exclude"},
+    {"merge of a missing directory", {"merge", "/nonexistent/dir"}, nullptr, "merge: no such directory"},
+};
+
+class CliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInput, ExitsWithCode2AndOneClearLine) {
+  const BadInput& bad = GetParam();
+  const std::string dir = testing::FreshDirectory("bad-input");
+  std::vector<std::string> args = bad.args;
+  if (bad.suite) {
+    testing::WriteText(dir + "/suite.json", bad.suite);
+    for (std::string& a : args) {
+      if (a == "@SUITE") a = dir + "/suite.json";
+    }
+  }
+  const ProgramRun run = RunOcpbenchProgram(args, dir);
+  EXPECT_EQ(run.exit_code, 2) << bad.name << "\nstderr: " << run.err;
+  EXPECT_NE(run.err.find(bad.expected), std::string::npos)
+      << bad.name << ": expected '" << bad.expected << "' in stderr: " << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << bad.name << ": " << run.err;
+  EXPECT_EQ(run.err.rfind("ocpbench: error: ", 0), 0u) << run.err;
+  // Nothing was written: the only file in the directory is the suite itself.
+  int files = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, bad.suite ? 1 : 0) << bad.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Table, CliBadInput, ::testing::ValuesIn(kBadInputs),
+                         [](const ::testing::TestParamInfo<BadInput>& info) {
+                           std::string n = info.param.name;
+                           for (char& c : n) {
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           }
+                           return n;
+                         });
+
+TEST(CliBadInput, TableHasAtLeastThirtyCases) { EXPECT_GE(std::size(kBadInputs), 30u); }
+
+}  // namespace
+}  // namespace ocpb
