@@ -115,7 +115,7 @@ void DiscreteOcp::Adjoint(const Mat& U, const Mat& X, Mat* Lambda, Mat* G) const
   Vec lam(nx);
   ocp_.TerminalObjectiveGradient(X.col(N), mode_, &phi, lam);
   Lambda->col(N) = lam;
-  Vec f(nx), Lx(nx), Lu(nu), bar_x(nx), bar_u(nu);
+  Vec f(nx), Lx(nx), Lu(nu), bar_x(nx), bar_u(nu), tmp_x(nx), tmp_u(nu);
   Mat fx(nx, nx), fu(nx, nu);
   double L;
   for (int k = N - 1; k >= 0; --k) {
@@ -123,8 +123,12 @@ void DiscreteOcp::Adjoint(const Mat& U, const Mat& X, Mat* Lambda, Mat* G) const
     if (integrator_ == Integrator::kEuler) {
       ocp_.DynamicsJacobian(t, X.col(k), U.col(k), f, fx, fu);
       ocp_.RunningCostGradient(t, X.col(k), U.col(k), &L, Lx, Lu);
-      G->col(k) = h * (fu.transpose() * lam + Lu);
-      lam += h * (fx.transpose() * lam + Lx);
+      // Coefficient-wise products into preallocated vectors: no heap allocation per step (the
+      // blocked matrix-vector kernel and its temporaries dominate for these small sizes).
+      tmp_u.noalias() = fu.transpose().lazyProduct(lam);
+      G->col(k) = h * (tmp_u + Lu);
+      tmp_x.noalias() = fx.transpose().lazyProduct(lam);
+      lam += h * (tmp_x + Lx);
     } else {
       Rk4StepAdjoint(k, X.col(k), U.col(k), lam, &bar_x, &bar_u);
       G->col(k) = bar_u;

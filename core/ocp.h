@@ -1,6 +1,8 @@
 // The optimal-control problem every method of OCPBench consumes.
 #pragma once
 
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "core/control_set.h"
@@ -14,6 +16,17 @@ enum class TerminalMode {
   kHard,     ///< enforce psi(x(tf)) = 0 as constraints
 };
 const char* ToString(TerminalMode mode);
+
+/// What a method that needs a reformulated problem (the Hamiltonian descent) may ask of
+/// Ocp::HamiltonianReformulation. An unset field means "the problem's own default", which the
+/// problem's header states.
+struct HamiltonianReformulationOptions {
+  /// rho > 0 in the path-constraint penalty rho * sum_i max(0, c_i(t, x, u))^2 added to L.
+  std::optional<double> path_penalty;
+  /// eps > 0 in the control regularization eps |u|^2 added to L where H is linear in u
+  /// (bang-bang or singular arcs).
+  std::optional<double> regularization;
+};
 
 /// An optimal-control problem in Bolza form on a fixed horizon [t0, tf]:
 ///
@@ -86,6 +99,23 @@ class Ocp {
   /// u* = argmin_{u in U} H(t, x, u, p) = p^T f(t, x, u) + L(t, x, u).
   /// Only called when HasHamiltonianMinimizer(); the default throws std::logic_error.
   virtual void MinimizeHamiltonian(double t, ConstVecRef x, ConstVecRef p, VecRef u) const;
+
+  // ---- reformulation for the Hamiltonian method ------------------------------------
+  /// The problem the Hamiltonian method should solve in place of this one, or nullptr (the
+  /// default) when it solves this one as it is. A problem overrides this when it does not fit
+  /// the method as stated but a documented reformulation does:
+  ///  - path constraints c <= 0 become the penalty rho * sum_i max(0, c_i)^2 in L (the result has
+  ///    num_path() == 0 and a MinimizeHamiltonian that is exact for the penalized H);
+  ///  - H linear in u (singular arcs) gets eps |u|^2 added to L (and the exact clipped minimizer).
+  /// The result keeps nx, nu, the horizon, x0, U and the terminal part; it owns everything it
+  /// needs (it may outlive this object). Its optimum differs from this problem's by the
+  /// reformulation's error, which the problem's header quantifies; a method should judge its
+  /// controls on this problem (the common evaluator does). Throws std::invalid_argument when an
+  /// option is out of range (rho <= 0, eps <= 0, non-finite).
+  virtual std::unique_ptr<Ocp> HamiltonianReformulation(
+      const HamiltonianReformulationOptions& /*options*/) const {
+    return nullptr;
+  }
 
   // ---- conveniences built on the above -------------------------------------------
   /// The terminal penalty sum_i w_i psi_i(x)^2.

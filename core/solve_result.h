@@ -1,6 +1,7 @@
 // Status and result types every solver returns.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,9 @@ struct SolveResult {
   std::vector<IterationRecord> history;
   double cpu_seconds = -1.0;
   double wall_seconds = -1.0;
+  /// Backend-specific numbers by name (for example "ipopt_cpu_seconds", "ipopt_dual_inf");
+  /// empty when the solver reports none.
+  std::map<std::string, double> solver_stats;
 };
 
 }  // namespace ocpb

@@ -2,7 +2,10 @@
 
 #include <stdexcept>
 
+#include "problems/comm_fixed_path.h"
+#include "problems/comm_path2d.h"
 #include "problems/double_integrator.h"
+#include "problems/reference/reference_problems.h"
 
 namespace ocpb {
 namespace {
@@ -36,14 +39,33 @@ std::vector<ProblemInfo> BuildRegistry() {
     list.push_back(p);
   }
   // [problems] one block per problem, in the order `ocpbench list problems` prints them.
+  AppendReferenceProblems(&list);  // bryson-denham, lqr, hager, vanderpol, rayleigh, catmix
+  list.push_back(CommPath2dProblemInfo());
+  list.push_back(CommFixedPathProblemInfo());
   return list;
+}
+
+std::vector<ProblemInfo>& MutableProblems() {
+  static std::vector<ProblemInfo> registry = BuildRegistry();
+  return registry;
 }
 
 }  // namespace
 
-const std::vector<ProblemInfo>& Problems() {
-  static const std::vector<ProblemInfo> registry = BuildRegistry();
-  return registry;
+const std::vector<ProblemInfo>& Problems() { return MutableProblems(); }
+
+void RegisterProblem(ProblemInfo info) {
+  if (info.name.empty()) throw std::invalid_argument("RegisterProblem: the name must not be empty");
+  if (!info.make) {
+    throw std::invalid_argument("RegisterProblem: '" + info.name + "' has no make function");
+  }
+  for (const ProblemInfo& p : MutableProblems()) {
+    if (p.name == info.name) {
+      throw std::invalid_argument("RegisterProblem: a problem named '" + info.name +
+                                  "' exists already");
+    }
+  }
+  MutableProblems().push_back(std::move(info));
 }
 
 const ProblemInfo& FindProblem(const std::string& name) {

@@ -26,12 +26,23 @@ struct ProblemInfo {
   std::string reference_quantity = "J";  ///< "J" (hard terminal form) or "tf" etc.
   std::string reference_source;          ///< where the reference value comes from
   bool uses_seed = false;                ///< true when `seed` changes the problem
+  /// Whether the Hamiltonian descent applies to this problem, directly or through
+  /// Ocp::HamiltonianReformulation; when false the solver reports SolveStatus::kNotApplicable.
+  bool hamiltonian_applicable = true;
+  /// How it applies (for example "path constraint as penalty rho max(0, c)^2, rho = 1e4"), or
+  /// why it does not; empty when it applies to the problem as stated.
+  std::string hamiltonian_note;
 };
 
 /// Every registered problem, in a fixed order.
 const std::vector<ProblemInfo>& Problems();
 /// The problem called `name`; throws std::invalid_argument listing the valid names.
 const ProblemInfo& FindProblem(const std::string& name);
+/// Adds a problem defined outside OCPBench (see problems/user_example/) to the registry, after
+/// the built-in ones. Throws std::invalid_argument when the name is empty or taken, or `make` is
+/// empty. Call it before any solving starts (it is not synchronized with concurrent lookups);
+/// it invalidates references previously returned by Problems() and FindProblem().
+void RegisterProblem(ProblemInfo info);
 /// Builds `name` with `assignments` ("key=value") applied over the defaults.
 std::unique_ptr<Ocp> MakeProblem(const std::string& name, const std::vector<std::string>& assignments,
                                  std::uint64_t seed, Parameters* resolved = nullptr);

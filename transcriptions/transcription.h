@@ -9,6 +9,7 @@
 #include "core/nlp.h"
 #include "core/ocp.h"
 #include "core/time_grid.h"
+#include "transcriptions/nlp_scaling.h"
 
 namespace ocpb {
 
@@ -33,6 +34,7 @@ struct TranscriptionOptions {
   TerminalMode terminal = TerminalMode::kPenalty;
   std::optional<ControlTrajectory> initial_guess; ///< controls to start from (states by simulation)
   int degree = 3;                                ///< LGR: collocation points per interval
+  NlpScaling scaling;                            ///< default: none (see nlp_scaling.h)
 };
 
 /// A scheme, by name ("euler", "trapezoid", "hermite-simpson", "lgr", "single-shooting").

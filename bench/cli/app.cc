@@ -4,6 +4,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "bench/cli/channel_command.h"
 #include "bench/cli/version.h"
 
 namespace ocpb {
@@ -22,6 +23,7 @@ int RunOcpbench(int argc, char** argv) {
   AddListCommand(app);
   AddSolveCommand(app);
   AddRunCommand(app);
+  AddChannelCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

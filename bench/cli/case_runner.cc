@@ -285,7 +285,9 @@ json RunCase(const CaseSpec& spec) {
   for (const auto& [k, v] : result.solver_stats) stats[k] = Number(v);
   rec["solver_stats"] = stats;
 
-  const bool has_controls = result.controls.nu() == ocp->nu();
+  // A method that did not run has nothing to judge (its "controls" would be the start).
+  const bool has_controls =
+      result.controls.nu() == ocp->nu() && result.status != SolveStatus::kNotApplicable;
   if (has_controls) {
     const Evaluation ev = Evaluate(*ocp, result.controls, grid, spec.evaluate_with);
     const Evaluation fine = Evaluate(*ocp, result.controls, grid.Refined(10), Integrator::kRk4);

@@ -130,9 +130,26 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
       if (!by_method.count(label)) methods.push_back(label);
       by_method[label].push_back(&r);
     }
+    // Problems with a published optimum get its value and a relative-error column:
+    // |Jbar fine - reference| / |reference| (the continuous-time cost of the method's controls).
+    const json* reference = nullptr;
+    for (const json& r : records) {
+      if (Str(r, "problem") == p && r.contains("reference") && r["reference"].is_object() &&
+          r["reference"].contains("value") && r["reference"]["value"].is_number()) {
+        reference = &r["reference"];
+        break;
+      }
+    }
+    if (reference) {
+      md << fmt::format("Reference {} = {} ({}).\n\n",
+                        reference->value("quantity", std::string("J")),
+                        G((*reference)["value"].get<double>()),
+                        reference->value("source", std::string("no source given")));
+    }
     md << "| method | cases | status | J | Jbar | Jbar fine | terminal viol. | U viol. | iterations | "
-          "CPU s | time to target s |\n";
-    md << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "CPU s | time to target s |"
+       << (reference ? " rel. error vs reference |" : "") << "\n";
+    md << "|---|---|---|---|---|---|---|---|---|---|---|" << (reference ? "---|" : "") << "\n";
     for (const std::string& m : methods) {
       const auto& rs = by_method[m];
       std::map<std::string, int> statuses;
@@ -158,9 +175,16 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
       double tv_max = 0.0, cv_max = 0.0;
       for (double x : tv) tv_max = std::isnan(x) ? tv_max : std::max(tv_max, x);
       for (double x : cv) cv_max = std::isnan(x) ? cv_max : std::max(cv_max, x);
-      md << fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}/{}) |\n", m, rs.size(), st,
+      md << fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}/{}) |", m, rs.size(), st,
                         Spread(J), Spread(Jbar), Spread(Jfine), G(tv_max), G(cv_max), G(Median(it)),
                         G(Median(cpu)), G(Median(ttt)), reached, rs.size());
+      if (reference) {
+        const double value = (*reference)["value"].get<double>();
+        std::vector<double> rel;
+        for (double x : Jfine) rel.push_back(std::abs(x - value) / std::abs(value));
+        md << " " << Spread(rel) << " |";
+      }
+      md << "\n";
     }
     md << "\n";
   }

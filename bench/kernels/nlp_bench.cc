@@ -1,0 +1,232 @@
+// The NLP solvers on OCPBench problems: Ipopt per transcription, Ipopt's growth with N on
+// Hermite-Simpson, Ipopt against the Hamiltonian descent on the paper's Euler grid, the hard
+// terminal form, and where NLopt's dense algorithms stop being practical. Results and commands:
+// solvers/README-nlp.md.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/evaluator.h"
+#include "problems/registry.h"
+#include "solvers/registry.h"
+
+namespace ocpb {
+namespace {
+
+const char* const kTranscriptions[] = {"euler", "trapezoid", "hermite-simpson", "lgr",
+                                       "single-shooting"};
+
+// The paper's problem with the registry's defaults (the predicted channel), seed 1. Returns null
+// and marks the benchmark skipped when it cannot be built.
+std::unique_ptr<Ocp> PaperProblem(benchmark::State& state,
+                                  const std::vector<std::string>& settings = {}) {
+  try {
+    return MakeProblem("comm-path2d", settings, 1);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return nullptr;
+  }
+}
+
+SolveRequest Request(const Ocp& ocp, const std::string& transcription, int N, TerminalMode mode) {
+  SolveRequest request;
+  request.grid = TimeGrid::Uniform(ocp.t0(), ocp.tf(), N);
+  request.terminal = mode;
+  request.transcription = transcription;
+  return request;
+}
+
+// Counters every NLP benchmark reports, from the last run: the solver's status, iterations, its
+// objective, and the common evaluator's J, Jbar and terminal violation on the request's grid
+// (Euler: the discrete problem of the paper).
+void Report(benchmark::State& state, const Ocp& ocp, const SolveRequest& request,
+            const SolveResult& r) {
+  const Evaluation ev = Evaluate(ocp, r.controls, request.grid, Integrator::kEuler);
+  state.counters["success"] = IsSuccess(r.status) ? 1 : 0;
+  state.counters["iterations"] = r.iterations;
+  state.counters["objective"] = r.objective;
+  state.counters["J_euler"] = ev.J;
+  state.counters["Jbar_euler"] = ev.Jbar;
+  state.counters["terminal_violation"] = ev.terminal_violation;
+  state.counters["solver_cpu_s"] = r.cpu_seconds;
+  if (r.iterations > 0) state.counters["cpu_s_per_iteration"] = r.cpu_seconds / r.iterations;
+  state.SetLabel(r.solver_status);
+}
+
+// ---- Ipopt on the double integrator, each transcription (hard form, J* = 6) ------------------
+
+void BM_IpoptDoubleIntegrator(benchmark::State& state) {
+  const auto ocp = MakeProblem("double-integrator", {}, 0);
+  const std::string transcription = kTranscriptions[state.range(0)];
+  const SolveRequest request = Request(*ocp, transcription, static_cast<int>(state.range(1)),
+                                       TerminalMode::kHard);
+  const auto solver = FindSolver("ipopt").make();
+  SolveResult r;
+  for (auto _ : state) r = solver->Solve(*ocp, request);
+  Report(state, *ocp, request, r);
+  state.SetLabel(transcription + " " + r.solver_status);
+}
+BENCHMARK(BM_IpoptDoubleIntegrator)
+    ->ArgNames({"scheme", "N"})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {100, 1000}})
+    ->Unit(benchmark::kMillisecond);
+
+// ---- Ipopt on the paper's problem, each transcription, N = 400 (dt = 0.1 s) -------------------
+
+void BM_IpoptPaperProblem(benchmark::State& state) {
+  const auto ocp = PaperProblem(state);
+  if (!ocp) return;
+  const std::string transcription = kTranscriptions[state.range(0)];
+  const TerminalMode mode = state.range(1) == 0 ? TerminalMode::kPenalty : TerminalMode::kHard;
+  const SolveRequest request = Request(*ocp, transcription, 400, mode);
+  const auto solver = FindSolver("ipopt").make();
+  SolveResult r;
+  for (auto _ : state) r = solver->Solve(*ocp, request);
+  Report(state, *ocp, request, r);
+  state.SetLabel(transcription + " " + ToString(mode) + " " + r.solver_status);
+}
+BENCHMARK(BM_IpoptPaperProblem)
+    ->ArgNames({"scheme", "hard"})
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+// ---- Ipopt's growth with N: Hermite-Simpson on the paper's problem ------------------------------
+// The KKT matrix of a collocation NLP is banded (block size ~ 2 nx + nu), so MUMPS's work per
+// iteration should grow about linearly in N; Complexity() fits the total time.
+
+void BM_IpoptHermiteSimpsonScaling(benchmark::State& state) {
+  const auto ocp = PaperProblem(state);
+  if (!ocp) return;
+  const int N = static_cast<int>(state.range(0));
+  const SolveRequest request = Request(*ocp, "hermite-simpson", N, TerminalMode::kPenalty);
+  const auto solver = FindSolver("ipopt").make();
+  SolveResult r;
+  for (auto _ : state) r = solver->Solve(*ocp, request);
+  Report(state, *ocp, request, r);
+  state.SetComplexityN(N);
+}
+BENCHMARK(BM_IpoptHermiteSimpsonScaling)
+    ->ArgName("N")
+    ->Arg(100)
+    ->Arg(300)
+    ->Arg(1000)
+    ->Arg(3000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->Complexity();
+
+// ---- Ipopt against the Hamiltonian descent: the paper's problem, Euler, penalty, N = 400 ---------
+// Same discrete problem (DiscreteOcp with Euler), same start (u = 0 projected onto U). Reports
+// both final J and the CPU time each history needs to come within 1% of the better final J.
+
+double CpuToWithin(const SolveResult& r, double target) {
+  for (const IterationRecord& rec : r.history) {
+    if (std::isfinite(rec.J) && rec.J <= target) return rec.cpu_seconds;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+void BM_PaperEulerIpoptVersusHamiltonian(benchmark::State& state) {
+  const auto ocp = PaperProblem(state);
+  if (!ocp) return;
+  const SolveRequest request = Request(*ocp, "euler", 400, TerminalMode::kPenalty);
+  SolveResult ipopt, hamiltonian;
+  for (auto _ : state) {
+    ipopt = FindSolver("ipopt").make()->Solve(*ocp, request);
+    hamiltonian = FindSolver("hamiltonian").make()->Solve(*ocp, request);
+  }
+  // Judge both by the common evaluator (the same Euler cost on the same grid).
+  const double J_ipopt = Evaluate(*ocp, ipopt.controls, request.grid, Integrator::kEuler).J;
+  const double J_ham = Evaluate(*ocp, hamiltonian.controls, request.grid, Integrator::kEuler).J;
+  const double best = std::min(J_ipopt, J_ham);
+  state.counters["J_ipopt"] = J_ipopt;
+  state.counters["J_hamiltonian"] = J_ham;
+  state.counters["cpu_s_ipopt"] = ipopt.cpu_seconds;
+  state.counters["cpu_s_hamiltonian"] = hamiltonian.cpu_seconds;
+  state.counters["cpu_s_to_1pct_ipopt"] = CpuToWithin(ipopt, 1.01 * best);
+  state.counters["cpu_s_to_1pct_hamiltonian"] = CpuToWithin(hamiltonian, 1.01 * best);
+  state.counters["iterations_ipopt"] = ipopt.iterations;
+  state.counters["iterations_hamiltonian"] = hamiltonian.iterations;
+  state.SetLabel("ipopt " + ipopt.solver_status + ", hamiltonian " + hamiltonian.solver_status);
+}
+BENCHMARK(BM_PaperEulerIpoptVersusHamiltonian)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// ---- The hard terminal form on the paper's problem ---------------------------------------------
+// psi(x(tf)) = 0 enforced; the terminal residual must reach <= 1e-6. Jbar (no penalty) is
+// compared with the penalty solution's on the same grid and scheme.
+
+void BM_PaperHardTerminal(benchmark::State& state) {
+  const auto ocp = PaperProblem(state);
+  if (!ocp) return;
+  const std::string transcription = kTranscriptions[state.range(0)];
+  const SolveRequest hard = Request(*ocp, transcription, 400, TerminalMode::kHard);
+  const SolveRequest penalty = Request(*ocp, transcription, 400, TerminalMode::kPenalty);
+  const auto solver = FindSolver("ipopt").make();
+  SolveResult r_hard, r_penalty;
+  for (auto _ : state) r_hard = solver->Solve(*ocp, hard);
+  r_penalty = solver->Solve(*ocp, penalty);
+  // The scheme's own terminal residual (NLP constraint violation) and the evaluator's on a fine
+  // RK4 grid (collocation controls re-simulated).
+  const Evaluation fine_hard = Evaluate(*ocp, r_hard.controls, hard.grid.Refined(10), Integrator::kRk4);
+  const Evaluation fine_penalty =
+      Evaluate(*ocp, r_penalty.controls, hard.grid.Refined(10), Integrator::kRk4);
+  state.counters["success"] = IsSuccess(r_hard.status) ? 1 : 0;
+  state.counters["iterations"] = r_hard.iterations;
+  state.counters["nlp_violation"] = r_hard.solver_stats.count("nlp_violation")
+                                        ? r_hard.solver_stats.at("nlp_violation")
+                                        : NAN;
+  state.counters["Jbar_hard"] = r_hard.objective;
+  state.counters["Jbar_penalty_rk4"] = fine_penalty.Jbar;
+  state.counters["Jbar_hard_rk4"] = fine_hard.Jbar;
+  state.counters["terminal_violation_hard_rk4"] = fine_hard.terminal_violation;
+  state.counters["terminal_violation_penalty_rk4"] = fine_penalty.terminal_violation;
+  state.SetLabel(transcription + " hard " + r_hard.solver_status + ", penalty " +
+                 r_penalty.solver_status);
+}
+BENCHMARK(BM_PaperHardTerminal)
+    ->ArgName("scheme")
+    ->DenseRange(0, 3)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+// ---- NLopt's dense algorithms against N: single shooting on the paper's problem ----------------
+// n = 3N controls, N ball rows (|u| <= umax). Ipopt on the Euler transcription gives the
+// reference J of the same discrete problem; "rel_gap" is (J - J_ipopt) / J_ipopt.
+
+const char* const kNloptAlgorithms[] = {"LD_SLSQP", "LD_MMA", "LD_CCSAQ", "AUGLAG"};
+
+void BM_NloptSingleShootingScaling(benchmark::State& state) {
+  const auto ocp = PaperProblem(state);
+  if (!ocp) return;
+  const int N = static_cast<int>(state.range(1));
+  SolveRequest request = Request(*ocp, "single-shooting", N, TerminalMode::kPenalty);
+  request.algorithm = kNloptAlgorithms[state.range(0)];
+  // Large limits: this benchmark measures where the algorithms stop being practical.
+  request.options = {{"maxtime", "600"},
+                     {"slsqp_max_variables", "100000"},
+                     {"mma_max_inequalities", "100000"},
+                     {"max_dense_jacobian", "1e12"}};
+  const auto solver = FindSolver("nlopt").make();
+  SolveResult r;
+  for (auto _ : state) r = solver->Solve(*ocp, request);
+  SolveRequest reference = Request(*ocp, "euler", N, TerminalMode::kPenalty);
+  const SolveResult ipopt = FindSolver("ipopt").make()->Solve(*ocp, reference);
+  Report(state, *ocp, request, r);
+  state.counters["rel_gap"] = (r.objective - ipopt.objective) / std::abs(ipopt.objective);
+  state.SetLabel(std::string(kNloptAlgorithms[state.range(0)]) + " " + r.solver_status);
+  state.SetComplexityN(N);
+}
+BENCHMARK(BM_NloptSingleShootingScaling)
+    ->ArgNames({"alg", "N"})
+    ->ArgsProduct({{0, 1, 2, 3}, {25, 50, 100, 200, 400}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+}  // namespace
+}  // namespace ocpb

@@ -1,0 +1,63 @@
+#include "problems/channel/measurement_sampling.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "problems/channel/random_stream.h"
+
+namespace ocpb {
+namespace {
+
+bool Eligible(const SimulatedChannel& c, int i, int j) {
+  return (c.grid.Point(i, j) - c.parameters.base_station).norm() >= c.parameters.distance_floor;
+}
+
+}  // namespace
+
+MeasurementSet DrawRandomMeasurements(const SimulatedChannel& channel, int m, std::uint64_t seed) {
+  const GridSpec& g = channel.grid;
+  long eligible = 0;
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) eligible += Eligible(channel, i, j) ? 1 : 0;
+  }
+  if (m < 1 || 2L * m > eligible) {
+    throw std::invalid_argument("samples must be between 1 and " + std::to_string(eligible / 2) +
+                                " (half the grid points), got " + std::to_string(m));
+  }
+  std::vector<bool> taken(static_cast<std::size_t>(g.num_points()), false);
+  RandomStream stream(seed, RandomStream::kMeasurementPositions);
+  MeasurementSet set;
+  set.positions.reserve(m);
+  set.values_db.reserve(m);
+  while (static_cast<int>(set.positions.size()) < m) {
+    const auto k = static_cast<long>(stream.Index(static_cast<std::uint64_t>(g.num_points())));
+    const int i = static_cast<int>(k % g.nx), j = static_cast<int>(k / g.nx);
+    if (taken[static_cast<std::size_t>(k)] || !Eligible(channel, i, j)) continue;
+    taken[static_cast<std::size_t>(k)] = true;
+    set.positions.push_back(g.Point(i, j));
+    set.values_db.push_back(channel.gain_db(i, j));
+  }
+  return set;
+}
+
+MeasurementSet MeasureAlongPath(const SimulatedChannel& channel,
+                                const std::vector<Eigen::Vector2d>& path) {
+  const GridSpec& g = channel.grid;
+  std::vector<bool> taken(static_cast<std::size_t>(g.num_points()), false);
+  MeasurementSet set;
+  for (std::size_t p = 0; p < path.size(); ++p) {
+    if (!path[p].allFinite()) {
+      throw std::invalid_argument("path point " + std::to_string(p) + " is not finite");
+    }
+    int i, j;
+    g.NearestCell(path[p], &i, &j);
+    const std::size_t k = static_cast<std::size_t>(j) * g.nx + i;
+    if (taken[k] || !Eligible(channel, i, j)) continue;
+    taken[k] = true;
+    set.positions.push_back(g.Point(i, j));
+    set.values_db.push_back(channel.gain_db(i, j));
+  }
+  return set;
+}
+
+}  // namespace ocpb

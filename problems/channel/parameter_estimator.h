@@ -1,0 +1,68 @@
+// Estimation of the channel parameters from measurements.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "problems/channel/channel_parameters.h"
+#include "problems/channel/measurement_file.h"
+
+namespace ocpb {
+
+/// The companion's two-stage least-squares procedure (Malmirchegini and Mostofi, IEEE TWC 2012),
+/// not maximum likelihood:
+///
+/// 1. theta = (K_PL, n_PL) by ordinary least squares of y on H = [1, -10 log10 max(|q - q_b|,
+///    d_floor)].
+/// 2. Residuals r = y - H theta. Their empirical covariance binned by distance:
+///      c_b = mean of r_i r_j over pairs i < j with bin_width b <= |q_i - q_j| < bin_width (b+1),
+///    with d_b the mean distance of the bin's pairs; bins with fewer than min_pairs pairs, or
+///    beyond max_lag, are dropped. Lag 0 (which carries the multipath power) is not used.
+/// 3. (xi^2, eta) minimize sum_b w_b (c_b - xi^2 exp(-d_b / eta))^2 with w_b = n_b / d_b
+///    (n_b pairs: the inverse-variance weight of a bin mean, decreasing with lag), subject to
+///    0 <= xi^2 <= xi2_max and eta_min <= eta <= eta_max. For fixed eta the best xi^2 is linear
+///    least squares (clamped); eta is found by a log-spaced scan followed by golden-section
+///    refinement.
+/// 4. rho^2 = max(mean(r^2) - xi^2, rho2_floor).
+struct EstimationOptions {
+  double bin_width = 0.2;    ///< m (> 0)
+  int min_pairs = 40;        ///< pairs a bin needs to be used (>= 1)
+  double max_lag = 15.0;     ///< largest pair distance used, m (> bin_width)
+  double xi2_max = 50.0;     ///< upper bound on xi^2, dB^2 (> 0)
+  double eta_min = 0.05;     ///< lower bound on eta, m (> 0)
+  double eta_max = 5.0;      ///< upper bound on eta, m (> eta_min)
+  double rho2_floor = 0.01;  ///< lower bound on rho^2, dB^2 (> 0)
+
+  bool IsValid(std::string* error) const;
+};
+
+/// What the estimation saw, for reports and plots.
+struct EstimationSummary {
+  std::vector<double> bin_lag;         ///< d_b of the bins used, m
+  std::vector<double> bin_covariance;  ///< c_b, dB^2
+  std::vector<long> bin_pairs;         ///< n_b
+  double residual_variance = -1.0;     ///< mean(r^2), dB^2
+  double fit_cost = -1.0;              ///< weighted sum of squares at the optimum
+  bool xi2_at_bound = false;           ///< xi^2 ended at 0 or xi2_max
+  bool eta_at_bound = false;           ///< eta ended at eta_min or eta_max
+  bool rho2_floored = false;           ///< rho^2 was raised to rho2_floor
+};
+
+/// Estimates (K_PL, n_PL, xi, eta, rho). The base station and distance floor are taken from
+/// `known` (they are not estimated) and copied into the result. Throws std::invalid_argument
+/// for fewer than 3 measurements, non-finite values or positions, a measurement within the
+/// distance floor of the base station, positions that do not determine n_PL (all at one
+/// distance), or no usable bin.
+ChannelParameters EstimateChannelParameters(const MeasurementSet& measurements,
+                                            const ChannelParameters& known,
+                                            const EstimationOptions& options = {},
+                                            EstimationSummary* summary = nullptr);
+
+/// Checks measurements for the estimator and predictor: at least 3, sizes equal, all finite,
+/// none within `known.distance_floor` of `known.base_station`. Throws std::invalid_argument
+/// naming the first offending measurement.
+void ValidateMeasurements(const MeasurementSet& measurements, const ChannelParameters& known);
+
+}  // namespace ocpb

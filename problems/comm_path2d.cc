@@ -1,0 +1,361 @@
+#include "problems/comm_path2d.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "problems/channel/paper_channel.h"
+
+
+namespace ocpb {
+namespace {
+
+constexpr double kLn2 = 0.69314718055994530942;
+
+std::string Str(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+// "C1", "k3": built with a stream (GCC 12 warns falsely on "C" + std::to_string(i)).
+std::string Indexed(const char* name, int i) {
+  std::ostringstream os;
+  os << name << i;
+  return os.str();
+}
+
+bool InSquare(const Eigen::Vector2d& q, double side) {
+  return q.allFinite() && q.minCoeff() >= 0.0 && q.maxCoeff() <= side;
+}
+
+}  // namespace
+
+// ---- CommPowerModel ---------------------------------------------------------------------
+
+double CommPowerModel::K() const { return -1.5 / std::log(5.0 * bit_error_rate); }
+
+bool CommPowerModel::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (!(gamma > 0.0) || !std::isfinite(gamma)) return fail("gamma must be finite and > 0");
+  for (int i = 0; i < 6; ++i) {
+    if (!(k[i] >= 0.0) || !std::isfinite(k[i])) {
+      return fail(Indexed("k", i + 1) + " must be finite and >= 0");
+    }
+  }
+  if (!(eps > 0.0) || !std::isfinite(eps)) return fail("eps must be finite and > 0");
+  if (!(bit_error_rate > 0.0 && bit_error_rate < 0.2)) {
+    return fail("pb (bit error rate) must lie in (0, 0.2) so that K > 0");
+  }
+  return true;
+}
+
+double CommPowerModel::AccelerationMagnitude(double a, double nv, double rmax) const {
+  if (!(a > 0.0)) return a == 0.0 ? 0.0 : a;  // NaN propagates
+  const double c2 = 2.0 * gamma * k[0];
+  const double b = gamma * (k[4] + k[5] * nv);
+  if (b == 0.0) return c2 > 0.0 ? std::min(a / c2, rmax) : rmax;
+  // Stationarity of the smoothed H along -p_u: g(r) = c2 r + b r / sqrt(r^2 + eps^2) - a = 0.
+  const double e2 = eps * eps;
+  auto g = [&](double r) { return c2 * r + b * r / std::sqrt(r * r + e2) - a; };
+  if (g(rmax) <= 0.0) return rmax;
+  double r = c2 > 0.0 ? std::max(a - b, 0.0) / c2 : 0.0;  // soft threshold: g(r) <= 0
+  for (int i = 0; i < 100; ++i) {
+    const double q = std::sqrt(r * r + e2);
+    const double step = -(c2 * r + b * r / q - a) / (c2 + b * e2 / (q * q * q));
+    r += step;
+    if (step <= 1e-15 * (r + eps)) break;
+  }
+  return std::clamp(r, 0.0, rmax);
+}
+
+double CommPowerModel::Rate(double p3, double s, double rmax) const {
+  if (std::isnan(p3) || std::isnan(s)) return NAN;
+  if (s <= 0.0) return p3 < 0.0 ? rmax : 0.0;
+  // dH/dR = p3 + ln2 2^R s / K = 0  =>  2^R = -p3 K / (ln2 s).
+  const double arg = -p3 * K() / (kLn2 * s);
+  if (!(arg > 1.0)) return 0.0;
+  return std::min(std::log2(arg), rmax);
+}
+
+// ---- PathLossChannel ----------------------------------------------------------------------
+
+PathLossChannel::PathLossChannel(const Eigen::Vector2d& base,
+                                 double k_pl,
+                                 double n_pl,
+                                 double noise_dbm,
+                                 double floor)
+    : base_(base), k_pl_(k_pl), n_pl_(n_pl), noise_dbm_(noise_dbm), floor_(floor) {
+  if (!base.allFinite() || !std::isfinite(k_pl) || !std::isfinite(n_pl) ||
+      !std::isfinite(noise_dbm)) {
+    throw std::invalid_argument("PathLossChannel: base, K_PL, n_PL and N0 must be finite");
+  }
+  if (!(floor > 0.0)) throw std::invalid_argument("PathLossChannel: floor must be > 0");
+  // s = N0[mW] 10^(-K_PL/10) d^n / 1000.
+  scale_ = std::pow(10.0, noise_dbm / 10.0) * std::pow(10.0, -k_pl / 10.0) / 1000.0;
+}
+
+void PathLossChannel::Evaluate(const Eigen::Vector2d& q,
+                               double* s,
+                               Eigen::Vector2d* grad,
+                               Eigen::Matrix2d* hess) const {
+  const Eigen::Vector2d r = q - base_;
+  const double rho = r.squaredNorm() + floor_ * floor_;
+  const double half_n = 0.5 * n_pl_;
+  const double v = scale_ * std::exp(half_n * std::log(rho));
+  *s = v;
+  // d/dq rho^(n/2) = n rho^(n/2 - 1) r;  d2 = n rho^(n/2 - 2) (rho I + (n - 2) r r^T).
+  if (grad) *grad = (n_pl_ * v / rho) * r;
+  if (hess) {
+    *hess = (n_pl_ * v / (rho * rho)) *
+            (rho * Eigen::Matrix2d::Identity() + (n_pl_ - 2.0) * r * r.transpose());
+  }
+}
+
+std::string PathLossChannel::Describe() const {
+  return "path-loss only: K_PL=" + Str(k_pl_) + " n_PL=" + Str(n_pl_) + " N0=" + Str(noise_dbm_) +
+         " dBm base=(" + Str(base_[0]) + "," + Str(base_[1]) + ") floor=" + Str(floor_) + " m";
+}
+
+// ---- CommPath2d ---------------------------------------------------------------------------
+
+bool CommPath2d::Options::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (!(workspace > 0.0)) return fail("workspace must be > 0");
+  if (!InSquare(start, workspace)) {
+    return fail("S must lie in the workspace [0, " + Str(workspace) + "]^2");
+  }
+  if (!InSquare(destination, workspace)) {
+    return fail("D must lie in the workspace [0, " + Str(workspace) + "]^2");
+  }
+  if (!(bits >= 0.0) || !std::isfinite(bits)) return fail("c must be finite and >= 0");
+  if (!(tf > 0.0) || !std::isfinite(tf)) return fail("tf must be finite and > 0");
+  if (!(umax > 0.0) || !std::isfinite(umax)) return fail("umax must be finite and > 0");
+  if (!(rmax > 0.0) || !std::isfinite(rmax)) return fail("Rmax must be finite and > 0");
+  for (int i = 0; i < 3; ++i) {
+    if (!(penalty[i] > 0.0) || !std::isfinite(penalty[i])) {
+      return fail(Indexed("C", i + 1) + " must be finite and > 0");
+    }
+  }
+  return power.IsValid(error);
+}
+
+CommPath2d::CommPath2d(const Options& options, std::shared_ptr<const ChannelQuality> channel)
+    : options_(options), inv_k_(1.0 / options.power.K()), channel_(std::move(channel)) {
+  std::string error;
+  if (!options_.IsValid(&error)) throw std::invalid_argument("comm-path2d: " + error);
+  if (!channel_) throw std::invalid_argument("comm-path2d: channel must not be null");
+  SetDimensions(5, 3, 5, 0);
+  SetHorizon(0.0, options_.tf);
+  Vec x0 = Vec::Zero(5);
+  x0.head<2>() = options_.start;
+  SetInitialState(x0);
+  Vec w(5);
+  w << options_.penalty[0], options_.penalty[0], options_.penalty[1], options_.penalty[1],
+      options_.penalty[2];
+  SetTerminalWeights(w);
+  ControlSet set;
+  set.AddBall(2, options_.umax);
+  set.AddBox(Vec::Zero(1), Vec::Constant(1, options_.rmax));
+  SetControlSet(set);
+}
+
+void CommPath2d::Dynamics(double, ConstVecRef x, ConstVecRef u, VecRef f) const {
+  f[0] = x[2];
+  f[1] = x[3];
+  f[2] = u[0];
+  f[3] = u[1];
+  f[4] = u[2];
+}
+
+double CommPath2d::RunningCost(double, ConstVecRef x, ConstVecRef u) const {
+  double s = 0.0;
+  channel_->Evaluate(Eigen::Vector2d(x[0], x[1]), &s, nullptr, nullptr);
+  const double acc2 = u[0] * u[0] + u[1] * u[1];
+  const double speed2 = x[2] * x[2] + x[3] * x[3];
+  return options_.power.Transmission(u[2], s, inv_k_) + options_.power.Motion(acc2, speed2);
+}
+
+void CommPath2d::DynamicsJacobian(double t,
+                                  ConstVecRef x,
+                                  ConstVecRef u,
+                                  VecRef f,
+                                  MatRef fx,
+                                  MatRef fu) const {
+  Dynamics(t, x, u, f);
+  for (int j = 0; j < 5; ++j) {
+    for (int i = 0; i < 5; ++i) fx(i, j) = (i == 0 && j == 2) || (i == 1 && j == 3) ? 1.0 : 0.0;
+  }
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 5; ++i) fu(i, j) = i == j + 2 ? 1.0 : 0.0;
+  }
+}
+
+void CommPath2d::RunningCostGradient(double,
+                                     ConstVecRef x,
+                                     ConstVecRef u,
+                                     double* L,
+                                     VecRef Lx,
+                                     VecRef Lu) const {
+  const CommPowerModel& m = options_.power;
+  double s = 0.0;
+  Eigen::Vector2d grad_s;
+  channel_->Evaluate(Eigen::Vector2d(x[0], x[1]), &s, &grad_s, nullptr);
+  // Transmission (2^R - 1)/K s: d/dq = (2^R - 1)/K grad s, d/dR = ln2 2^R s / K.
+  const double two_r = std::exp2(u[2]);
+  const double factor = (two_r - 1.0) * inv_k_;
+  // Motion: n(w) = sqrt(|w|^2 + eps^2) - eps, grad n = w / sqrt(|w|^2 + eps^2).
+  const double acc2 = u[0] * u[0] + u[1] * u[1];
+  const double speed2 = x[2] * x[2] + x[3] * x[3];
+  const double e2 = m.eps * m.eps;
+  const double root_v = std::sqrt(speed2 + e2), root_a = std::sqrt(acc2 + e2);
+  const double nv = root_v - m.eps, na = root_a - m.eps;
+  const auto& k = m.k;
+  *L = factor * s + m.Motion(acc2, speed2);  // the same expression as RunningCost
+  Lx[0] = factor * grad_s[0];
+  Lx[1] = factor * grad_s[1];
+  const double cv = m.gamma * (2.0 * k[1]), dv = m.gamma * (k[2] + k[5] * na) / root_v;
+  Lx[2] = (cv + dv) * x[2];
+  Lx[3] = (cv + dv) * x[3];
+  Lx[4] = 0.0;
+  const double ca = m.gamma * (2.0 * k[0]), da = m.gamma * (k[4] + k[5] * nv) / root_a;
+  Lu[0] = (ca + da) * u[0];
+  Lu[1] = (ca + da) * u[1];
+  Lu[2] = kLn2 * two_r * s * inv_k_;
+}
+
+void CommPath2d::MinimizeHamiltonian(double, ConstVecRef x, ConstVecRef p, VecRef u) const {
+  // H = p1.x2 + p2.u + p3 R + (2^R - 1)/K s(x1) + motion(u, x2): separable in u and R.
+  const double a = std::sqrt(p[2] * p[2] + p[3] * p[3]);
+  const double nv = options_.power.SmoothNorm(x[2] * x[2] + x[3] * x[3]);
+  const double r = options_.power.AccelerationMagnitude(a, nv, options_.umax);
+  if (a > 0.0) {
+    u[0] = -r * p[2] / a;
+    u[1] = -r * p[3] / a;
+  } else {
+    u[0] = u[1] = (a == 0.0 ? 0.0 : a);
+  }
+  double s = 0.0;
+  channel_->Evaluate(Eigen::Vector2d(x[0], x[1]), &s, nullptr, nullptr);
+  u[2] = options_.power.Rate(p[4], s, options_.rmax);
+}
+
+// ---- registry support -------------------------------------------------------------------------
+
+std::vector<ParameterSpec> CommParameterSpecs() {
+  const double inf = std::numeric_limits<double>::infinity();
+  return {
+      {"S", {20.0, 40.0}, "start position (m), in the workspace [0, 50]^2", 0.0, 50.0},
+      {"D", {10.0, 5.0}, "destination (m), in the workspace [0, 50]^2", 0.0, 50.0},
+      {"base", {5.0, 5.0}, "base station position (m), in the workspace [0, 50]^2", 0.0, 50.0},
+      {"c", {150.0}, "bits/Hz to transmit, c = Q/B", 0.0, 1e6},
+      {"tf", {40.0}, "time horizon (s)", 0.0, 1e5, true},
+      {"umax", {0.5}, "acceleration bound |u| <= umax (m/s^2)", 0.0, 1e3, true},
+      {"Rmax", {6.0}, "spectral-efficiency bound 0 <= R <= Rmax (bits/s/Hz)", 0.0, 100.0, true},
+      {"gamma", {0.01}, "weight of motion power in L", 0.0, 1e6, true},
+      {"C", {10.0, 50.0, 10.0}, "penalty weights C1 (position), C2 (velocity), C3 (bits)", 0.0,
+       1e12, true},
+      {"k", {17.75, 1.16, 10.46, 1175.0, 0.0, 0.0}, "motion power constants k1..k6", 0.0, 1e9},
+      {"eps", {1e-3}, "smoothing of |v|: sqrt(|v|^2 + eps^2) - eps", 0.0, 1.0, true},
+      {"pb", {2e-6}, "bit error rate threshold, K = -1.5 / ln(5 pb)", 0.0, 0.1, true},
+      {"channel",
+       {2.0},
+       "channel model: 0 path loss only (deterministic), 1 GP prediction (exact), 2 GP "
+       "prediction as a bicubic map",
+       0.0,
+       2.0,
+       false,
+       true},
+      {"samples", {500.0}, "channel measurements for the GP prediction", 3.0, 1e5, false, true},
+      {"estimate",
+       {1.0},
+       "1: the predictor uses parameters estimated from the samples (the paper's procedure); 0: "
+       "the true ones",
+       0.0,
+       1.0,
+       false,
+       true},
+      {"K_PL", {-41.34}, "path-loss constant (dB)", -inf, inf},
+      {"n_PL", {3.86}, "path-loss exponent", 0.0, 10.0, true},
+      {"xi", {3.20}, "shadowing standard deviation (dB)", 0.0, 30.0},
+      {"eta", {3.09}, "shadowing decorrelation distance (m)", 0.0, 100.0, true},
+      {"rho",
+       {1.64},
+       "multipath standard deviation (dB) the predictor assumes with estimate=0 (the simulator "
+       "draws Rician fading, K = 14.56, whose dB standard deviation is 1.64)",
+       0.0,
+       30.0},
+      {"N0_dBm", {-110.0}, "receiver noise power (dBm)", -300.0, 100.0},
+  };
+}
+
+CommPowerModel CommPowerFromParameters(const Parameters& params) {
+  CommPowerModel m;
+  m.gamma = params.Scalar("gamma");
+  const Vec k = params.Vector("k");
+  for (int i = 0; i < 6; ++i) m.k[i] = k[i];
+  m.eps = params.Scalar("eps");
+  m.bit_error_rate = params.Scalar("pb");
+  return m;
+}
+
+std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params,
+                                                      std::uint64_t seed) {
+  const Eigen::Vector2d base = params.Vector("base");
+  const int model = params.Integer("channel");
+  if (model == 0) {
+    return std::make_shared<PathLossChannel>(base,
+                                             params.Scalar("K_PL"),
+                                             params.Scalar("n_PL"),
+                                             params.Scalar("N0_dBm"));
+  }
+  // The paper's experiment: simulate the channel of these parameters (realization `seed`),
+  // measure it at `samples` random grid points, estimate the parameters, predict s.
+  PaperChannelOptions options;
+  options.truth.k_pl = params.Scalar("K_PL");
+  options.truth.n_pl = params.Scalar("n_PL");
+  options.truth.xi = params.Scalar("xi");
+  options.truth.eta = params.Scalar("eta");
+  options.truth.rho = params.Scalar("rho");
+  options.truth.base_station = base;
+  options.estimate = params.Integer("estimate") == 1;
+  options.predictor.units.noise_dbm = params.Scalar("N0_dBm");
+  options.build_map = model == 2;
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument("channel: " + error);
+  const PaperChannel channel = MakePaperChannel(seed, params.Integer("samples"), options);
+  return channel.Quality(model == 2 ? ChannelProvider::kMap : ChannelProvider::kExact);
+}
+
+ProblemInfo CommPath2dProblemInfo() {
+  ProblemInfo p;
+  p.name = "comm-path2d";
+  p.description =
+      "robot path, acceleration and transmission rate co-optimized over a predicted channel "
+      "(Ali, Cai, Mostofi, Wardi, ACC 2016, Sec. III)";
+  p.parameters = CommParameterSpecs();
+  p.make = [](const Parameters& params, std::uint64_t seed) -> std::unique_ptr<Ocp> {
+    CommPath2d::Options o;
+    o.start = params.Vector("S");
+    o.destination = params.Vector("D");
+    o.bits = params.Scalar("c");
+    o.tf = params.Scalar("tf");
+    o.umax = params.Scalar("umax");
+    o.rmax = params.Scalar("Rmax");
+    o.penalty = params.Vector("C");
+    o.power = CommPowerFromParameters(params);
+    return std::make_unique<CommPath2d>(o, MakeCommChannel(params, seed));
+  };
+  p.default_intervals = 400;
+  p.uses_seed = true;
+  return p;
+}
+
+}  // namespace ocpb

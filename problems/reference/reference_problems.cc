@@ -1,0 +1,21 @@
+#include "problems/reference/reference_problems.h"
+
+#include "problems/reference/bryson_denham.h"
+#include "problems/reference/catmix.h"
+#include "problems/reference/hager.h"
+#include "problems/reference/lqr.h"
+#include "problems/reference/rayleigh.h"
+#include "problems/reference/vanderpol.h"
+
+namespace ocpb {
+
+void AppendReferenceProblems(std::vector<ProblemInfo>* list) {
+  list->push_back(BrysonDenhamProblemInfo());
+  list->push_back(LqrProblemInfo());
+  list->push_back(HagerProblemInfo());
+  list->push_back(VanDerPolProblemInfo());
+  list->push_back(RayleighProblemInfo());
+  list->push_back(CatmixProblemInfo());
+}
+
+}  // namespace ocpb

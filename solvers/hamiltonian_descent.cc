@@ -1,0 +1,315 @@
+#include "solvers/hamiltonian_descent.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "core/timer.h"
+
+namespace ocpb {
+namespace {
+
+constexpr const char* kValidKeys =
+    "alpha, beta, max_iterations, max_armijo_exponent, theta_tolerance, max_cpu_seconds, "
+    "path_penalty, regularization";
+
+double ParseDouble(const std::string& key, const std::string& text) {
+  size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || std::isnan(v)) {
+    throw std::invalid_argument("hamiltonian option '" + key + "': '" + text +
+                                "' is not a number");
+  }
+  return v;
+}
+
+int ParseInt(const std::string& key, const std::string& text) {
+  const double v = ParseDouble(key, text);
+  if (!std::isfinite(v) || v != std::round(v) || std::abs(v) > 1e9) {
+    throw std::invalid_argument("hamiltonian option '" + key + "': '" + text +
+                                "' is not an integer");
+  }
+  return static_cast<int>(v);
+}
+
+std::string Format(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+SolveResult NotApplicable(const std::string& reason) {
+  SolveResult r;
+  r.solver = "hamiltonian";
+  r.status = SolveStatus::kNotApplicable;
+  r.solver_status = "not_applicable";
+  r.message = reason;
+  r.iterations = 0;
+  r.cpu_seconds = 0.0;
+  r.wall_seconds = 0.0;
+  return r;
+}
+
+}  // namespace
+
+double HamiltonianDescent::Direction(const DiscreteOcp& docp,
+                                     const Mat& U,
+                                     const Mat& X,
+                                     const Mat& Lambda,
+                                     Mat* D,
+                                     Vec* scratch) {
+  const Ocp& ocp = docp.ocp();
+  const TimeGrid& grid = docp.grid();
+  const int N = grid.intervals();
+  D->resize(ocp.nu(), N);
+  Vec& f = *scratch;
+  if (f.size() != ocp.nx()) f.resize(ocp.nx());
+  double theta = 0.0;
+  for (int k = 0; k < N; ++k) {
+    const double t = grid.t(k), h = grid.h(k);
+    const auto x = X.col(k);
+    const auto p = Lambda.col(k + 1);
+    const auto u = U.col(k);
+    auto d = D->col(k);
+    ocp.MinimizeHamiltonian(t, x, p, d);  // d holds u*_k for now
+    ocp.Dynamics(t, x, d, f);
+    const double h_star = p.dot(f) + ocp.RunningCost(t, x, d);
+    ocp.Dynamics(t, x, u, f);
+    const double h_now = p.dot(f) + ocp.RunningCost(t, x, u);
+    theta += h * (h_star - h_now);
+    d -= u;
+  }
+  return theta;
+}
+
+bool HamiltonianDescentOptions::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (!(alpha > 0.0 && alpha < 1.0)) return fail("alpha must lie in (0, 1), got " + Format(alpha));
+  if (!(beta > 0.0 && beta < 1.0)) return fail("beta must lie in (0, 1), got " + Format(beta));
+  if (max_iterations < 0) {
+    return fail("max_iterations must be >= 0, got " + std::to_string(max_iterations));
+  }
+  if (max_armijo_exponent < 0) {
+    return fail("max_armijo_exponent must be >= 0, got " + std::to_string(max_armijo_exponent));
+  }
+  if (!(theta_tolerance >= 0.0) || !std::isfinite(theta_tolerance)) {
+    return fail("theta_tolerance must be finite and >= 0, got " + Format(theta_tolerance));
+  }
+  if (!(max_cpu_seconds > 0.0)) {
+    return fail("max_cpu_seconds must be > 0 (inf: no limit), got " + Format(max_cpu_seconds));
+  }
+  if (path_penalty && !(*path_penalty > 0.0 && std::isfinite(*path_penalty))) {
+    return fail("path_penalty must be finite and > 0, got " + Format(*path_penalty));
+  }
+  if (regularization && !(*regularization > 0.0 && std::isfinite(*regularization))) {
+    return fail("regularization must be finite and > 0, got " + Format(*regularization));
+  }
+  return true;
+}
+
+HamiltonianDescent::HamiltonianDescent(const Options& options) : options_(options) {
+  std::string error;
+  if (!options_.IsValid(&error)) throw std::invalid_argument("hamiltonian: " + error);
+}
+
+HamiltonianDescent::Options HamiltonianDescent::ParseOptions(
+    const std::map<std::string, std::string>& options, const Options& base) {
+  Options o = base;
+  for (const auto& [key, text] : options) {
+    if (key == "alpha") {
+      o.alpha = ParseDouble(key, text);
+    } else if (key == "beta") {
+      o.beta = ParseDouble(key, text);
+    } else if (key == "max_iterations") {
+      o.max_iterations = ParseInt(key, text);
+    } else if (key == "max_armijo_exponent") {
+      o.max_armijo_exponent = ParseInt(key, text);
+    } else if (key == "theta_tolerance") {
+      o.theta_tolerance = ParseDouble(key, text);
+    } else if (key == "max_cpu_seconds") {
+      o.max_cpu_seconds = ParseDouble(key, text);
+    } else if (key == "path_penalty") {
+      o.path_penalty = ParseDouble(key, text);
+    } else if (key == "regularization") {
+      o.regularization = ParseDouble(key, text);
+    } else {
+      throw std::invalid_argument("hamiltonian: unknown option '" + key + "' (valid: " +
+                                  kValidKeys + ")");
+    }
+  }
+  std::string error;
+  if (!o.IsValid(&error)) throw std::invalid_argument("hamiltonian option " + error);
+  return o;
+}
+
+SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& request) const {
+  // ---- the request (throws) ------------------------------------------------------------
+  const Options opt = ParseOptions(request.options, options_);
+  const TimeGrid& grid = request.grid;
+  if (grid.size() < 2) throw std::invalid_argument("hamiltonian: the request's grid is empty");
+  const Ocp& ocp = original;  // the request is checked against the problem as given
+  const double tol = 1e-9 * std::max(1.0, std::abs(ocp.tf() - ocp.t0()));
+  if (std::abs(grid.t0() - ocp.t0()) > tol || std::abs(grid.tf() - ocp.tf()) > tol) {
+    throw std::invalid_argument("hamiltonian: the grid [" + Format(grid.t0()) + ", " +
+                                Format(grid.tf()) + "] does not span the horizon [" +
+                                Format(ocp.t0()) + ", " + Format(ocp.tf()) + "]");
+  }
+  if (request.initial_guess && request.initial_guess->nu() != ocp.nu()) {
+    throw std::invalid_argument("hamiltonian: the initial guess has " +
+                                std::to_string(request.initial_guess->nu()) +
+                                " control components, the problem " + std::to_string(ocp.nu()));
+  }
+
+  // ---- applicability (status) -------------------------------------------------------------
+  if (request.terminal != TerminalMode::kPenalty) {
+    return NotApplicable(
+        "the Hamiltonian descent handles terminal constraints only in penalty form "
+        "(terminal = penalty); the hard form psi(x(tf)) = 0 is not applicable");
+  }
+  const Stopwatch clock;
+  HamiltonianReformulationOptions reformulation_options;
+  reformulation_options.path_penalty = opt.path_penalty;
+  reformulation_options.regularization = opt.regularization;
+  const std::unique_ptr<Ocp> reformulated = original.HamiltonianReformulation(reformulation_options);
+  const Ocp& target = reformulated ? *reformulated : original;
+  const std::string solved =
+      reformulated ? "solved the problem's Hamiltonian reformulation '" + target.name() + "'; "
+                   : std::string();
+  if (!target.HasHamiltonianMinimizer()) {
+    return NotApplicable(solved + "problem '" + target.name() +
+                         "' has no pointwise Hamiltonian minimizer (Ocp::MinimizeHamiltonian)");
+  }
+  if (target.num_path() > 0) {
+    return NotApplicable(solved +
+                         "path constraints c(t, x, u) <= 0 are not handled by the Hamiltonian "
+                         "descent, and the problem offers no reformulation that folds them into L");
+  }
+  if (target.nu() != original.nu() || target.nx() != original.nx()) {
+    throw std::logic_error("problem '" + original.name() +
+                           "': its Hamiltonian reformulation changed nx or nu");
+  }
+
+  const DiscreteOcp docp(target, grid, request.integrator, TerminalMode::kPenalty);
+  const int N = grid.intervals(), nu = target.nu(), nx = target.nx();
+  const ControlSet& set = target.control_set();
+
+  // Workspace, allocated once.
+  Mat U = request.initial_guess ? request.initial_guess->SampleIntervals(grid)
+                                : DefaultInitialGuess(target, grid).values();
+  for (int k = 0; k < N; ++k) set.Project(U.col(k));
+  Mat trial(nu, N), D(nu, N), X(nx, N + 1), X_trial(nx, N + 1), Lambda(nx, N + 1), G(nu, N);
+  Vec f(nx);
+
+  SolveResult result;
+  result.solver = "hamiltonian";
+  result.history.reserve(static_cast<size_t>(opt.max_iterations) + 1);
+
+  double J = docp.Simulate(U, &X);
+  int iteration = 0, last_j = -1, simulations = 1;
+  double theta = NAN;
+  bool have_costates = false;
+  auto stop = [&](SolveStatus status, const char* code, const std::string& why) {
+    result.status = status;
+    result.solver_status = code;
+    result.message = why;
+  };
+
+  if (!std::isfinite(J)) {
+    stop(SolveStatus::kNumericalFailure,
+         "nonfinite_cost",
+         "the cost of the starting control is not finite");
+    result.history.push_back({0, J, NAN, -1, NAN, NAN, clock.cpu()});
+  } else {
+    for (;;) {
+      docp.Adjoint(U, X, &Lambda, &G);
+      have_costates = true;
+      theta = Direction(docp, U, X, Lambda, &D, &f);
+      result.history.push_back({iteration, J, theta, last_j, NAN, NAN, clock.cpu()});
+
+      if (!std::isfinite(theta)) {
+        stop(SolveStatus::kNumericalFailure,
+             "nonfinite_theta",
+             "theta is not finite at iteration " + std::to_string(iteration));
+        break;
+      }
+      if (theta > 0.0) {
+        stop(SolveStatus::kError,
+             "theta_positive",
+             "theta = " + Format(theta) +
+                 " > 0: the problem's Hamiltonian minimizer did not minimize H");
+        break;
+      }
+      if (std::abs(theta) <= opt.theta_tolerance) {
+        stop(SolveStatus::kConverged,
+             "theta_below_tolerance",
+             "|theta| = " + Format(std::abs(theta)) + " <= " + Format(opt.theta_tolerance));
+        break;
+      }
+      if (iteration >= opt.max_iterations) {
+        stop(SolveStatus::kMaxIterations,
+             "max_iterations",
+             "reached max_iterations = " + std::to_string(opt.max_iterations));
+        break;
+      }
+      if (clock.cpu() >= opt.max_cpu_seconds) {
+        stop(SolveStatus::kMaxTime,
+             "max_cpu_seconds",
+             "reached max_cpu_seconds = " + Format(opt.max_cpu_seconds));
+        break;
+      }
+      // Armijo search.
+      int accepted = -1;
+      double step = 1.0, J_trial = NAN;
+      for (int j = 0; j <= opt.max_armijo_exponent; ++j, step *= opt.beta) {
+        trial.noalias() = U + step * D;
+        J_trial = docp.Simulate(trial, &X_trial);
+        ++simulations;
+        if (std::isfinite(J_trial) && J_trial - J <= opt.alpha * step * theta) {
+          accepted = j;
+          break;
+        }
+      }
+      if (accepted < 0) {
+        stop(SolveStatus::kStepTooSmall,
+             "armijo_exponent_exceeded",
+             "no Armijo exponent j <= " + std::to_string(opt.max_armijo_exponent) +
+                 " gave sufficient decrease at iteration " + std::to_string(iteration));
+        break;
+      }
+      U.swap(trial);
+      X.swap(X_trial);
+      J = J_trial;
+      last_j = accepted;
+      ++iteration;
+    }
+  }
+
+  if (std::isfinite(theta)) {
+    result.message += "; final J = " + Format(J) + ", theta = " + Format(theta);
+  }
+  result.message = solved + result.message;
+  result.controls = ControlTrajectory::PiecewiseConstant(grid, U);
+  result.state_grid = grid;
+  result.states = std::move(X);
+  if (have_costates) result.costates = std::move(Lambda);
+  result.objective = J;
+  result.solver_stats["final_theta"] = theta;
+  result.solver_stats["simulations"] = simulations;
+  result.solver_stats["reformulated"] = reformulated ? 1.0 : 0.0;
+  result.iterations = iteration;
+  result.cpu_seconds = clock.cpu();
+  result.wall_seconds = clock.wall();
+  return result;
+}
+
+}  // namespace ocpb

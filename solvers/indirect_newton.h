@@ -1,0 +1,169 @@
+// The indirect method: Newton's method on the discretized maximum principle (OCPBench solver
+// "indirect-newton").
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+
+#include "core/control_trajectory.h"
+#include "core/ocp.h"
+#include "core/time_grid.h"
+#include "solvers/solver.h"
+
+namespace ocpb {
+
+/// Options of IndirectNewton. Keys for SolveRequest::options are the field names;
+/// warm_start_options are given as "hamiltonian.<key>".
+struct IndirectNewtonOptions {
+  /// The sparse LU that factors the Newton matrix (unsymmetric), through Eigen's wrappers of
+  /// SuiteSparse 5: UMFPACK (multifrontal, Davis 2004) or KLU (left-looking with BTF, Davis and
+  /// Palamadai Natarajan 2010). Key "linear_solver": "umfpack" | "klu".
+  enum class LinearSolver { kUmfpack, kKlu };
+  /// Where Newton starts. Key "warm_start": "none" | "hamiltonian".
+  ///  - kNone: from the request's controls (states by RK4 simulation, costates by a backward
+  ///    trapezoidal sweep; IndirectNewton::StartFromControls);
+  ///  - kHamiltonian: first runs the registered "hamiltonian" solver (penalty form, the
+  ///    request's grid, integrator and initial guess, warm_start_options) and starts from its
+  ///    states and discrete-adjoint costates.
+  enum class WarmStart { kNone, kHamiltonian };
+
+  /// Newton steps at most (>= 0; 0 only evaluates the start).
+  int max_iterations = 50;
+  /// Converged when ||F(z)||_inf <= tolerance (> 0), F the residual of PmpResidual.
+  double tolerance = 1e-10;
+  /// Armijo constant c in (0, 1/2): a step a along the Newton direction d is accepted when
+  ///   1/2 ||F(z + a d)||^2 <= (1 - 2 c a) 1/2 ||F(z)||^2
+  /// (the directional derivative of 1/2 ||F||^2 along d is -||F||^2).
+  double sufficient_decrease = 1e-4;
+  /// Backtracking factor in (0, 1): steps 1, backtrack, backtrack^2, ...
+  double backtrack = 0.5;
+  /// Smallest step tried, in (0, 1]; when no step >= min_step is accepted the solve ends with
+  /// kStepTooSmall ("line_search_failed").
+  double min_step = 1e-10;
+  /// KLU by default: on these banded systems it factors 2-4x faster than UMFPACK (measured in
+  /// solvers/README-indirect.md).
+  LinearSolver linear_solver = LinearSolver::kKlu;
+  WarmStart warm_start = WarmStart::kNone;
+  /// Options handed verbatim to the "hamiltonian" solver (it validates them); only allowed with
+  /// warm_start = kHamiltonian. path_penalty and regularization below are passed on to it unless
+  /// given here.
+  std::map<std::string, std::string> warm_start_options;
+  /// Passed to Ocp::HamiltonianReformulation: rho > 0 of a path-constraint penalty and eps > 0 of
+  /// a control regularization, for problems that need a reformulation (unset: the problem's own
+  /// default, stated in its header). Keys "path_penalty", "regularization".
+  std::optional<double> path_penalty;
+  std::optional<double> regularization;
+
+  /// False, with a one-line reason in *error, when a field violates its rule above.
+  bool IsValid(std::string* error) const;
+};
+
+const char* ToString(IndirectNewtonOptions::LinearSolver solver);
+const char* ToString(IndirectNewtonOptions::WarmStart warm_start);
+
+/// Solves the maximum principle's boundary-value problem, discretized by trapezoidal collocation
+/// on the request's grid (PmpResidual: unknowns x_k, p_k at the nodes, u_k = u*(t_k, x_k, p_k) from
+/// Ocp::MinimizeHamiltonian, plus the multipliers nu of psi = 0 in the hard form), by Newton's
+/// method with a backtracking Armijo line search on 1/2 ||F||^2 (Dennis and Schnabel, "Numerical
+/// Methods for Unconstrained Optimization and Nonlinear Equations", 1983, Sec. 6.3 and 6.5):
+///
+///   J(z_k) d = -F(z_k),   z_{k+1} = z_k + a_k d,   a_k the first of 1, backtrack, ... accepted.
+///
+/// The Jacobian is sparse with a fixed structure (analyzed once, factored every step by UMFPACK or
+/// KLU). Where u* is clipped by U the Jacobian is a generalized one (MinimizerDerivative), which
+/// makes this a semismooth Newton method: locally superlinear, and quadratic where u* is smooth
+/// (Qi and Sun 1993). The classical indirect ("Pontryagin") approach is Bryson and Ho, "Applied
+/// Optimal Control", 1975, Ch. 7; its trapezoidal collocation is the scheme of Ascher, Mattheij and
+/// Russell, "Numerical Solution of Boundary Value Problems for ODEs", 1995, Sec. 5.1.
+///
+/// Accuracy: the trapezoidal scheme is second order, so states, costates and the discrete cost
+/// approach the continuous optimum as O(h^2) for smooth solutions (tested on the double
+/// integrator with p*(t) = (12, 12t - 6) and on LQ problems with Riccati costates).
+///
+/// Reformulation: like the Hamiltonian descent, the method solves
+/// Ocp::HamiltonianReformulation({path_penalty, regularization}) in place of the problem when the
+/// problem offers one (path constraints folded into L as an exterior penalty, eps |u|^2 added where
+/// H is linear in u); the message then says so and solver_stats["reformulated"] = 1. The controls
+/// are to be judged on the original problem (the common evaluator does).
+///
+/// Applicability (otherwise SolveStatus::kNotApplicable with the reason in `message`), for the
+/// problem solved (the reformulation if any):
+///  - Ocp::HasHamiltonianMinimizer(), with H strictly convex in u on the free directions (else
+///    the Jacobian does not exist and the solve ends in kNumericalFailure, saying so);
+///  - num_path() == 0;
+///  - fixed final time (core has no free final time).
+/// Both terminal forms: kPenalty (p(tf) = grad Phi) and kHard (psi = 0, nu unknown).
+///
+/// Stopping (SolveResult::status / verbatim SolveResult::solver_status):
+///  - ||F||_inf <= tolerance                      -> kConverged        "converged"
+///  - max_iterations steps taken                  -> kMaxIterations    "max_iterations"
+///  - no step >= min_step accepted                -> kStepTooSmall     "line_search_failed"
+///  - the sparse LU reports the matrix singular   -> kNumericalFailure "singular_jacobian"
+///  - NaN/inf in F or its Jacobian, or in the step -> kNumericalFailure "nonfinite_residual" /
+///                                                                    "nonfinite_step"
+///  - H_uu singular on the free directions        -> kNumericalFailure "singular_minimizer"
+///  - the warm start produced no states/costates  -> kError            "warm_start_failed"
+/// A trial point whose residual is not finite counts as a failed Armijo test.
+///
+/// Result: controls = u*(t_k, x_k, p_k) at the nodes, piecewise linear on request.grid (what the
+/// trapezoidal scheme means); state_grid = request.grid; states X and costates P (nx x N+1) of the
+/// last iterate; objective = its trapezoidal discrete cost (PmpResidual); iterations = Newton steps
+/// taken. history[i] is iterate i (0 = the start): J = discrete cost, primal_inf = ||F||_inf,
+/// armijo_j = number of backtracks of the step that produced it (-1 for i = 0), cpu_seconds
+/// cumulative from the start of Solve (the warm start included). solver_stats (CPU seconds):
+/// "assembly_seconds" (residual and Jacobian evaluations), "factorization_seconds" (symbolic and
+/// numeric LU), "solve_seconds" (triangular solves), "newton_cpu_seconds", "warm_start_cpu_seconds"
+/// and "warm_start_iterations" (kHamiltonian only), "residual_inf", "unknowns",
+/// "jacobian_nonzeros", "residual_evaluations", "jacobian_evaluations", "reformulated".
+class IndirectNewton final : public Solver {
+ public:
+  using Options = IndirectNewtonOptions;
+
+  IndirectNewton() = default;
+  /// Throws std::invalid_argument when !options.IsValid().
+  explicit IndirectNewton(const Options& options);
+
+  /// Parses string options over `base` (keys: max_iterations, tolerance, sufficient_decrease,
+  /// backtrack, min_step, linear_solver, warm_start, path_penalty, regularization,
+  /// hamiltonian.<key>). Throws
+  /// std::invalid_argument naming the key and its rule (and listing the valid keys for an
+  /// unknown one).
+  static Options ParseOptions(const std::map<std::string, std::string>& options,
+                              const Options& base = Options());
+
+  /// A start from controls: X by RK4 simulation of `controls` on `grid` (core Evaluate), P by the
+  /// trapezoidal rule applied backward to the linear costate equation p' = -H_x(t, x, u(t), p)
+  /// from p_N = grad Phi(x_N) (penalty form) or grad phi(x_N) (hard form), with u(t) taken from
+  /// the right at t_k and from the left at t_{k+1} on interval k.
+  static void StartFromControls(const Ocp& ocp,
+                                const TimeGrid& grid,
+                                TerminalMode mode,
+                                const ControlTrajectory& controls,
+                                Mat* X,
+                                Mat* P);
+
+  std::string name() const override { return "indirect-newton"; }
+  const Options& options() const { return options_; }
+
+  /// Solves with options_ overridden by request.options, from request.initial_guess (default:
+  /// DefaultInitialGuess) or the warm start. Throws std::invalid_argument for an invalid request
+  /// (bad options, a grid that does not span [t0, tf]); numerical trouble is the result's status.
+  SolveResult Solve(const Ocp& ocp, const SolveRequest& request) const override;
+
+  /// Newton from an explicit start: X and P (nx x N+1) on request.grid, for example a
+  /// Hamiltonian-descent result's states and costates (its Euler discrete adjoint Lambda is within
+  /// O(h) of p(t)). nu (hard form; size npsi) defaults to the least-squares solution of
+  /// p_N = grad phi(x_N) + psi_x(x_N)^T nu. request.initial_guess and warm_start are ignored; the
+  /// reformulation applies as in Solve().
+  SolveResult SolveFrom(const Ocp& ocp,
+                        const SolveRequest& request,
+                        const Mat& X,
+                        const Mat& P,
+                        const Vec* nu = nullptr) const;
+
+ private:
+  Options options_;
+};
+
+}  // namespace ocpb

@@ -1,0 +1,834 @@
+#include "solvers/ipopt_adapter.h"
+
+#include <IpIpoptApplication.hpp>
+#include <IpRegOptions.hpp>
+#include <IpSolveStatistics.hpp>
+#include <IpTNLP.hpp>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/timer.h"
+
+namespace ocpb {
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+
+constexpr double kIpoptInfinity = 1e19;  // Ipopt's nlp_{lower,upper}_bound_inf default
+
+// ---- the option table ---------------------------------------------------------------
+// Hand-written from Ipopt 3.11's documented options; the unit test compares it with the
+// registry of the linked library (IpoptOptionTableMatchesIpopt).
+std::vector<IpoptOptionSpec> BuildTable() {
+  const auto N = IpoptOptionType::kNumber;
+  const auto I = IpoptOptionType::kInteger;
+  const auto S = IpoptOptionType::kString;
+  const std::vector<std::string> yes_no = {"no", "yes"};
+  return {
+      // termination
+      {"tol", N, {}},
+      {"max_iter", I, {}},
+      {"max_cpu_time", N, {}},
+      {"dual_inf_tol", N, {}},
+      {"constr_viol_tol", N, {}},
+      {"compl_inf_tol", N, {}},
+      {"acceptable_tol", N, {}},
+      {"acceptable_iter", I, {}},
+      {"acceptable_dual_inf_tol", N, {}},
+      {"acceptable_constr_viol_tol", N, {}},
+      {"acceptable_compl_inf_tol", N, {}},
+      {"acceptable_obj_change_tol", N, {}},
+      {"diverging_iterates_tol", N, {}},
+      {"mu_target", N, {}},
+      // barrier parameter
+      {"mu_strategy", S, {"monotone", "adaptive"}},
+      {"mu_oracle", S, {"probing", "loqo", "quality-function"}},
+      {"mu_init", N, {}},
+      {"mu_min", N, {}},
+      {"mu_max", N, {}},
+      {"mu_linear_decrease_factor", N, {}},
+      {"mu_superlinear_decrease_power", N, {}},
+      {"barrier_tol_factor", N, {}},
+      {"adaptive_mu_globalization", S, {"kkt-error", "obj-constr-filter", "never-monotone-mode"}},
+      // Hessian
+      {"hessian_approximation", S, {"exact", "limited-memory"}},
+      {"limited_memory_max_history", I, {}},
+      {"limited_memory_update_type", S, {"bfgs", "sr1"}},
+      {"limited_memory_initialization",
+       S,
+       {"scalar1", "scalar2", "scalar3", "scalar4", "constant"}},
+      {"limited_memory_init_val", N, {}},
+      {"limited_memory_max_skipping", I, {}},
+      // initialization
+      {"bound_push", N, {}},
+      {"bound_frac", N, {}},
+      {"slack_bound_push", N, {}},
+      {"slack_bound_frac", N, {}},
+      {"bound_mult_init_val", N, {}},
+      {"bound_mult_init_method", S, {"constant", "mu-based"}},
+      {"constr_mult_init_max", N, {}},
+      {"least_square_init_primal", S, yes_no},
+      {"least_square_init_duals", S, yes_no},
+      // line search
+      {"line_search_method", S, {"filter", "cg-penalty", "penalty"}},
+      {"max_soc", I, {}},
+      {"accept_every_trial_step", S, yes_no},
+      {"accept_after_max_steps", I, {}},
+      {"alpha_for_y",
+       S,
+       {"primal",
+        "bound-mult",
+        "min",
+        "max",
+        "full",
+        "min-dual-infeas",
+        "safer-min-dual-infeas",
+        "primal-and-full",
+        "dual-and-full",
+        "acceptor"}},
+      {"watchdog_shortened_iter_trigger", I, {}},
+      {"watchdog_trial_iter_max", I, {}},
+      {"tiny_step_tol", N, {}},
+      {"corrector_type", S, {"none", "affine", "primal-dual"}},
+      {"recalc_y", S, yes_no},
+      // linear solver: only MUMPS is built in (no HSL, no Pardiso)
+      {"linear_solver", S, {"mumps"}},
+      {"linear_system_scaling", S, {"none", "slack-based"}},
+      {"mumps_pivtol", N, {}},
+      {"mumps_pivtolmax", N, {}},
+      {"mumps_mem_percent", I, {}},
+      {"mumps_permuting_scaling", I, {}},
+      {"mumps_pivot_order", I, {}},
+      {"mumps_scaling", I, {}},
+      // scaling (user-scaling needs scaling data the Nlp does not carry; equilibration needs MC19)
+      {"nlp_scaling_method", S, {"none", "gradient-based"}},
+      {"obj_scaling_factor", N, {}},
+      {"nlp_scaling_max_gradient", N, {}},
+      {"nlp_scaling_min_value", N, {}},
+      {"nlp_scaling_obj_target_gradient", N, {}},
+      {"nlp_scaling_constr_target_gradient", N, {}},
+      // NLP
+      {"bound_relax_factor", N, {}},
+      {"honor_original_bounds", S, yes_no},
+      {"fixed_variable_treatment", S, {"make_parameter", "make_constraint", "relax_bounds"}},
+      {"check_derivatives_for_naninf", S, yes_no},
+      {"jac_c_constant", S, yes_no},
+      {"jac_d_constant", S, yes_no},
+      {"hessian_constant", S, yes_no},
+      {"kappa_d", N, {}},
+      // derivative checker
+      {"derivative_test", S, {"none", "first-order", "second-order", "only-second-order"}},
+      {"derivative_test_tol", N, {}},
+      {"derivative_test_perturbation", N, {}},
+      {"derivative_test_print_all", S, yes_no},
+      {"derivative_test_first_index", I, {}},
+      {"point_perturbation_radius", N, {}},
+      // output
+      {"print_level", I, {}},
+      {"print_frequency_iter", I, {}},
+      {"print_user_options", S, yes_no},
+      {"print_timing_statistics", S, yes_no},
+      {"output_file", S, {}},
+      {"file_print_level", I, {}},
+      // restoration phase
+      {"expect_infeasible_problem", S, yes_no},
+      {"expect_infeasible_problem_ctol", N, {}},
+      {"required_infeasibility_reduction", N, {}},
+      {"max_resto_iter", I, {}},
+      {"start_with_resto", S, yes_no},
+      {"resto_penalty_parameter", N, {}},
+      // step computation
+      {"max_refinement_steps", I, {}},
+      {"min_refinement_steps", I, {}},
+      {"first_hessian_perturbation", N, {}},
+      {"max_hessian_perturbation", N, {}},
+      {"min_hessian_perturbation", N, {}},
+      {"jacobian_regularization_value", N, {}},
+      {"mehrotra_algorithm", S, yes_no},
+      {"neg_curv_test_tol", N, {}},
+  };
+}
+
+const char* TypeName(IpoptOptionType type) {
+  switch (type) {
+    case IpoptOptionType::kNumber:
+      return "a number";
+    case IpoptOptionType::kInteger:
+      return "an integer";
+    case IpoptOptionType::kString:
+      return "a string";
+  }
+  return "?";
+}
+
+std::string Join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& s : items) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
+
+double ParseNumber(const std::string& key, const std::string& text) {
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v)) {
+    throw std::invalid_argument("ipopt option '" + key + "': '" + text +
+                                "' is not a finite number");
+  }
+  return v;
+}
+
+int ParseInteger(const std::string& key, const std::string& text) {
+  errno = 0;
+  char* end = nullptr;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE ||
+      v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) {
+    throw std::invalid_argument("ipopt option '" + key + "': '" + text +
+                                "' is not an integer");
+  }
+  return static_cast<int>(v);
+}
+
+// ---- the TNLP -------------------------------------------------------------------------
+
+// Ipopt's view of an ocpb::Nlp. Structure (sizes, triplets) is read once from the Nlp; values are
+// computed on demand. No exception leaves a callback: an evaluation that fails or throws returns
+// false, which Ipopt treats as an invalid number (it then cuts the step back or stops with
+// Invalid_Number_Detected).
+class NlpTnlp final : public Ipopt::TNLP {
+ public:
+  NlpTnlp(const Nlp& nlp, const Vec& z0, bool exact_hessian)
+      : nlp_(nlp),
+        z0_(z0),
+        exact_hessian_(exact_hessian),
+        n_(nlp.num_variables()),
+        m_(nlp.num_constraints()),
+        watch_() {}
+
+  bool get_nlp_info(Index& n,
+                    Index& m,
+                    Index& nnz_jac_g,
+                    Index& nnz_h_lag,
+                    IndexStyleEnum& index_style) override {
+    n = n_;
+    m = m_;
+    nnz_jac_g = static_cast<Index>(nlp_.jacobian_rows().size());
+    nnz_h_lag = exact_hessian_ ? static_cast<Index>(nlp_.hessian_rows().size()) : 0;
+    index_style = C_STYLE;
+    return true;
+  }
+
+  bool get_bounds_info(Index n, Number* x_l, Number* x_u, Index m, Number* g_l, Number* g_u)
+      override {
+    Vec zl, zu, gl, gu;
+    try {
+      nlp_.Bounds(&zl, &zu, &gl, &gu);
+    } catch (const std::exception& e) {
+      Note(std::string("Nlp::Bounds threw: ") + e.what());
+      return false;
+    }
+    if (zl.size() != n || zu.size() != n || gl.size() != m || gu.size() != m) {
+      Note("Nlp::Bounds returned vectors of the wrong size");
+      return false;
+    }
+    for (Index i = 0; i < n; ++i) {
+      x_l[i] = Clip(zl[i]);
+      x_u[i] = Clip(zu[i]);
+    }
+    for (Index j = 0; j < m; ++j) {
+      g_l[j] = Clip(gl[j]);
+      g_u[j] = Clip(gu[j]);
+    }
+    return true;
+  }
+
+  bool get_starting_point(Index n,
+                          bool init_x,
+                          Number* x,
+                          bool init_z,
+                          Number* /*z_L*/,
+                          Number* /*z_U*/,
+                          Index /*m*/,
+                          bool init_lambda,
+                          Number* /*lambda*/) override {
+    if (init_z || init_lambda) {
+      Note("Ipopt asked for starting multipliers (warm start), which OCPBench does not provide");
+      return false;
+    }
+    if (init_x) Eigen::Map<Vec>(x, n) = z0_;
+    return true;
+  }
+
+  bool eval_f(Index n, const Number* x, bool /*new_x*/, Number& obj_value) override {
+    return Guard("Objective", [&] {
+      double f = NAN;
+      const bool ok = nlp_.Objective(Eigen::Map<const Vec>(x, n), &f);
+      obj_value = f;
+      return ok && std::isfinite(f);
+    });
+  }
+
+  bool eval_grad_f(Index n, const Number* x, bool /*new_x*/, Number* grad_f) override {
+    return Guard("Gradient", [&] {
+      Eigen::Map<Vec> g(grad_f, n);
+      return nlp_.Gradient(Eigen::Map<const Vec>(x, n), g) && g.allFinite();
+    });
+  }
+
+  bool eval_g(Index n, const Number* x, bool /*new_x*/, Index m, Number* g) override {
+    return Guard("Constraints", [&] {
+      Eigen::Map<Vec> gv(g, m);
+      return nlp_.Constraints(Eigen::Map<const Vec>(x, n), gv) && gv.allFinite();
+    });
+  }
+
+  bool eval_jac_g(Index n,
+                  const Number* x,
+                  bool /*new_x*/,
+                  Index /*m*/,
+                  Index nele_jac,
+                  Index* iRow,
+                  Index* jCol,
+                  Number* values) override {
+    if (values == nullptr) {
+      const auto& rows = nlp_.jacobian_rows();
+      const auto& cols = nlp_.jacobian_cols();
+      for (Index k = 0; k < nele_jac; ++k) {
+        iRow[k] = rows[k];
+        jCol[k] = cols[k];
+      }
+      return true;
+    }
+    return Guard("JacobianValues", [&] {
+      Eigen::Map<Vec> v(values, nele_jac);
+      return nlp_.JacobianValues(Eigen::Map<const Vec>(x, n), v) && v.allFinite();
+    });
+  }
+
+  bool eval_h(Index n,
+              const Number* x,
+              bool /*new_x*/,
+              Number obj_factor,
+              Index m,
+              const Number* lambda,
+              bool /*new_lambda*/,
+              Index nele_hess,
+              Index* iRow,
+              Index* jCol,
+              Number* values) override {
+    if (!exact_hessian_) return false;
+    if (values == nullptr) {
+      // Ipopt wants the lower triangle; core/nlp.h guarantees row >= col.
+      const auto& rows = nlp_.hessian_rows();
+      const auto& cols = nlp_.hessian_cols();
+      for (Index k = 0; k < nele_hess; ++k) {
+        iRow[k] = rows[k];
+        jCol[k] = cols[k];
+      }
+      return true;
+    }
+    return Guard("HessianValues", [&] {
+      Eigen::Map<Vec> v(values, nele_hess);
+      return nlp_.HessianValues(Eigen::Map<const Vec>(x, n),
+                                obj_factor,
+                                Eigen::Map<const Vec>(lambda, m),
+                                v) &&
+             v.allFinite();
+    });
+  }
+
+  void finalize_solution(Ipopt::SolverReturn /*status*/,
+                         Index n,
+                         const Number* x,
+                         const Number* /*z_L*/,
+                         const Number* /*z_U*/,
+                         Index m,
+                         const Number* /*g*/,
+                         const Number* lambda,
+                         Number obj_value,
+                         const Ipopt::IpoptData* /*ip_data*/,
+                         Ipopt::IpoptCalculatedQuantities* /*ip_cq*/) override {
+    finalized_ = true;
+    z_ = Eigen::Map<const Vec>(x, n);
+    lambda_ = m > 0 && lambda != nullptr ? Vec(Eigen::Map<const Vec>(lambda, m)) : Vec(m);
+    if (m > 0 && lambda == nullptr) lambda_.setConstant(NAN);
+    objective_ = obj_value;
+  }
+
+  bool intermediate_callback(Ipopt::AlgorithmMode mode,
+                             Index iter,
+                             Number obj_value,
+                             Number inf_pr,
+                             Number inf_du,
+                             Number /*mu*/,
+                             Number /*d_norm*/,
+                             Number /*regularization_size*/,
+                             Number /*alpha_du*/,
+                             Number /*alpha_pr*/,
+                             Index /*ls_trials*/,
+                             const Ipopt::IpoptData* /*ip_data*/,
+                             Ipopt::IpoptCalculatedQuantities* /*ip_cq*/) override {
+    IterationRecord r;
+    r.iteration = iter;
+    r.J = obj_value;
+    r.primal_inf = inf_pr;
+    r.dual_inf = inf_du;
+    r.cpu_seconds = watch_.cpu();
+    history_.push_back(r);
+    if (mode == Ipopt::RestorationPhaseMode) ++restoration_iterations_;
+    return true;
+  }
+
+  bool finalized() const { return finalized_; }
+  const Vec& z() const { return z_; }
+  const Vec& lambda() const { return lambda_; }
+  double objective() const { return objective_; }
+  std::vector<IterationRecord>& history() { return history_; }
+  const std::string& notes() const { return notes_; }
+  int restoration_iterations() const { return restoration_iterations_; }
+
+ private:
+  static double Clip(double v) {
+    if (v >= kIpoptInfinity) return 2.0 * kIpoptInfinity;
+    if (v <= -kIpoptInfinity) return -2.0 * kIpoptInfinity;
+    return v;
+  }
+
+  template <class Fn>
+  bool Guard(const char* what, Fn&& fn) {
+    try {
+      if (fn()) return true;
+      ++failed_evaluations_;
+      if (failed_evaluations_ == 1) Note(std::string("Nlp::") + what + " failed (NaN/inf)");
+      return false;
+    } catch (const std::exception& e) {
+      Note(std::string("Nlp::") + what + " threw: " + e.what());
+    } catch (...) {
+      Note(std::string("Nlp::") + what + " threw a non-standard exception");
+    }
+    return false;
+  }
+
+  void Note(const std::string& s) {
+    if (notes_.size() < 2000) notes_ += (notes_.empty() ? "" : "; ") + s;
+  }
+
+  const Nlp& nlp_;
+  const Vec z0_;
+  const bool exact_hessian_;
+  const Index n_, m_;
+  Stopwatch watch_;
+  bool finalized_ = false;
+  Vec z_, lambda_;
+  double objective_ = NAN;
+  std::vector<IterationRecord> history_;
+  std::string notes_;
+  int failed_evaluations_ = 0;
+  int restoration_iterations_ = 0;
+};
+
+bool Apply(Ipopt::OptionsList& list, const IpoptOptionValue& v) {
+  switch (v.type) {
+    case IpoptOptionType::kNumber:
+      return list.SetNumericValue(v.name, v.number);
+    case IpoptOptionType::kInteger:
+      return list.SetIntegerValue(v.name, v.integer);
+    case IpoptOptionType::kString:
+      return list.SetStringValue(v.name, v.text);
+  }
+  return false;
+}
+
+IpoptOptionValue NumberOption(const std::string& name, double v) {
+  IpoptOptionValue o;
+  o.name = name;
+  o.type = IpoptOptionType::kNumber;
+  o.number = v;
+  return o;
+}
+IpoptOptionValue IntegerOption(const std::string& name, int v) {
+  IpoptOptionValue o;
+  o.name = name;
+  o.type = IpoptOptionType::kInteger;
+  o.integer = v;
+  return o;
+}
+IpoptOptionValue TextOption(const std::string& name, const std::string& v) {
+  IpoptOptionValue o;
+  o.name = name;
+  o.type = IpoptOptionType::kString;
+  o.text = v;
+  return o;
+}
+
+}  // namespace
+
+// ---- options ---------------------------------------------------------------------------
+
+const std::vector<IpoptOptionSpec>& IpoptOptionTable() {
+  static const std::vector<IpoptOptionSpec> table = BuildTable();
+  return table;
+}
+
+const IpoptOptionSpec* FindIpoptOption(const std::string& name) {
+  for (const IpoptOptionSpec& s : IpoptOptionTable()) {
+    if (s.name == name) return &s;
+  }
+  return nullptr;
+}
+
+bool IpoptOptionTableMatchesIpopt(std::string* error) {
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  Ipopt::SmartPtr<Ipopt::RegisteredOptions> reg = app->RegOptions();
+  std::string problems;
+  for (const IpoptOptionSpec& s : IpoptOptionTable()) {
+    Ipopt::SmartPtr<const Ipopt::RegisteredOption> opt = reg->GetOption(s.name);
+    if (!Ipopt::IsValid(opt)) {
+      problems += s.name + ": not registered by Ipopt; ";
+      continue;
+    }
+    const Ipopt::RegisteredOptionType expected = s.type == IpoptOptionType::kNumber ? Ipopt::OT_Number
+                                                 : s.type == IpoptOptionType::kInteger
+                                                     ? Ipopt::OT_Integer
+                                                     : Ipopt::OT_String;
+    if (opt->Type() != expected) {
+      problems += s.name + ": Ipopt registers another type; ";
+      continue;
+    }
+    for (const std::string& v : s.values) {
+      if (!opt->IsValidStringSetting(v)) problems += s.name + ": Ipopt rejects '" + v + "'; ";
+    }
+  }
+  if (error) *error = problems;
+  return problems.empty();
+}
+
+bool IpoptOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (!(tol > 0.0)) return fail("tol must be > 0");
+  if (max_iter < 0) return fail("max_iter must be >= 0");
+  if (!(acceptable_tol > 0.0)) return fail("acceptable_tol must be > 0");
+  if (acceptable_iter < 0) return fail("acceptable_iter must be >= 0");
+  if (!(max_cpu_time > 0.0)) return fail("max_cpu_time must be > 0");
+  if (mu_strategy != "monotone" && mu_strategy != "adaptive") {
+    return fail("mu_strategy must be one of: monotone, adaptive");
+  }
+  if (hessian_approximation != "auto" && hessian_approximation != "exact" &&
+      hessian_approximation != "limited-memory") {
+    return fail("hessian_approximation must be one of: auto, exact, limited-memory");
+  }
+  if (linear_solver != "mumps") return fail("linear_solver must be mumps (the only one built in)");
+  if (nlp_scaling_method != "none" && nlp_scaling_method != "gradient-based") {
+    return fail("nlp_scaling_method must be one of: none, gradient-based");
+  }
+  if (!(obj_scaling_factor != 0.0) || !std::isfinite(obj_scaling_factor)) {
+    return fail("obj_scaling_factor must be finite and nonzero");
+  }
+  if (!(nlp_scaling_max_gradient > 0.0)) return fail("nlp_scaling_max_gradient must be > 0");
+  if (print_level < 0 || print_level > 12) return fail("print_level must be in 0..12");
+  for (const IpoptOptionValue& v : extra) {
+    const IpoptOptionSpec* spec = FindIpoptOption(v.name);
+    if (spec == nullptr) return fail("extra option '" + v.name + "' is not in the Ipopt table");
+    if (spec->type != v.type) {
+      return fail("extra option '" + v.name + "' must be " + TypeName(spec->type));
+    }
+    if (v.type == IpoptOptionType::kString && !spec->values.empty() &&
+        std::find(spec->values.begin(), spec->values.end(), v.text) == spec->values.end()) {
+      return fail("extra option '" + v.name + "' must be one of: " + Join(spec->values));
+    }
+  }
+  return true;
+}
+
+IpoptOptions IpoptOptions::FromStrings(const std::map<std::string, std::string>& strings,
+                                       IpoptOptions base) {
+  IpoptOptions o = std::move(base);
+  for (const auto& [key, text] : strings) {
+    if (key == "hessian_approximation" && text == "auto") {
+      o.hessian_approximation = text;
+      continue;
+    }
+    const IpoptOptionSpec* spec = FindIpoptOption(key);
+    if (spec == nullptr) {
+      std::vector<std::string> names;
+      for (const IpoptOptionSpec& s : IpoptOptionTable()) names.push_back(s.name);
+      std::sort(names.begin(), names.end());
+      throw std::invalid_argument("unknown ipopt option '" + key + "' (valid: " + Join(names) +
+                                  "; and the transcription's objective_scale, state_scale, "
+                                  "control_scale)");
+    }
+    IpoptOptionValue v;
+    v.name = key;
+    v.type = spec->type;
+    switch (spec->type) {
+      case IpoptOptionType::kNumber:
+        v.number = ParseNumber(key, text);
+        break;
+      case IpoptOptionType::kInteger:
+        v.integer = ParseInteger(key, text);
+        break;
+      case IpoptOptionType::kString:
+        if (!spec->values.empty() &&
+            std::find(spec->values.begin(), spec->values.end(), text) == spec->values.end()) {
+          std::vector<std::string> valid = spec->values;
+          if (key == "hessian_approximation") valid.insert(valid.begin(), "auto");
+          throw std::invalid_argument("ipopt option '" + key + "': '" + text +
+                                      "' is not one of: " + Join(valid));
+        }
+        v.text = text;
+        break;
+    }
+    // Named fields are set directly; everything else goes through `extra` (last one wins).
+    if (key == "tol") {
+      o.tol = v.number;
+    } else if (key == "max_iter") {
+      o.max_iter = v.integer;
+    } else if (key == "acceptable_tol") {
+      o.acceptable_tol = v.number;
+    } else if (key == "acceptable_iter") {
+      o.acceptable_iter = v.integer;
+    } else if (key == "max_cpu_time") {
+      o.max_cpu_time = v.number;
+    } else if (key == "mu_strategy") {
+      o.mu_strategy = v.text;
+    } else if (key == "hessian_approximation") {
+      o.hessian_approximation = v.text;
+    } else if (key == "linear_solver") {
+      o.linear_solver = v.text;
+    } else if (key == "nlp_scaling_method") {
+      o.nlp_scaling_method = v.text;
+    } else if (key == "obj_scaling_factor") {
+      o.obj_scaling_factor = v.number;
+    } else if (key == "nlp_scaling_max_gradient") {
+      o.nlp_scaling_max_gradient = v.number;
+    } else if (key == "print_level") {
+      o.print_level = v.integer;
+    } else {
+      o.extra.erase(std::remove_if(o.extra.begin(),
+                                   o.extra.end(),
+                                   [&](const IpoptOptionValue& e) { return e.name == key; }),
+                    o.extra.end());
+      o.extra.push_back(v);
+    }
+  }
+  std::string error;
+  if (!o.IsValid(&error)) throw std::invalid_argument("ipopt options: " + error);
+  return o;
+}
+
+// ---- status ------------------------------------------------------------------------------
+
+std::string IpoptStatusName(int code) {
+  switch (static_cast<Ipopt::ApplicationReturnStatus>(code)) {
+    case Ipopt::Solve_Succeeded:
+      return "Solve_Succeeded";
+    case Ipopt::Solved_To_Acceptable_Level:
+      return "Solved_To_Acceptable_Level";
+    case Ipopt::Infeasible_Problem_Detected:
+      return "Infeasible_Problem_Detected";
+    case Ipopt::Search_Direction_Becomes_Too_Small:
+      return "Search_Direction_Becomes_Too_Small";
+    case Ipopt::Diverging_Iterates:
+      return "Diverging_Iterates";
+    case Ipopt::User_Requested_Stop:
+      return "User_Requested_Stop";
+    case Ipopt::Feasible_Point_Found:
+      return "Feasible_Point_Found";
+    case Ipopt::Maximum_Iterations_Exceeded:
+      return "Maximum_Iterations_Exceeded";
+    case Ipopt::Restoration_Failed:
+      return "Restoration_Failed";
+    case Ipopt::Error_In_Step_Computation:
+      return "Error_In_Step_Computation";
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      return "Maximum_CpuTime_Exceeded";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom:
+      return "Not_Enough_Degrees_Of_Freedom";
+    case Ipopt::Invalid_Problem_Definition:
+      return "Invalid_Problem_Definition";
+    case Ipopt::Invalid_Option:
+      return "Invalid_Option";
+    case Ipopt::Invalid_Number_Detected:
+      return "Invalid_Number_Detected";
+    case Ipopt::Unrecoverable_Exception:
+      return "Unrecoverable_Exception";
+    case Ipopt::NonIpopt_Exception_Thrown:
+      return "NonIpopt_Exception_Thrown";
+    case Ipopt::Insufficient_Memory:
+      return "Insufficient_Memory";
+    case Ipopt::Internal_Error:
+      return "Internal_Error";
+  }
+  return "Unknown_Status(" + std::to_string(code) + ")";
+}
+
+SolveStatus MapIpoptStatus(int code) {
+  switch (static_cast<Ipopt::ApplicationReturnStatus>(code)) {
+    case Ipopt::Solve_Succeeded:
+    case Ipopt::Feasible_Point_Found:
+      return SolveStatus::kConverged;
+    case Ipopt::Solved_To_Acceptable_Level:
+      return SolveStatus::kAcceptable;
+    case Ipopt::Infeasible_Problem_Detected:
+      return SolveStatus::kInfeasible;
+    case Ipopt::Search_Direction_Becomes_Too_Small:
+      return SolveStatus::kStepTooSmall;
+    case Ipopt::Maximum_Iterations_Exceeded:
+      return SolveStatus::kMaxIterations;
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      return SolveStatus::kMaxTime;
+    case Ipopt::Diverging_Iterates:
+    case Ipopt::Restoration_Failed:
+    case Ipopt::Error_In_Step_Computation:
+    case Ipopt::Invalid_Number_Detected:
+      return SolveStatus::kNumericalFailure;
+    case Ipopt::Not_Enough_Degrees_Of_Freedom:
+    case Ipopt::Invalid_Problem_Definition:
+    case Ipopt::Invalid_Option:
+      return SolveStatus::kInvalidInput;
+    case Ipopt::User_Requested_Stop:
+    case Ipopt::Unrecoverable_Exception:
+    case Ipopt::NonIpopt_Exception_Thrown:
+    case Ipopt::Insufficient_Memory:
+    case Ipopt::Internal_Error:
+      return SolveStatus::kError;
+  }
+  return SolveStatus::kError;
+}
+
+std::vector<int> AllIpoptStatusCodes() {
+  return {Ipopt::Solve_Succeeded,
+          Ipopt::Solved_To_Acceptable_Level,
+          Ipopt::Infeasible_Problem_Detected,
+          Ipopt::Search_Direction_Becomes_Too_Small,
+          Ipopt::Diverging_Iterates,
+          Ipopt::User_Requested_Stop,
+          Ipopt::Feasible_Point_Found,
+          Ipopt::Maximum_Iterations_Exceeded,
+          Ipopt::Restoration_Failed,
+          Ipopt::Error_In_Step_Computation,
+          Ipopt::Maximum_CpuTime_Exceeded,
+          Ipopt::Not_Enough_Degrees_Of_Freedom,
+          Ipopt::Invalid_Problem_Definition,
+          Ipopt::Invalid_Option,
+          Ipopt::Invalid_Number_Detected,
+          Ipopt::Unrecoverable_Exception,
+          Ipopt::NonIpopt_Exception_Thrown,
+          Ipopt::Insufficient_Memory,
+          Ipopt::Internal_Error};
+}
+
+// ---- solve ---------------------------------------------------------------------------------
+
+NlpSolution SolveNlpWithIpopt(const Nlp& nlp, const Vec& z0, const IpoptOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument("ipopt options: " + error);
+  if (z0.size() != nlp.num_variables()) {
+    throw std::invalid_argument("SolveNlpWithIpopt: starting point has size " +
+                                std::to_string(z0.size()) + ", the NLP has " +
+                                std::to_string(nlp.num_variables()) + " variables");
+  }
+
+  NlpSolution out;
+  out.z = z0;
+  std::string message;
+
+  // Hessian: exact only when the Nlp has one.
+  bool exact = nlp.HasHessian();
+  if (options.hessian_approximation == "limited-memory") exact = false;
+  if (options.hessian_approximation == "exact" && !nlp.HasHessian()) {
+    message += "hessian_approximation=exact requested, but the NLP has no Hessian: using "
+               "limited-memory. ";
+  }
+  out.stats["ipopt_exact_hessian"] = exact ? 1.0 : 0.0;
+
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  Ipopt::OptionsList& list = *app->Options();
+  std::vector<IpoptOptionValue> settings = {
+      TextOption("sb", "yes"),  // no banner
+      NumberOption("tol", options.tol),
+      IntegerOption("max_iter", options.max_iter),
+      NumberOption("acceptable_tol", options.acceptable_tol),
+      IntegerOption("acceptable_iter", options.acceptable_iter),
+      NumberOption("max_cpu_time", options.max_cpu_time),
+      TextOption("mu_strategy", options.mu_strategy),
+      TextOption("linear_solver", options.linear_solver),
+      TextOption("nlp_scaling_method", options.nlp_scaling_method),
+      NumberOption("obj_scaling_factor", options.obj_scaling_factor),
+      NumberOption("nlp_scaling_max_gradient", options.nlp_scaling_max_gradient),
+      IntegerOption("print_level", options.print_level),
+  };
+  settings.insert(settings.end(), options.extra.begin(), options.extra.end());
+  // Forced last: an extra "hessian_approximation=exact" cannot ask for a Hessian that is absent.
+  settings.push_back(TextOption("hessian_approximation", exact ? "exact" : "limited-memory"));
+  for (const IpoptOptionValue& v : settings) {
+    if (!Apply(list, v)) {
+      out.status = SolveStatus::kInvalidInput;
+      out.solver_status = IpoptStatusName(Ipopt::Invalid_Option);
+      out.message = message + "Ipopt rejected option '" + v.name + "'";
+      return out;
+    }
+  }
+
+  // Initialize("") reads no ipopt.opt file, so results never depend on the working directory.
+  Ipopt::ApplicationReturnStatus status = app->Initialize("");
+  Ipopt::SmartPtr<NlpTnlp> tnlp = new NlpTnlp(nlp, z0, exact);
+  if (status == Ipopt::Solve_Succeeded) {
+    try {
+      status = app->OptimizeTNLP(Ipopt::GetRawPtr(tnlp));
+    } catch (const std::exception& e) {
+      // Ipopt catches its own and our exceptions; this is a last line of defence.
+      status = Ipopt::NonIpopt_Exception_Thrown;
+      message += std::string("exception from Ipopt: ") + e.what() + ". ";
+    }
+  } else {
+    message += "Ipopt initialization failed. ";
+  }
+
+  out.status = MapIpoptStatus(status);
+  out.solver_status = IpoptStatusName(status);
+  out.history = std::move(tnlp->history());
+  if (tnlp->finalized()) {
+    out.z = tnlp->z();
+    out.lambda = tnlp->lambda();
+    out.objective = tnlp->objective();
+    out.has_iterate = out.z.allFinite();
+    if (!out.has_iterate) out.z = z0;
+  }
+  Ipopt::SmartPtr<Ipopt::SolveStatistics> stats = app->Statistics();
+  if (Ipopt::IsValid(stats)) {
+    out.iterations = stats->IterationCount();
+    out.stats["ipopt_cpu_seconds"] = stats->TotalCpuTime();
+    out.stats["ipopt_wall_seconds"] = stats->TotalWallclockTime();
+    Number dual_inf, constr_viol, complementarity, kkt;
+    stats->Infeasibilities(dual_inf, constr_viol, complementarity, kkt);
+    out.stats["ipopt_dual_inf"] = dual_inf;
+    out.stats["ipopt_constr_viol"] = constr_viol;
+    out.stats["ipopt_complementarity"] = complementarity;
+    out.stats["ipopt_kkt_error"] = kkt;
+    Index n_f, n_g, n_df, n_dg, n_h;
+    stats->NumberOfEvaluations(n_f, n_g, n_df, n_dg, n_h);
+    out.stats["ipopt_objective_evaluations"] = n_f;
+    out.stats["ipopt_hessian_evaluations"] = n_h;
+  } else if (!out.history.empty()) {
+    out.iterations = out.history.back().iteration;
+  }
+  out.stats["ipopt_restoration_iterations"] = tnlp->restoration_iterations();
+  if (!tnlp->notes().empty()) message += tnlp->notes() + ". ";
+  out.message = message + "Ipopt: " + out.solver_status;
+  return out;
+}
+
+}  // namespace ocpb

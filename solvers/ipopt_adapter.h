@@ -1,0 +1,125 @@
+// Ipopt on an OCPBench Nlp: options, status names and the solve call. The only file that includes
+// Ipopt's headers is ipopt_adapter.cc.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/nlp.h"
+#include "core/solve_result.h"
+#include "solvers/nlp_solve.h"
+
+namespace ocpb {
+
+/// The value type of an Ipopt option, as Ipopt registers it.
+enum class IpoptOptionType { kNumber, kInteger, kString };
+
+/// One entry of OCPBench's table of Ipopt (3.11) options that may be passed through.
+struct IpoptOptionSpec {
+  std::string name;
+  IpoptOptionType type = IpoptOptionType::kNumber;
+  /// String options: the values Ipopt accepts (empty: any string, e.g. a file name).
+  std::vector<std::string> values;
+};
+
+/// The pass-through table: the Ipopt options OCPBench lets a request set, with their types.
+/// IpoptOptionTableMatchesIpopt() checks it against Ipopt's own registry.
+const std::vector<IpoptOptionSpec>& IpoptOptionTable();
+/// The table entry for `name`, or nullptr.
+const IpoptOptionSpec* FindIpoptOption(const std::string& name);
+/// True when every table entry is registered by the linked Ipopt with the same type (and, for
+/// strings, every listed value is one Ipopt accepts); otherwise false with the mismatches in
+/// `error`.
+bool IpoptOptionTableMatchesIpopt(std::string* error);
+
+/// One typed Ipopt option setting.
+struct IpoptOptionValue {
+  std::string name;
+  IpoptOptionType type = IpoptOptionType::kNumber;
+  double number = 0.0;
+  int integer = 0;
+  std::string text;
+};
+
+/// Options of the Ipopt backend (Wächter & Biegler, "On the implementation of an interior-point
+/// filter line-search algorithm for large-scale nonlinear programming", Math. Prog. 106, 2006).
+/// Every field is passed to Ipopt under its own name; defaults are OCPBench's, not always Ipopt's
+/// (marked "Ipopt default" where they agree).
+struct IpoptOptions {
+  // ---- termination --------------------------------------------------------------
+  /// Converged when the scaled NLP error (max of dual infeasibility, constraint violation and
+  /// complementarity, scaled) is <= tol and the unscaled ones are below their own tolerances.
+  /// Ipopt default.
+  double tol = 1e-8;
+  /// Iteration limit; reaching it gives SolveStatus::kMaxIterations. Ipopt default.
+  int max_iter = 3000;
+  /// "Acceptable" level: acceptable_iter consecutive iterates with error <= acceptable_tol end
+  /// the solve with Solved_To_Acceptable_Level. Ipopt default.
+  double acceptable_tol = 1e-6;
+  int acceptable_iter = 15;
+  /// CPU time limit in seconds (Ipopt's max_cpu_time); reaching it gives kMaxTime.
+  double max_cpu_time = 1e6;
+  // ---- algorithm ----------------------------------------------------------------
+  /// "monotone" (Fiacco-McCormick, Ipopt default) or "adaptive".
+  std::string mu_strategy = "monotone";
+  /// "auto" (OCPBench): "exact" when the Nlp HasHessian(), else "limited-memory". "exact" on an
+  /// Nlp without a Hessian is replaced by "limited-memory" and said so in the result's message.
+  std::string hessian_approximation = "auto";
+  /// Only "mumps" is available in OCPBench's build (no HSL).
+  std::string linear_solver = "mumps";
+  // ---- scaling ------------------------------------------------------------------
+  /// "gradient-based" (Ipopt default: scale f and each g_i so their gradient at the start has
+  /// max-norm <= nlp_scaling_max_gradient), "none", or "equilibration-based" (needs MC19, absent).
+  std::string nlp_scaling_method = "gradient-based";
+  /// Ipopt minimizes obj_scaling_factor * f (on top of nlp_scaling_method). Ipopt default.
+  double obj_scaling_factor = 1.0;
+  /// Largest gradient max-norm gradient-based scaling leaves alone. Ipopt default.
+  double nlp_scaling_max_gradient = 100.0;
+  // ---- output -------------------------------------------------------------------
+  /// 0 = silent (OCPBench's default), 5 = Ipopt's usual iteration log, up to 12.
+  int print_level = 0;
+  /// Any other option from IpoptOptionTable(), applied after the fields above.
+  std::vector<IpoptOptionValue> extra;
+
+  /// True when every field is in range (tol > 0, max_iter >= 0, ...) and every extra option is
+  /// in the table with its type; otherwise false with a one-line reason in `error`.
+  bool IsValid(std::string* error) const;
+  /// `base` with `strings` applied: each key is a field name above or an option of
+  /// IpoptOptionTable(), parsed by its type (double, int, or one of the listed strings). Throws
+  /// std::invalid_argument naming the key and the rule, listing the valid keys for an unknown one.
+  static IpoptOptions FromStrings(const std::map<std::string, std::string>& strings,
+                                  IpoptOptions base);
+};
+
+/// Ipopt's name for an ApplicationReturnStatus value ("Solve_Succeeded", "Restoration_Failed",
+/// ...), or "Unknown_Status(<code>)".
+std::string IpoptStatusName(int application_return_status);
+/// OCPBench's grouping of an ApplicationReturnStatus value:
+///   Solve_Succeeded, Feasible_Point_Found          -> kConverged
+///   Solved_To_Acceptable_Level                     -> kAcceptable
+///   Infeasible_Problem_Detected                    -> kInfeasible
+///   Search_Direction_Becomes_Too_Small             -> kStepTooSmall
+///   Maximum_Iterations_Exceeded                    -> kMaxIterations
+///   Maximum_CpuTime_Exceeded                       -> kMaxTime
+///   Diverging_Iterates, Restoration_Failed, Error_In_Step_Computation,
+///   Invalid_Number_Detected                        -> kNumericalFailure
+///   Not_Enough_Degrees_Of_Freedom, Invalid_Problem_Definition, Invalid_Option -> kInvalidInput
+///   User_Requested_Stop, Unrecoverable_Exception, NonIpopt_Exception_Thrown,
+///   Insufficient_Memory, Internal_Error, unknown  -> kError
+SolveStatus MapIpoptStatus(int application_return_status);
+/// Every ApplicationReturnStatus value Ipopt 3.11 defines.
+std::vector<int> AllIpoptStatusCodes();
+
+/// Runs Ipopt on `nlp` from `z0` (size num_variables()). Never throws for anything Ipopt or the
+/// Nlp does: failures come back as the solution's status. Fills z, lambda (Ipopt's constraint
+/// multipliers), the objective, Ipopt's iteration count, a history row per iteration from
+/// Ipopt's intermediate callback (objective, primal and dual infeasibility as in Ipopt's
+/// iteration log, CPU seconds since the call started), and stats: ipopt_cpu_seconds,
+/// ipopt_wall_seconds (Ipopt's SolveStatistics), ipopt_dual_inf, ipopt_constr_viol,
+/// ipopt_complementarity, ipopt_kkt_error (unscaled), ipopt_objective_evaluations,
+/// ipopt_hessian_evaluations, ipopt_exact_hessian (1 or 0).
+/// Throws std::invalid_argument only when `options` is not valid (IsValid) or z0 has the wrong
+/// size.
+NlpSolution SolveNlpWithIpopt(const Nlp& nlp, const Vec& z0, const IpoptOptions& options);
+
+}  // namespace ocpb

@@ -1,0 +1,99 @@
+// NLopt on an OCPBench Nlp: dense gradients, vector constraints, exceptions mapped to statuses.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/nlp.h"
+#include "core/solve_result.h"
+#include "solvers/nlp_solve.h"
+
+namespace ocpb {
+
+/// Options of the NLopt backend (S. G. Johnson, The NLopt nonlinear-optimization package,
+/// https://github.com/stevengj/nlopt). Stopping tests are NLopt's: a run stops at the first that
+/// holds.
+struct NloptOptions {
+  /// Algorithm by NLopt's name without "NLOPT_": LD_SLSQP (Kraft 1988, dense SQP, all constraint
+  /// kinds), LD_MMA (Svanberg 2002, inequalities only), LD_CCSAQ (Svanberg 2002, inequalities
+  /// only), LD_LBFGS (bounds only), AUGLAG or AUGLAG_EQ (augmented Lagrangian, Conn-Gould-Toint /
+  /// Birgin-Martinez, around local_algorithm; AUGLAG_EQ keeps the inequalities in the local
+  /// algorithm). See NloptAlgorithmNames().
+  std::string algorithm = "LD_SLSQP";
+  /// The subsidiary algorithm of AUGLAG / AUGLAG_EQ: LD_LBFGS, LD_MMA, LD_CCSAQ or LD_SLSQP.
+  std::string local_algorithm = "LD_LBFGS";
+
+  // ---- stopping tests (NLopt: stop when a step changes f by less than ftol_rel |f|, or every
+  // ---- z_i by less than xtol_rel |z_i|; <= 0 disables a test) ----------------------------
+  double ftol_rel = 1e-10;
+  double xtol_rel = 1e-8;
+  /// Stop after this many objective evaluations (kMaxTime, "evaluation limit").
+  int maxeval = 20000;
+  /// Stop after this many seconds of wall time (kMaxTime).
+  double maxtime = 600.0;
+  /// The same tests for the subsidiary algorithm of AUGLAG / AUGLAG_EQ.
+  double local_ftol_rel = 1e-12;
+  double local_xtol_rel = 1e-10;
+  int local_maxeval = 5000;
+
+  // ---- constraints -------------------------------------------------------------------------
+  /// NLopt's per-constraint tolerance: a constraint counts as satisfied within this.
+  double constraint_tol = 1e-8;
+  /// OCPBench's check after NLopt says it converged: if max_i violation (NlpViolation) at the
+  /// returned point exceeds feasibility_tol, the status becomes kInfeasible (NLopt's status is
+  /// still kept verbatim). NLopt's convergence tests look at f and z only, not at feasibility.
+  double feasibility_tol = 1e-6;
+
+  // ---- refusal limits: cases that would run for hours are refused with kNotApplicable ---------
+  /// Dense constraint Jacobian: refuse when m * n exceeds this (memory 8 m n bytes, and
+  /// O(m n) work per evaluation at least).
+  double max_dense_jacobian = 2e7;
+  /// LD_SLSQP: refuse when n exceeds this (its quasi-Newton matrix and least-squares
+  /// subproblem are dense: O(n^2) memory, O(n^3) per iteration). Measured in
+  /// solvers/README-nlp.md.
+  int slsqp_max_variables = 1500;
+  /// LD_MMA / LD_CCSAQ (also as AUGLAG's local algorithm with inequalities): refuse when the
+  /// number of inequality constraints exceeds this (their dual subproblem is dense in m).
+  int mma_max_inequalities = 2000;
+
+  /// Record a history row per objective evaluation.
+  bool record_history = true;
+
+  bool IsValid(std::string* error) const;
+  /// `base` with `strings` applied (keys are the field names above; "algorithm" and
+  /// "local_algorithm" must be names of NloptAlgorithmNames(); record_history is 0/1/true/false).
+  /// Throws std::invalid_argument naming the key and the rule, listing the valid keys for an
+  /// unknown one.
+  static NloptOptions FromStrings(const std::map<std::string, std::string>& strings,
+                                  NloptOptions base);
+};
+
+/// The algorithm names NloptOptions accepts.
+std::vector<std::string> NloptAlgorithmNames();
+
+/// NLopt's name for a result code ("SUCCESS", "FTOL_REACHED", "ROUNDOFF_LIMITED", ...).
+std::string NloptResultName(int nlopt_result);
+/// OCPBench's grouping of an NLopt result code:
+///   SUCCESS, STOPVAL_REACHED, FTOL_REACHED, XTOL_REACHED -> kConverged
+///   MAXEVAL_REACHED, MAXTIME_REACHED                     -> kMaxTime
+///   ROUNDOFF_LIMITED                                      -> kRoundoffLimited (x is kept)
+///   INVALID_ARGS                                          -> kInvalidInput
+///   FORCED_STOP                                           -> kNumericalFailure when OCPBench
+///                                    stopped NLopt because an evaluation failed, else kError
+///   FAILURE, OUT_OF_MEMORY, unknown                       -> kError
+SolveStatus MapNloptResult(int nlopt_result, bool evaluation_failed);
+
+/// Runs NLopt on `nlp` from `z0` (clipped into the variable bounds). Constraints: rows with
+/// g_l = g_u become one equality mconstraint g - g_l = 0; the others become one-sided
+/// inequalities g - g_u <= 0 and g_l - g <= 0 for each finite side. Jacobians are scattered into
+/// dense row-major m x n arrays. Refuses up front (kNotApplicable, reason in the message) when the
+/// algorithm cannot take the constraint kinds present or a size limit of NloptOptions is exceeded.
+/// Every NLopt exception (roundoff_limited, forced_stop, std::invalid_argument, std::bad_alloc,
+/// std::runtime_error) is caught and mapped; a failed evaluation (false from the Nlp) stops NLopt
+/// with forced_stop and gives kNumericalFailure. NLopt has no multipliers: lambda stays empty.
+/// iterations = objective evaluations. Throws std::invalid_argument only for invalid options or
+/// a z0 of the wrong size.
+NlpSolution SolveNlpWithNlopt(const Nlp& nlp, const Vec& z0, const NloptOptions& options);
+
+}  // namespace ocpb

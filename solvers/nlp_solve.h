@@ -1,0 +1,79 @@
+// The part of a solve that every NLP backend shares: request -> transcription -> NLP, and an NLP
+// solution -> SolveResult.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/ocp.h"
+#include "core/solve_result.h"
+#include "solvers/solver.h"
+#include "transcriptions/transcription.h"
+
+namespace ocpb {
+
+/// What an NLP backend (Ipopt, NLopt) reports about one run on an Nlp, before any
+/// optimal-control meaning is attached.
+struct NlpSolution {
+  /// OCPBench's grouping of the backend's status.
+  SolveStatus status = SolveStatus::kError;
+  /// The backend's own status name, verbatim ("Solve_Succeeded", "FTOL_REACHED", ...).
+  std::string solver_status;
+  /// Human-readable detail (why a run was refused, what failed, which options were forced).
+  std::string message;
+  /// The final iterate (the starting point when the backend produced none; see has_iterate).
+  Vec z;
+  /// True when z comes from the backend; false when it is the unchanged starting point (the
+  /// backend failed before its first iterate, or the run was refused).
+  bool has_iterate = false;
+  /// Constraint multipliers at z, in the convention of core/nlp.h (Lagrangian
+  /// sigma f + lambda^T g); empty when the backend offers none.
+  Vec lambda;
+  /// The objective at z as the backend reports it (NaN when it reports none).
+  double objective = NAN;
+  /// The backend's iteration count (NLopt: objective evaluations).
+  int iterations = -1;
+  /// Per-iteration (Ipopt) or per-evaluation (NLopt) history.
+  std::vector<IterationRecord> history;
+  /// Backend-specific numbers by name (for example "ipopt_cpu_seconds").
+  std::map<std::string, double> stats;
+};
+
+/// Splits solver option strings into the transcription's scaling keys (objective_scale,
+/// state_scale, control_scale: ParseNlpScalingOption, which throws std::invalid_argument on a bad
+/// value) and the rest, which is returned for the solver's own parser.
+std::map<std::string, std::string> ExtractScalingOptions(
+    const std::map<std::string, std::string>& options, NlpScaling* scaling);
+
+/// Builds the NLP for `request`: FindTranscription(request.transcription)->make()->Transcribe with
+/// the request's grid, terminal mode, initial guess and LGR degree, and `scaling`.
+/// "single-shooting" is built with request.integrator (Euler by default, RK4 with
+/// Integrator::kRk4), since its objective is a simulation. Throws std::invalid_argument for an
+/// unknown or empty transcription name, or when the transcription rejects the request.
+std::unique_ptr<TranscribedNlp> TranscribeRequest(const Ocp& ocp,
+                                                  const SolveRequest& request,
+                                                  const NlpScaling& scaling = NlpScaling());
+
+/// The shared driver of the NLP solvers: times the whole solve (transcription included, with
+/// `scaling`), runs
+/// `backend` on the transcribed NLP from its starting point, and fills a SolveResult:
+/// controls = nlp.Controls(z) (what the evaluator judges), states and costates (from the
+/// multipliers, when the backend returns them) on nlp.state_grid(), objective = the NLP
+/// objective re-evaluated at z, and the backend's status, history and statistics verbatim.
+/// `objective` and the history's J are in the problem's units (divided by scaling.objective).
+/// std::invalid_argument from the transcription propagates (an invalid request).
+SolveResult SolveTranscribed(const std::string& solver_name,
+                             const Ocp& ocp,
+                             const SolveRequest& request,
+                             const NlpScaling& scaling,
+                             const std::function<NlpSolution(const TranscribedNlp& nlp)>& backend);
+
+/// max over constraints and bounds of the distance-like violation at z:
+/// max_i max(g_l,i - g_i, g_i - g_u,i, 0) and the same for z against its bounds. NaN when g(z)
+/// cannot be evaluated.
+double NlpViolation(const Nlp& nlp, ConstVecRef z);
+
+}  // namespace ocpb

@@ -1,0 +1,284 @@
+#include "solvers/pmp_residual.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace ocpb {
+namespace {
+
+bool SameTime(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); }
+
+}  // namespace
+
+PmpResidual::PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode)
+    : ocp_(ocp),
+      grid_(grid),
+      mode_(mode),
+      nx_(ocp.nx()),
+      nu_(ocp.nu()),
+      npsi_(ocp.num_terminal()),
+      nnu_(mode == TerminalMode::kHard ? ocp.num_terminal() : 0),
+      N_(grid.intervals()),
+      size_(2 * ocp.nx() * (grid.intervals() + 1) + nnu_),
+      derivative_(ocp) {
+  if (!ocp.HasHamiltonianMinimizer()) {
+    throw std::invalid_argument("problem '" + ocp.name() +
+                                "' has no closed-form Hamiltonian minimizer");
+  }
+  if (ocp.num_path() > 0) {
+    throw std::invalid_argument(
+        "problem '" + ocp.name() +
+        "' has path constraints, which the indirect method does not handle");
+  }
+  if (grid.size() < 2 || !SameTime(grid.t0(), ocp.t0()) || !SameTime(grid.tf(), ocp.tf())) {
+    throw std::invalid_argument("the grid must span the problem's horizon [t0, tf]");
+  }
+  for (Node& n : nodes_) {
+    n.u.resize(nu_);
+    n.f.resize(nx_);
+    n.Hx.resize(nx_);
+    n.Lx.resize(nx_);
+    n.Lu.resize(nu_);
+    n.Hu.resize(nu_);
+    n.fx.resize(nx_, nx_);
+    n.fu.resize(nx_, nu_);
+    n.hess.resize(nx_ + nu_, nx_ + nu_);
+    n.Ux.resize(nu_, nx_);
+    n.Up.resize(nu_, nx_);
+    n.Gx.resize(nx_, nx_);
+    n.Gp.resize(nx_, nx_);
+    n.Ex.resize(nx_, nx_);
+    n.Ep.resize(nx_, nx_);
+  }
+  BuildStructure();
+}
+
+void PmpResidual::BuildStructure() {
+  const int nx = nx_, W = 4 * nx_;
+  interval_entries_ = 8 * nx * nx;
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<size_t>(nx) + static_cast<size_t>(N_) * interval_entries_ + 2 * nx * nx +
+            2 * nx * nnu_);
+  for (int i = 0; i < nx; ++i) t.emplace_back(i, i, 0.0);
+  for (int k = 0; k < N_; ++k) {
+    for (int r = 0; r < 2 * nx; ++r) {
+      for (int c = 0; c < W; ++c) t.emplace_back(Row(k) + r, Col(k) + c, 0.0);
+    }
+  }
+  terminal_offset_ = static_cast<int>(t.size());
+  const int rt = Row(N_);
+  for (int i = 0; i < nx; ++i) {
+    for (int c = 0; c < 2 * nx; ++c) t.emplace_back(rt + i, Col(N_) + c, 0.0);
+  }
+  for (int i = 0; i < nx; ++i) {
+    for (int j = 0; j < nnu_; ++j) t.emplace_back(rt + i, Col(N_ + 1) + j, 0.0);
+  }
+  for (int i = 0; i < nnu_; ++i) {
+    for (int j = 0; j < nx; ++j) t.emplace_back(rt + nx + i, Col(N_) + j, 0.0);
+  }
+  jacobian_.resize(size_, size_);
+  jacobian_.setFromTriplets(t.begin(), t.end());
+  jacobian_.makeCompressed();
+  value_index_.resize(t.size());
+  const int* outer = jacobian_.outerIndexPtr();
+  const int* inner = jacobian_.innerIndexPtr();
+  for (size_t e = 0; e < t.size(); ++e) {
+    const int c = t[e].col(), r = t[e].row();
+    const int* pos = std::lower_bound(inner + outer[c], inner + outer[c + 1], r);
+    value_index_[e] = static_cast<int>(pos - inner);
+  }
+}
+
+Vec PmpResidual::Pack(const Mat& X, const Mat& P, const Vec& nu) const {
+  if (X.rows() != nx_ || X.cols() != N_ + 1 || P.rows() != nx_ || P.cols() != N_ + 1 ||
+      nu.size() != nnu_) {
+    throw std::invalid_argument("PmpResidual::Pack: X and P must be nx x (N+1), nu of size " +
+                                std::to_string(nnu_));
+  }
+  Vec z(size_);
+  for (int k = 0; k <= N_; ++k) {
+    z.segment(Col(k), nx_) = X.col(k);
+    z.segment(Col(k) + nx_, nx_) = P.col(k);
+  }
+  z.tail(nnu_) = nu;
+  return z;
+}
+
+void PmpResidual::Unpack(ConstVecRef z, Mat* X, Mat* P, Vec* nu) const {
+  if (X) X->resize(nx_, N_ + 1);
+  if (P) P->resize(nx_, N_ + 1);
+  for (int k = 0; k <= N_; ++k) {
+    if (X) X->col(k) = z.segment(Col(k), nx_);
+    if (P) P->col(k) = z.segment(Col(k) + nx_, nx_);
+  }
+  if (nu) *nu = z.tail(nnu_);
+}
+
+Mat PmpResidual::Controls(ConstVecRef z) const {
+  Mat U(nu_, N_ + 1);
+  Vec u(nu_);
+  for (int k = 0; k <= N_; ++k) {
+    ocp_.MinimizeHamiltonian(grid_.t(k), z.segment(Col(k), nx_), z.segment(Col(k) + nx_, nx_), u);
+    U.col(k) = u;
+  }
+  return U;
+}
+
+bool PmpResidual::EvaluateNode(int k, ConstVecRef x, ConstVecRef p, bool with_jacobian, Node* n) {
+  const double t = grid_.t(k);
+  ocp_.MinimizeHamiltonian(t, x, p, n->u);
+  ocp_.DynamicsJacobian(t, x, n->u, n->f, n->fx, n->fu);
+  ocp_.RunningCostGradient(t, x, n->u, &n->L, n->Lx, n->Lu);
+  n->Hx.noalias() = n->Lx + n->fx.transpose() * p;
+  failure_node_ = k;
+  if (!n->u.allFinite() || !n->f.allFinite() || !n->Hx.allFinite() || !std::isfinite(n->L)) {
+    failure_ = Failure::kNonFinite;
+    return false;
+  }
+  if (!with_jacobian) return true;
+  n->Hu.noalias() = n->Lu + n->fu.transpose() * p;
+  const Vec no_mu;
+  ocp_.PointHessian(t, x, n->u, 1.0, p, no_mu, n->hess);
+  if (!n->hess.allFinite() || !n->fx.allFinite() || !n->fu.allFinite()) {
+    failure_ = Failure::kNonFinite;
+    return false;
+  }
+  if (!derivative_.Compute(n->u, n->Hu, n->fu, n->hess, n->Ux, n->Up)) {
+    failure_ = Failure::kSingularMinimizer;
+    return false;
+  }
+  const auto Hxx = n->hess.topLeftCorner(nx_, nx_);
+  const auto Hxu = n->hess.topRightCorner(nx_, nu_);
+  n->Gx = n->fx;
+  n->Gx.noalias() += n->fu * n->Ux;
+  n->Gp.noalias() = n->fu * n->Up;
+  n->Ex = Hxx;
+  n->Ex.noalias() += Hxu * n->Ux;
+  n->Ep = n->fx.transpose();
+  n->Ep.noalias() += Hxu * n->Up;
+  return true;
+}
+
+bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jacobian) {
+  const int nx = nx_, W = 4 * nx_;
+  failure_ = Failure::kNone;
+  failure_node_ = -1;
+  double* v = jacobian_.valuePtr();
+  auto put = [&](int e, double value) { v[value_index_[e]] = value; };
+
+  F.head(nx) = z.head(nx) - ocp_.x0();
+  if (with_jacobian) {
+    for (int i = 0; i < nx; ++i) put(i, 1.0);
+  }
+  double J = 0.0;
+  if (!EvaluateNode(0, z.segment(0, nx), z.segment(nx, nx), with_jacobian, &nodes_[0])) {
+    return false;
+  }
+  for (int k = 0; k < N_; ++k) {
+    const Node& a = nodes_[k % 2];
+    Node& b = nodes_[(k + 1) % 2];
+    const auto xa = z.segment(Col(k), nx), pa = z.segment(Col(k) + nx, nx);
+    const auto xb = z.segment(Col(k + 1), nx), pb = z.segment(Col(k + 1) + nx, nx);
+    if (!EvaluateNode(k + 1, xb, pb, with_jacobian, &b)) return false;
+    const double h = grid_.h(k), hh = 0.5 * h;
+    F.segment(Row(k), nx) = xb - xa - hh * (a.f + b.f);
+    F.segment(Row(k) + nx, nx) = pb - pa + hh * (a.Hx + b.Hx);
+    J += hh * (a.L + b.L);
+    if (!with_jacobian) continue;
+    const int base = nx + k * interval_entries_;
+    for (int i = 0; i < nx; ++i) {
+      const int s = base + i * W;         // state row i
+      const int c = base + (nx + i) * W;  // costate row i
+      for (int j = 0; j < nx; ++j) {
+        const double eye = i == j ? 1.0 : 0.0;
+        put(s + j, -hh * a.Gx(i, j) - eye);
+        put(s + nx + j, -hh * a.Gp(i, j));
+        put(s + 2 * nx + j, -hh * b.Gx(i, j) + eye);
+        put(s + 3 * nx + j, -hh * b.Gp(i, j));
+        put(c + j, hh * a.Ex(i, j));
+        put(c + nx + j, hh * a.Ep(i, j) - eye);
+        put(c + 2 * nx + j, hh * b.Ex(i, j));
+        put(c + 3 * nx + j, hh * b.Ep(i, j) + eye);
+      }
+    }
+  }
+
+  // Terminal rows.
+  failure_node_ = N_ + 1;
+  const auto xN = z.segment(Col(N_), nx), pN = z.segment(Col(N_) + nx, nx);
+  const int rt = Row(N_);
+  const bool hard = nnu_ > 0;
+  Vec grad(nx);
+  Mat hess(nx, nx);
+  Mat psix(npsi_, nx);
+  Vec psi(npsi_);
+  double terminal = 0.0;
+  if (!hard) {
+    ocp_.TerminalObjectiveGradient(xN, mode_, &terminal, grad);
+    F.segment(rt, nx) = pN - grad;
+    if (with_jacobian) {
+      if (mode_ == TerminalMode::kPenalty && npsi_ > 0) {
+        ocp_.TerminalConstraintsJacobian(xN, psi, psix);
+        const Vec w = ocp_.terminal_weights();
+        ocp_.TerminalHessian(xN, 1.0, 2.0 * w.cwiseProduct(psi), hess);
+        hess.noalias() += 2.0 * psix.transpose() * w.asDiagonal() * psix;
+      } else {
+        ocp_.TerminalHessian(xN, 1.0, Vec::Zero(npsi_), hess);
+      }
+    }
+  } else {
+    const auto nu = z.tail(nnu_);
+    ocp_.TerminalCostGradient(xN, &terminal, grad);
+    ocp_.TerminalConstraintsJacobian(xN, psi, psix);
+    F.segment(rt, nx) = pN - grad - psix.transpose() * nu;
+    F.segment(rt + nx, nnu_) = psi;
+    if (with_jacobian) ocp_.TerminalHessian(xN, 1.0, nu, hess);
+  }
+  J += terminal;
+  if (with_jacobian) {
+    if (!hess.allFinite() || !psix.allFinite()) {
+      failure_ = Failure::kNonFinite;
+      return false;
+    }
+    const int T = terminal_offset_;
+    for (int i = 0; i < nx; ++i) {
+      for (int j = 0; j < nx; ++j) {
+        put(T + i * 2 * nx + j, -hess(i, j));
+        put(T + i * 2 * nx + nx + j, i == j ? 1.0 : 0.0);
+      }
+    }
+    const int Tnu = T + 2 * nx * nx;
+    for (int i = 0; i < nx; ++i) {
+      for (int j = 0; j < nnu_; ++j) put(Tnu + i * nnu_ + j, -psix(j, i));
+    }
+    const int Tpsi = Tnu + nx * nnu_;
+    for (int i = 0; i < nnu_; ++i) {
+      for (int j = 0; j < nx; ++j) put(Tpsi + i * nx + j, psix(i, j));
+    }
+  }
+  if (cost) *cost = J;
+  if (!F.allFinite() || !std::isfinite(J)) {
+    failure_ = Failure::kNonFinite;
+    return false;
+  }
+  failure_node_ = -1;
+  return true;
+}
+
+std::string PmpResidual::FailureMessage() const {
+  const std::string where =
+      failure_node_ == N_ + 1 ? "the terminal rows" : "node " + std::to_string(failure_node_);
+  switch (failure_) {
+    case Failure::kNone:
+      return "";
+    case Failure::kNonFinite:
+      return "NaN/inf in the residual or its derivatives at " + where;
+    case Failure::kSingularMinimizer:
+      return "the Hamiltonian's reduced Hessian in u is singular at " + where +
+             " (u* is not differentiable there: H not strictly convex in u?)";
+  }
+  return "";
+}
+
+}  // namespace ocpb

@@ -1,0 +1,124 @@
+// The maximum principle's two-point boundary-value problem, discretized by trapezoidal
+// collocation: residual F(z) and its sparse Jacobian (the system the indirect Newton method
+// solves).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/SparseCore>
+
+#include "core/ocp.h"
+#include "core/time_grid.h"
+#include "solvers/minimizer_derivative.h"
+
+namespace ocpb {
+
+/// With H = p^T f + L and the closed-form minimizer u*(t, x, p) = argmin_{u in U} H
+/// (Ocp::MinimizeHamiltonian), Pontryagin's necessary conditions for the Ocp on a fixed horizon
+/// are the boundary-value problem
+///
+///   x' = f(t, x, u*),  p' = -H_x(t, x, u*, p),  x(t0) = x0,
+///   penalty form:  p(tf) = grad Phi(x(tf)),     Phi = phi + sum_i w_i psi_i^2,
+///   hard form:     p(tf) = grad phi(x(tf)) + psi_x(x(tf))^T nu,  psi(x(tf)) = 0,
+///
+/// (Bryson and Ho, "Applied Optimal Control", 1975, Sec. 2.7 and 3.3). On the grid t_0 < ... < t_N
+/// with u_k = u*(t_k, x_k, p_k), the trapezoidal rule (second order; the scheme of COPS' trapezoid
+/// problems, and of Betts, "Practical Methods for Optimal Control", 2nd ed., Sec. 4.5, here applied
+/// to the Hamiltonian system) gives F(z) = 0 with
+///
+///   rows [0, nx):                   x_0 - x0
+///   interval k, state rows:         x_{k+1} - x_k - h_k/2 (f_k + f_{k+1})
+///   interval k, costate rows:       p_{k+1} - p_k + h_k/2 (H_x,k + H_x,k+1)
+///   terminal costate rows (nx):     p_N - grad Phi(x_N)          or  p_N - grad phi(x_N) - psi_x^T
+///   nu hard form only (npsi rows):                                       psi(x_N)
+///
+/// Unknowns z = (x_0, p_0, x_1, p_1, ..., x_N, p_N[, nu]): 2 nx (N+1) (+ npsi in the hard form),
+/// as many as equations. The Jacobian is assembled from the problem's exact derivatives with the
+/// chain rule through u*: for g(x, p) = f(t, x, u*(x, p)) and eta(x, p) = H_x(t, x, u*(x, p), p),
+///   dg/dx = f_x + f_u U_x,        dg/dp = f_u U_p,
+///   deta/dx = H_xx + H_xu U_x,    deta/dp = f_x^T + H_xu U_p,
+/// with (U_x, U_p) from MinimizerDerivative (a generalized Jacobian where u* is clipped: the
+/// method is then a semismooth Newton method). Terminal blocks use Ocp::TerminalHessian:
+///   d grad Phi / dx = TerminalHessian(sigma = 1, nu = 2 w o psi) + 2 psi_x^T diag(w) psi_x.
+/// Its sparsity is fixed: for each interval a dense 2nx x 4nx block (the two nodes it couples),
+/// the identity of the initial rows, and the dense terminal blocks; entries that happen to be
+/// zero at a point stay in the structure, so the symbolic factorization is done once.
+///
+/// The discrete cost reported with F is the trapezoidal one,
+///   J = sum_k h_k/2 (L_k + L_{k+1}) + Phi(x_N)    (phi(x_N) in the hard form).
+///
+/// Requires Ocp::HasHamiltonianMinimizer() and num_path() == 0 (the constructor throws
+/// std::invalid_argument otherwise). Not thread-safe (keeps scratch); one object per solve.
+class PmpResidual {
+ public:
+  /// Why an evaluation failed.
+  enum class Failure {
+    kNone,
+    kNonFinite,          ///< NaN/inf in u*, f, H_x, the derivatives or the residual
+    kSingularMinimizer,  ///< the reduced KKT matrix of MinimizerDerivative is singular
+  };
+
+  /// Throws std::invalid_argument when the grid does not span [t0, tf] (to 1e-9 relative) or
+  /// the problem has no closed-form minimizer or has path constraints.
+  PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode);
+
+  const Ocp& ocp() const { return ocp_; }
+  const TimeGrid& grid() const { return grid_; }
+  TerminalMode mode() const { return mode_; }
+  /// Number of unknowns, equal to the number of equations.
+  int size() const { return size_; }
+  /// Number of multipliers nu (npsi in the hard form, else 0).
+  int num_multipliers() const { return nnu_; }
+
+  /// z from states X (nx x N+1), costates P (nx x N+1) and multipliers nu (num_multipliers()).
+  Vec Pack(const Mat& X, const Mat& P, const Vec& nu) const;
+  /// The inverse of Pack. Any output may be null.
+  void Unpack(ConstVecRef z, Mat* X, Mat* P, Vec* nu) const;
+
+  /// Evaluates F(z) into F (size()) and the discrete cost into *cost (may be null). With
+  /// `with_jacobian`, also the Jacobian's values into jacobian(). Returns false on failure;
+  /// failure() and failure_node() then say why and where (node index, or N+1 for the terminal
+  /// rows).
+  bool Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jacobian);
+
+  /// The Jacobian of the last Evaluate(..., with_jacobian = true): column-major, compressed, with
+  /// the fixed structure described above.
+  const Eigen::SparseMatrix<double>& jacobian() const { return jacobian_; }
+  /// u*(t_k, x_k, p_k) at every node (nu x N+1).
+  Mat Controls(ConstVecRef z) const;
+
+  Failure failure() const { return failure_; }
+  int failure_node() const { return failure_node_; }
+  /// A one-line description of the last failure ("" when none).
+  std::string FailureMessage() const;
+
+ private:
+  // Per-node values and derivative blocks (one node's scratch).
+  struct Node {
+    Vec u, f, Hx, Lx, Lu, Hu;
+    Mat fx, fu, hess, Ux, Up, Gx, Gp, Ex, Ep;
+    double L = 0.0;
+  };
+  bool EvaluateNode(int k, ConstVecRef x, ConstVecRef p, bool with_jacobian, Node* node);
+  void BuildStructure();
+  int Row(int k) const { return nx_ + 2 * nx_ * k; }  // first row of interval k
+  int Col(int k) const { return 2 * nx_ * k; }        // first column of node k
+
+  const Ocp& ocp_;
+  TimeGrid grid_;
+  TerminalMode mode_;
+  int nx_, nu_, npsi_, nnu_, N_, size_;
+  MinimizerDerivative derivative_;
+  Node nodes_[2];  // nodes k and k+1 of the interval being assembled (by parity)
+  Eigen::SparseMatrix<double> jacobian_;
+  // value_index_[e] is the position in jacobian_.valuePtr() of structural entry e, in the order
+  // BuildStructure() generates them.
+  std::vector<int> value_index_;
+  int interval_entries_ = 0;  // 8 nx^2
+  int terminal_offset_ = 0;   // first terminal entry
+  Failure failure_ = Failure::kNone;
+  int failure_node_ = -1;
+};
+
+}  // namespace ocpb

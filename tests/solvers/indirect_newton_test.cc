@@ -1,0 +1,920 @@
+#include "solvers/indirect_newton.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "core/autodiff_ocp.h"
+#include "core/derivative_check.h"
+#include "core/evaluator.h"
+#include "problems/comm_path2d.h"
+#include "problems/reference/bryson_denham.h"
+#include "problems/registry.h"
+#include "solvers/minimizer_derivative.h"
+#include "solvers/pmp_residual.h"
+#include "solvers/registry.h"
+#include "tests/core/test_problems.h"
+
+namespace ocpb {
+namespace {
+
+// ---- test-local problems -----------------------------------------------------------------------
+
+/// Hager's problem (reference-problems notes 2.6): min 1/2 int_0^1 (u^2 + 2 x^2), x' = x/2 + u,
+/// x(0) = 1. u* = 2 (e^{3t} - e^3) / (e^{3t/2} (2 + e^3)), p* = -u*, J* = 0.8641644977691.
+class LocalHager final : public AutoDiffOcp<LocalHager, 1, 1> {
+ public:
+  LocalHager() {
+    SetDimensions(1, 1, 0, 0);
+    SetHorizon(0.0, 1.0);
+    SetInitialState(Vec::Ones(1));
+  }
+  std::string name() const override { return "local-hager"; }
+  template <class T>
+  void EvalDynamics(double, const VecT<T, 1>& x, const VecT<T, 1>& u, VecT<T, 1>* f) const {
+    (*f)[0] = 0.5 * x[0] + u[0];
+  }
+  template <class T>
+  T EvalRunningCost(double, const VecT<T, 1>& x, const VecT<T, 1>& u) const {
+    return 0.5 * u[0] * u[0] + x[0] * x[0];
+  }
+  bool HasHamiltonianMinimizer() const override { return true; }
+  void MinimizeHamiltonian(double, ConstVecRef, ConstVecRef p, VecRef u) const override {
+    u[0] = -p[0];
+  }
+  static double OptimalControl(double t) {
+    const double e3 = std::exp(3.0);
+    return 2.0 * (std::exp(3.0 * t) - e3) / (std::exp(1.5 * t) * (2.0 + e3));
+  }
+  static constexpr double kOptimalCost = 0.8641644977691;
+};
+
+/// A nonlinear pendulum with a state-dependent input gain:
+///   x1' = x2, x2' = -sin(x1) + b(x1) u, b = 1 + 0.5 cos(x1),  x(0) = (1, 0), tf = 2,
+///   L = 1/2 (u^2 + x1^2 + x2^2),  psi = x(tf) with weights 10,  |u| <= umax.
+/// H_u = u + b(x1) p2, so u* = clip(-b(x1) p2, -umax, umax), and du*/dx1 != 0.
+class LocalPendulum final : public AutoDiffOcp<LocalPendulum, 2, 1, 2, 0> {
+ public:
+  explicit LocalPendulum(double umax = INFINITY) : umax_(umax) {
+    SetDimensions(2, 1, 2, 0);
+    SetHorizon(0.0, 2.0);
+    Vec x0(2);
+    x0 << 1.0, 0.0;
+    SetInitialState(x0);
+    SetTerminalWeights(Vec::Constant(2, 10.0));
+    if (std::isfinite(umax))
+      SetControlSet(ControlSet::Box(Vec::Constant(1, -umax), Vec::Constant(1, umax)));
+  }
+  std::string name() const override { return "local-pendulum"; }
+  template <class T>
+  void EvalDynamics(double, const VecT<T, 2>& x, const VecT<T, 1>& u, VecT<T, 2>* f) const {
+    (*f)[0] = x[1];
+    (*f)[1] = -sin(x[0]) + (1.0 + 0.5 * cos(x[0])) * u[0];
+  }
+  template <class T>
+  T EvalRunningCost(double, const VecT<T, 2>& x, const VecT<T, 1>& u) const {
+    return 0.5 * (u[0] * u[0] + x[0] * x[0] + x[1] * x[1]);
+  }
+  template <class T>
+  void EvalTerminalConstraints(const VecT<T, 2>& x, VecT<T, 2>* psi) const {
+    (*psi)[0] = x[0];
+    (*psi)[1] = x[1];
+  }
+  bool HasHamiltonianMinimizer() const override { return true; }
+  void MinimizeHamiltonian(double, ConstVecRef x, ConstVecRef p, VecRef u) const override {
+    u[0] = std::clamp(-(1.0 + 0.5 * std::cos(x[0])) * p[1], -umax_, umax_);
+  }
+
+ private:
+  double umax_;
+};
+
+/// x' = u, L = u^4/4 + x^2/2, x(0) = 1: u* = -cbrt(p), H_uu = 3 u^2 vanishes at p = 0.
+class LocalQuartic final : public AutoDiffOcp<LocalQuartic, 1, 1> {
+ public:
+  LocalQuartic() {
+    SetDimensions(1, 1, 0, 0);
+    SetHorizon(0.0, 1.0);
+    SetInitialState(Vec::Ones(1));
+  }
+  std::string name() const override { return "local-quartic"; }
+  template <class T>
+  void EvalDynamics(double, const VecT<T, 1>&, const VecT<T, 1>& u, VecT<T, 1>* f) const {
+    (*f)[0] = u[0];
+  }
+  template <class T>
+  T EvalRunningCost(double, const VecT<T, 1>& x, const VecT<T, 1>& u) const {
+    return 0.25 * u[0] * u[0] * u[0] * u[0] + 0.5 * x[0] * x[0];
+  }
+  bool HasHamiltonianMinimizer() const override { return true; }
+  void MinimizeHamiltonian(double, ConstVecRef, ConstVecRef p, VecRef u) const override {
+    u[0] = -std::cbrt(p[0]);
+  }
+};
+
+/// The double integrator with the redundant terminal constraints psi = (x1, 2 x1, x2): in the
+/// hard form the multipliers of the first two are not unique, so the Newton matrix is singular.
+class LocalRedundantDi final : public AutoDiffOcp<LocalRedundantDi, 2, 1, 3, 0> {
+ public:
+  LocalRedundantDi() {
+    SetDimensions(2, 1, 3, 0);
+    SetHorizon(0.0, 1.0);
+    Vec x0(2);
+    x0 << -1.0, 0.0;
+    SetInitialState(x0);
+  }
+  std::string name() const override { return "local-redundant-di"; }
+  template <class T>
+  void EvalDynamics(double, const VecT<T, 2>& x, const VecT<T, 1>& u, VecT<T, 2>* f) const {
+    (*f)[0] = x[1];
+    (*f)[1] = u[0];
+  }
+  template <class T>
+  T EvalRunningCost(double, const VecT<T, 2>&, const VecT<T, 1>& u) const {
+    return 0.5 * u[0] * u[0];
+  }
+  template <class T>
+  void EvalTerminalConstraints(const VecT<T, 2>& x, VecT<T, 3>* psi) const {
+    (*psi)[0] = x[0];
+    (*psi)[1] = 2.0 * x[0];
+    (*psi)[2] = x[1];
+  }
+  bool HasHamiltonianMinimizer() const override { return true; }
+  void MinimizeHamiltonian(double, ConstVecRef, ConstVecRef p, VecRef u) const override {
+    u[0] = -p[1];
+  }
+};
+
+// ---- helpers -----------------------------------------------------------------------------------
+
+SolveRequest Request(const Ocp& ocp,
+                     int N,
+                     TerminalMode mode = TerminalMode::kPenalty,
+                     std::map<std::string, std::string> options = {}) {
+  SolveRequest r;
+  r.grid = TimeGrid::Uniform(ocp.t0(), ocp.tf(), N);
+  r.terminal = mode;
+  r.options = std::move(options);
+  return r;
+}
+
+std::unique_ptr<Ocp> Comm(std::vector<std::string> set = {}) {
+  set.insert(set.begin(), "channel=0");  // deterministic path-loss channel
+  return MakeProblem("comm-path2d", set, 1);
+}
+
+// max_k |P_k - p*(t_k)|_inf.
+double CostateError(const SolveResult& r, const std::function<Vec(double)>& exact) {
+  double e = 0.0;
+  for (int k = 0; k < r.state_grid.size(); ++k) {
+    e = std::max(e, (r.costates.col(k) - exact(r.state_grid.t(k))).lpNorm<Eigen::Infinity>());
+  }
+  return e;
+}
+
+// In the last iterations (residual above roundoff), |F_{k+1}| <= bound |F_k|^2. Returns the
+// number of pairs checked.
+int ExpectQuadraticTail(const SolveResult& r, double bound, double floor = 1e-12) {
+  int checked = 0;
+  for (size_t k = 1; k < r.history.size(); ++k) {
+    const double a = r.history[k - 1].primal_inf, b = r.history[k].primal_inf;
+    if (a > 1e-2 || b <= floor) continue;  // only near the solution, above roundoff
+    EXPECT_LE(b / (a * a), bound) << "iterate " << k << ": |F| " << a << " -> " << b;
+    ++checked;
+  }
+  return checked;
+}
+
+void ExpectConverged(const SolveResult& r) {
+  ASSERT_EQ(r.status, SolveStatus::kConverged) << r.solver_status << ": " << r.message;
+  EXPECT_EQ(r.solver_status, "converged");
+  EXPECT_LE(r.history.back().primal_inf, 1e-10);
+  EXPECT_EQ(static_cast<int>(r.history.size()), r.iterations + 1);
+}
+
+// ---- options -----------------------------------------------------------------------------------
+
+TEST(IndirectNewtonOptions, DefaultsAreValid) {
+  const IndirectNewton::Options o;
+  std::string error;
+  EXPECT_TRUE(o.IsValid(&error)) << error;
+  EXPECT_EQ(o.tolerance, 1e-10);
+  EXPECT_EQ(o.linear_solver, IndirectNewton::Options::LinearSolver::kKlu);
+  EXPECT_EQ(o.warm_start, IndirectNewton::Options::WarmStart::kNone);
+}
+
+TEST(IndirectNewtonOptions, ParsesEveryKey) {
+  const auto o = IndirectNewton::ParseOptions({{"max_iterations", "7"},
+                                               {"tolerance", "1e-8"},
+                                               {"sufficient_decrease", "0.01"},
+                                               {"backtrack", "0.25"},
+                                               {"min_step", "1e-6"},
+                                               {"linear_solver", "umfpack"},
+                                               {"warm_start", "hamiltonian"},
+                                               {"hamiltonian.max_iterations", "20"}});
+  EXPECT_EQ(o.max_iterations, 7);
+  EXPECT_EQ(o.tolerance, 1e-8);
+  EXPECT_EQ(o.sufficient_decrease, 0.01);
+  EXPECT_EQ(o.backtrack, 0.25);
+  EXPECT_EQ(o.min_step, 1e-6);
+  EXPECT_EQ(o.linear_solver, IndirectNewton::Options::LinearSolver::kUmfpack);
+  EXPECT_EQ(o.warm_start, IndirectNewton::Options::WarmStart::kHamiltonian);
+  ASSERT_EQ(o.warm_start_options.count("max_iterations"), 1u);
+  EXPECT_EQ(o.warm_start_options.at("max_iterations"), "20");
+}
+
+TEST(IndirectNewtonOptions, RejectsBadKeysAndValuesNamingThem) {
+  auto message = [](std::map<std::string, std::string> o) -> std::string {
+    try {
+      IndirectNewton::ParseOptions(o);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  };
+  {
+    const std::string m = message({{"tol", "1e-8"}});
+    EXPECT_NE(m.find("'tol'"), std::string::npos) << m;
+    EXPECT_NE(m.find("linear_solver"), std::string::npos) << m;  // lists the valid keys
+  }
+  EXPECT_NE(message({{"tolerance", "0"}}).find("tolerance"), std::string::npos);
+  EXPECT_NE(message({{"tolerance", "abc"}}).find("not a number"), std::string::npos);
+  EXPECT_NE(message({{"max_iterations", "2.5"}}).find("integer"), std::string::npos);
+  EXPECT_NE(message({{"max_iterations", "-1"}}).find(">= 0"), std::string::npos);
+  EXPECT_NE(message({{"backtrack", "1"}}).find("(0, 1)"), std::string::npos);
+  EXPECT_NE(message({{"sufficient_decrease", "0.5"}}).find("(0, 0.5)"), std::string::npos);
+  EXPECT_NE(message({{"min_step", "0"}}).find("(0, 1]"), std::string::npos);
+  EXPECT_NE(message({{"linear_solver", "lu"}}).find("umfpack, klu"), std::string::npos);
+  EXPECT_NE(message({{"warm_start", "ipopt"}}).find("none, hamiltonian"), std::string::npos);
+  EXPECT_NE(message({{"hamiltonian.alpha", "0.2"}}).find("warm_start"), std::string::npos);
+  IndirectNewton::Options bad;
+  bad.max_iterations = -1;
+  EXPECT_THROW(IndirectNewton{bad}, std::invalid_argument);
+}
+
+TEST(IndirectNewton, IsRegistered) {
+  const SolverInfo& info = FindSolver("indirect-newton");
+  EXPECT_FALSE(info.uses_transcription);
+  EXPECT_EQ(info.make()->name(), "indirect-newton");
+}
+
+// ---- du*/d(x, p) against finite differences of MinimizeHamiltonian ----------------------------
+
+// Central differences with steps relative to |v_i| (u* may vary on the scale of |p_i| << 1, as the
+// rate of comm-path2d does: R* = log2(-p3 K / (ln2 s))).
+Mat RelativeCentralJacobian(const std::function<Vec(const Vec&)>& fn, const Vec& v) {
+  const Vec f0 = fn(v);
+  Mat jac(f0.size(), v.size());
+  for (int i = 0; i < v.size(); ++i) {
+    const double h = 1e-6 * std::max(std::abs(v[i]), 1e-3);
+    Vec a = v, b = v;
+    a[i] += h;
+    b[i] -= h;
+    jac.col(i) = (fn(a) - fn(b)) / (2.0 * h);
+  }
+  return jac;
+}
+
+// Compares MinimizerDerivative with central differences of MinimizeHamiltonian at (t, x, p).
+// Returns the number of active constraints.
+int ExpectMinimizerDerivative(const Ocp& ocp, double t, const Vec& x, const Vec& p) {
+  const int nx = ocp.nx(), nu = ocp.nu();
+  MinimizerDerivative d(ocp);
+  Vec u(nu);
+  Mat du_dx(nu, nx), du_dp(nu, nx);
+  EXPECT_TRUE(d.ComputeAt(t, x, p, u, du_dx, du_dp));
+  auto of_x = [&](const Vec& xx) {
+    Vec v(nu);
+    ocp.MinimizeHamiltonian(t, xx, p, v);
+    return v;
+  };
+  auto of_p = [&](const Vec& pp) {
+    Vec v(nu);
+    ocp.MinimizeHamiltonian(t, x, pp, v);
+    return v;
+  };
+  const Mat fd_x = RelativeCentralJacobian(of_x, x), fd_p = RelativeCentralJacobian(of_p, p);
+  EXPECT_LE((du_dx - fd_x).lpNorm<Eigen::Infinity>(), 1e-6 * std::max(1.0, fd_x.norm()))
+      << "du/dx\n"
+      << du_dx << "\nfd\n"
+      << fd_x;
+  EXPECT_LE((du_dp - fd_p).lpNorm<Eigen::Infinity>(), 1e-6 * std::max(1.0, fd_p.norm()))
+      << "du/dp\n"
+      << du_dp << "\nfd\n"
+      << fd_p;
+  return d.num_active();
+}
+
+TEST(MinimizerDerivative, DoubleIntegratorInteriorAndClipped) {
+  const auto ocp = MakeProblem("double-integrator-bounded", {}, 0);
+  const Vec x = Vec::Zero(2);
+  Vec p(2);
+  p << 1.0, 2.0;  // u* = -2, interior
+  EXPECT_EQ(ExpectMinimizerDerivative(*ocp, 0.3, x, p), 0);
+  p << 1.0, 7.0;  // u* = -5, clipped: derivative 0
+  EXPECT_EQ(ExpectMinimizerDerivative(*ocp, 0.3, x, p), 1);
+  p << 1.0, -7.0;  // u* = +5
+  EXPECT_EQ(ExpectMinimizerDerivative(*ocp, 0.3, x, p), 1);
+}
+
+TEST(MinimizerDerivative, StateDependentGainInteriorAndClipped) {
+  const LocalPendulum ocp(0.8);
+  Vec x(2), p(2);
+  x << 0.7, -0.3;
+  p << 0.4, 0.5;  // u* = -b p2 ~ -0.69, interior; du/dx1 = 0.5 sin(x1) p2 != 0
+  EXPECT_EQ(ExpectMinimizerDerivative(ocp, 0.0, x, p), 0);
+  p << 0.4, 2.0;  // clipped at -0.8
+  EXPECT_EQ(ExpectMinimizerDerivative(ocp, 0.0, x, p), 1);
+}
+
+TEST(MinimizerDerivative, CommBallAndRateBox) {
+  const auto ocp = Comm();
+  Vec x(5), p(5);
+  x << 12.0, 20.0, 0.3, -0.2, 40.0;
+  // Interior acceleration (|u| = |p2| / (2 gamma k1) < umax) and interior rate: R* = log2(-p3 K /
+  // (ln2 s)) = 3 at p3 = -8 ln2 s / K.
+  const auto& comm = dynamic_cast<const CommPath2d&>(*ocp);
+  double s = 0.0;
+  comm.channel().Evaluate(x.head<2>(), &s, nullptr, nullptr);
+  const double p3 = -8.0 * std::log(2.0) * s / comm.options().power.K();
+  p << 0.5, -0.3, 0.05, -0.08, p3;
+  Vec u(3);
+  ocp->MinimizeHamiltonian(0.0, x, p, u);
+  ASSERT_LT(u.head(2).norm(), 0.5 - 1e-6);
+  ASSERT_NEAR(u[2], 3.0, 1e-12);
+  EXPECT_EQ(ExpectMinimizerDerivative(*ocp, 0.0, x, p), 0);
+  // Acceleration on the ball |u| = umax (the projection's Jacobian), rate interior.
+  p << 0.5, -0.3, 0.4, -0.6, p3;
+  ocp->MinimizeHamiltonian(0.0, x, p, u);
+  ASSERT_NEAR(u.head(2).norm(), 0.5, 1e-12);
+  EXPECT_EQ(ExpectMinimizerDerivative(*ocp, 0.0, x, p), 1);
+  // Rate clipped at 0 (p3 >= 0: sending costs and earns nothing).
+  p << 0.5, -0.3, 0.4, -0.6, 5.0;
+  ocp->MinimizeHamiltonian(0.0, x, p, u);
+  ASSERT_EQ(u[2], 0.0);
+  EXPECT_EQ(ExpectMinimizerDerivative(*ocp, 0.0, x, p), 2);
+  // Rate clipped at Rmax.
+  p << 0.5, -0.3, 0.05, -0.08, 1e3 * p3;
+  ocp->MinimizeHamiltonian(0.0, x, p, u);
+  ASSERT_EQ(u[2], 6.0);
+  EXPECT_EQ(ExpectMinimizerDerivative(*ocp, 0.0, x, p), 1);
+}
+
+TEST(MinimizerDerivative, SingularReducedHessianIsReported) {
+  const LocalQuartic ocp;
+  MinimizerDerivative d(ocp);
+  Vec u(1);
+  Mat du_dx(1, 1), du_dp(1, 1);
+  EXPECT_FALSE(d.ComputeAt(0.0, Vec::Ones(1), Vec::Zero(1), u, du_dx, du_dp));
+  EXPECT_TRUE(d.ComputeAt(0.0, Vec::Ones(1), Vec::Ones(1), u, du_dx, du_dp));
+  EXPECT_NEAR(du_dp(0, 0), -1.0 / 3.0, 1e-14);  // d(-cbrt p)/dp at p = 1
+}
+
+// ---- the residual's sparse Jacobian against finite differences ---------------------------------
+
+void ExpectJacobianMatchesFiniteDifferences(const Ocp& ocp, TerminalMode mode, const Vec& z0) {
+  PmpResidual pmp(ocp, TimeGrid::Uniform(ocp.t0(), ocp.tf(), 5), mode);
+  ASSERT_EQ(z0.size(), pmp.size());
+  Vec F(pmp.size());
+  ASSERT_TRUE(pmp.Evaluate(z0, F, nullptr, true)) << pmp.FailureMessage();
+  const Mat analytic = Mat(pmp.jacobian());
+  auto residual = [&](const Vec& z) {
+    Vec out(pmp.size());
+    EXPECT_TRUE(pmp.Evaluate(z, out, nullptr, false));
+    return out;
+  };
+  const Mat fd = CentralJacobian(residual, z0);
+  const double err = (analytic - fd).lpNorm<Eigen::Infinity>();
+  EXPECT_LE(err, 1e-6 * std::max(1.0, fd.lpNorm<Eigen::Infinity>())) << "max |J - J_fd| = " << err;
+  // Every finite-difference nonzero lies in the declared structure (the dense copy of the sparse
+  // matrix has an explicit entry wherever the structure has one).
+  Eigen::SparseMatrix<double> pattern = pmp.jacobian();
+  for (int k = 0; k < pattern.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(pattern, k); it; ++it) it.valueRef() = 1.0;
+  }
+  const Mat structure = Mat(pattern);
+  for (int i = 0; i < fd.rows(); ++i) {
+    for (int j = 0; j < fd.cols(); ++j) {
+      if (std::abs(fd(i, j)) > 1e-8) {
+        EXPECT_EQ(structure(i, j), 1.0) << i << ", " << j;
+      }
+    }
+  }
+}
+
+Vec SomePoint(int size, double scale, double shift) {
+  Vec z(size);
+  for (int i = 0; i < size; ++i) z[i] = scale * std::sin(1.3 * i + shift);
+  return z;
+}
+
+TEST(PmpResidual, JacobianMatchesFiniteDifferencesPenaltyAndHard) {
+  const LocalPendulum pendulum;  // unbounded: smooth everywhere
+  for (TerminalMode mode : {TerminalMode::kPenalty, TerminalMode::kHard}) {
+    SCOPED_TRACE(ToString(mode));
+    PmpResidual pmp(pendulum, TimeGrid::Uniform(0.0, 2.0, 5), mode);
+    ExpectJacobianMatchesFiniteDifferences(pendulum, mode, SomePoint(pmp.size(), 0.8, 0.1));
+  }
+}
+
+TEST(PmpResidual, JacobianMatchesFiniteDifferencesWithClippedControls) {
+  const LocalPendulum pendulum(0.3);
+  PmpResidual pmp(pendulum, TimeGrid::Uniform(0.0, 2.0, 5), TerminalMode::kPenalty);
+  const Vec z = SomePoint(pmp.size(), 0.8, 0.1);
+  // Some nodes clipped, some not (and none within the finite-difference step of a switch).
+  const Mat U = pmp.Controls(z);
+  const Mat V = PmpResidual(LocalPendulum(), TimeGrid::Uniform(0.0, 2.0, 5), TerminalMode::kPenalty)
+                    .Controls(z);  // unclipped
+  int clipped = 0;
+  for (int k = 0; k < U.cols(); ++k) {
+    clipped += std::abs(U(0, k)) == 0.3;
+    ASSERT_GT(std::abs(std::abs(V(0, k)) - 0.3), 1e-3) << k;
+  }
+  ASSERT_GT(clipped, 0);
+  ASSERT_LT(clipped, U.cols());
+  ExpectJacobianMatchesFiniteDifferences(pendulum, TerminalMode::kPenalty, z);
+}
+
+TEST(PmpResidual, JacobianMatchesFiniteDifferencesOnComm) {
+  const auto ocp = Comm({"tf=4"});
+  for (TerminalMode mode : {TerminalMode::kPenalty, TerminalMode::kHard}) {
+    SCOPED_TRACE(ToString(mode));
+    PmpResidual pmp(*ocp, TimeGrid::Uniform(0.0, 4.0, 5), mode);
+    Mat X(5, 6), P(5, 6);
+    for (int k = 0; k < 6; ++k) {
+      X.col(k) << 20.0 - k, 40.0 - 3.0 * k, -0.5, -0.7 + 0.1 * k, 5.0 * k;
+      // |p2| large at even nodes (acceleration on the ball), small at odd ones; rate interior.
+      const double s = k % 2 == 0 ? 0.6 : 0.05;
+      P.col(k) << 0.3, -0.2, s * std::cos(k), s * std::sin(k), -40.0 - k;
+    }
+    Vec nu = Vec::Constant(pmp.num_multipliers(), 0.5);
+    ExpectJacobianMatchesFiniteDifferences(*ocp, mode, pmp.Pack(X, P, nu));
+  }
+}
+
+TEST(PmpResidual, PackUnpackRoundTripAndBadGrid) {
+  const LocalPendulum pendulum;
+  PmpResidual pmp(pendulum, TimeGrid::Uniform(0.0, 2.0, 4), TerminalMode::kHard);
+  EXPECT_EQ(pmp.size(), 2 * 2 * 5 + 2);
+  const Vec z = SomePoint(pmp.size(), 1.0, 0.0);
+  Mat X, P;
+  Vec nu;
+  pmp.Unpack(z, &X, &P, &nu);
+  EXPECT_EQ((pmp.Pack(X, P, nu) - z).norm(), 0.0);
+  EXPECT_EQ(X(1, 2), z[2 * 2 * 2 + 1]);
+  EXPECT_EQ(P(0, 2), z[2 * 2 * 2 + 2]);
+  EXPECT_THROW(PmpResidual(pendulum, TimeGrid::Uniform(0.0, 1.5, 4), TerminalMode::kHard),
+               std::invalid_argument);
+}
+
+// ---- the double integrator: analytic costates --------------------------------------------------
+
+TEST(IndirectNewton, DoubleIntegratorHardFormMatchesAnalyticCostateToSecondOrder) {
+  const auto ocp = MakeProblem("double-integrator", {}, 0);
+  const IndirectNewton solver;
+  auto exact = [](double t) {
+    Vec p(2);
+    p << -12.0, 12.0 * t - 6.0;
+    return p;
+  };
+  double err[2], cost_err[2];
+  const int Ns[2] = {40, 80};
+  for (int i = 0; i < 2; ++i) {
+    const SolveResult r = solver.Solve(*ocp, Request(*ocp, Ns[i], TerminalMode::kHard));
+    ExpectConverged(r);
+    EXPECT_LE(r.iterations, 2);  // a linear problem: one Newton step
+    err[i] = CostateError(r, exact);
+    cost_err[i] = std::abs(r.objective - 6.0);
+    // The common evaluator agrees: psi(x(1)) = 0 to the scheme's accuracy.
+    const Evaluation ev = Evaluate(*ocp, r.controls, r.state_grid, Integrator::kRk4);
+    EXPECT_LE(ev.terminal_violation, 2.0 / (Ns[i] * Ns[i]));
+    EXPECT_NEAR(ev.Jbar, 6.0, 20.0 / (Ns[i] * Ns[i]));
+  }
+  EXPECT_GT(err[1], 0.0);
+  EXPECT_LE(err[0], 15.0 / (40.0 * 40.0));
+  const double order = std::log2(err[0] / err[1]);
+  EXPECT_NEAR(order, 2.0, 0.1) << err[0] << " " << err[1];
+  const double cost_order = std::log2(cost_err[0] / cost_err[1]);
+  EXPECT_NEAR(cost_order, 2.0, 0.1) << cost_err[0] << " " << cost_err[1];
+}
+
+TEST(IndirectNewton, DoubleIntegratorPenaltyFormMatchesAnalyticCostate) {
+  const auto ocp = MakeProblem("double-integrator", {}, 0);
+  // p = (a, b - a t), u = a t - b; p(1) = 2 C x(1) with x1(1) = -1 + a/6 - b/2, x2(1) = a/2 - b.
+  const double C = 1000.0;
+  Eigen::Matrix2d A;
+  A << 1.0 - C / 3.0, C, -(1.0 + C), 1.0 + 2.0 * C;
+  const Eigen::Vector2d ab = A.partialPivLu().solve(Eigen::Vector2d(-2.0 * C, 0.0));
+  const double a = ab[0], b = ab[1];
+  const double x1 = -1.0 + a / 6.0 - b / 2.0, x2 = a / 2.0 - b;
+  const double J = 0.5 * (a * a / 3.0 - a * b + b * b) + C * (x1 * x1 + x2 * x2);
+  auto exact = [&](double t) {
+    Vec p(2);
+    p << a, b - a * t;
+    return p;
+  };
+  double err[2], cost_err[2];
+  const int Ns[2] = {40, 80};
+  for (int i = 0; i < 2; ++i) {
+    const SolveResult r = IndirectNewton().Solve(*ocp, Request(*ocp, Ns[i]));
+    ExpectConverged(r);
+    err[i] = CostateError(r, exact);
+    cost_err[i] = std::abs(r.objective - J);
+    EXPECT_LE(cost_err[i], 30.0 / (Ns[i] * Ns[i]));
+  }
+  EXPECT_NEAR(std::log2(err[0] / err[1]), 2.0, 0.1) << err[0] << " " << err[1];
+  EXPECT_NEAR(std::log2(cost_err[0] / cost_err[1]), 2.0, 0.1);
+}
+
+TEST(IndirectNewton, HardFormMultipliersAreTheTerminalCostate) {
+  const auto ocp = MakeProblem("double-integrator", {}, 0);
+  const SolveResult r = IndirectNewton().Solve(*ocp, Request(*ocp, 60, TerminalMode::kHard));
+  ExpectConverged(r);
+  // No terminal cost: p(1) = psi_x^T nu = nu, and p*(1) = (-12, 6).
+  EXPECT_NEAR(r.costates(0, 60), -12.0, 0.02);
+  EXPECT_NEAR(r.costates(1, 60), 6.0, 0.02);
+}
+
+TEST(IndirectNewton, BoundedDoubleIntegratorSemismooth) {
+  const auto ocp = MakeProblem("double-integrator-bounded", {}, 0);
+  // u*(t) = clip(a - 2 a t, -5, 5), a = 6.4549722, so p* = (-2a, 2a t - a) (H = p^T f + L).
+  const double a = 6.4549722436790, J_star = 6.0450277563;
+  auto exact = [&](double t) {
+    Vec p(2);
+    p << -2.0 * a, 2.0 * a * t - a;
+    return p;
+  };
+  double err[2], cost_err[2];
+  const int Ns[2] = {100, 200};
+  for (int i = 0; i < 2; ++i) {
+    const SolveResult r = IndirectNewton().Solve(*ocp, Request(*ocp, Ns[i], TerminalMode::kHard));
+    ExpectConverged(r);
+    EXPECT_GE(r.iterations, 2);  // the clipped set changes: more than one (linear) step
+    EXPECT_LE(r.iterations, 10);
+    err[i] = CostateError(r, exact);
+    cost_err[i] = std::abs(r.objective - J_star);
+    EXPECT_LE(cost_err[i], 25.0 / (Ns[i] * Ns[i]));
+    const Evaluation ev = Evaluate(*ocp, r.controls, r.state_grid, Integrator::kRk4);
+    EXPECT_LE(ev.control_violation, 0.0);
+    EXPECT_NEAR(ev.Jbar, J_star, 25.0 / (Ns[i] * Ns[i]));
+  }
+  // Second order in the cost; the kinks of u* at the switching times cost the costates a little
+  // of the clean order (measured 1.83).
+  EXPECT_NEAR(std::log2(cost_err[0] / cost_err[1]), 2.0, 0.15) << cost_err[0] << " " << cost_err[1];
+  EXPECT_NEAR(std::log2(err[0] / err[1]), 2.0, 0.3) << err[0] << " " << err[1];
+}
+
+// ---- smooth problems: order and quadratic convergence ------------------------------------------
+
+TEST(IndirectNewton, HagerMatchesAnalyticCostateToSecondOrder) {
+  const LocalHager ocp;
+  auto exact = [](double t) { return Vec::Constant(1, -LocalHager::OptimalControl(t)); };
+  double err[2], cost_err[2];
+  const int Ns[2] = {50, 100};
+  for (int i = 0; i < 2; ++i) {
+    const SolveResult r = IndirectNewton().Solve(ocp, Request(ocp, Ns[i]));
+    ExpectConverged(r);
+    err[i] = CostateError(r, exact);
+    cost_err[i] = std::abs(r.objective - LocalHager::kOptimalCost);
+  }
+  EXPECT_LE(err[0], 1e-3);
+  EXPECT_NEAR(std::log2(err[0] / err[1]), 2.0, 0.1);
+  EXPECT_NEAR(std::log2(cost_err[0] / cost_err[1]), 2.0, 0.1);
+}
+
+TEST(IndirectNewton, StartFromControlsGivesTheCostateOfThoseControls) {
+  const LocalHager ocp;
+  const TimeGrid grid = TimeGrid::Uniform(0.0, 1.0, 100);
+  Mat U(1, 101);
+  for (int k = 0; k <= 100; ++k) U(0, k) = LocalHager::OptimalControl(grid.t(k));
+  Mat X, P;
+  IndirectNewton::StartFromControls(
+      ocp, grid, TerminalMode::kPenalty, ControlTrajectory::PiecewiseLinear(grid, U), &X, &P);
+  for (int k = 0; k <= 100; ++k) {
+    EXPECT_NEAR(P(0, k), -U(0, k), 1e-4) << k;
+  }
+}
+
+TEST(IndirectNewton, NonlinearProblemConvergesQuadraticallyFromZeroControls) {
+  const LocalPendulum ocp;
+  const SolveResult r = IndirectNewton().Solve(ocp, Request(ocp, 200));
+  ExpectConverged(r);
+  EXPECT_GE(r.iterations, 3);  // genuinely nonlinear
+  EXPECT_GE(ExpectQuadraticTail(r, 10.0), 2);
+  for (size_t k = 1; k < r.history.size(); ++k) {
+    EXPECT_LT(r.history[k].primal_inf, r.history[k - 1].primal_inf);
+  }
+  // Self-convergence: costates at N = 50, 100 against N = 800 (on the common nodes).
+  auto solve = [&](int N) { return IndirectNewton().Solve(ocp, Request(ocp, N)); };
+  const SolveResult fine = solve(800);
+  ExpectConverged(fine);
+  double err[2];
+  for (int i = 0; i < 2; ++i) {
+    const int N = 50 << i;
+    const SolveResult r2 = solve(N);
+    ExpectConverged(r2);
+    err[i] = 0.0;
+    for (int k = 0; k <= N; ++k) {
+      err[i] = std::max(
+          err[i],
+          (r2.costates.col(k) - fine.costates.col(k * (800 / N))).lpNorm<Eigen::Infinity>());
+    }
+  }
+  EXPECT_NEAR(std::log2(err[0] / err[1]), 2.0, 0.15) << err[0] << " " << err[1];
+}
+
+TEST(IndirectNewton, KluAndUmfpackAgree) {
+  const LocalPendulum ocp(0.8);
+  const SolveResult a = IndirectNewton().Solve(ocp, Request(ocp, 100));
+  const SolveResult b = IndirectNewton().Solve(
+      ocp, Request(ocp, 100, TerminalMode::kPenalty, {{"linear_solver", "umfpack"}}));
+  ExpectConverged(a);
+  ExpectConverged(b);
+  EXPECT_LE((a.costates - b.costates).lpNorm<Eigen::Infinity>(), 1e-9);
+  EXPECT_LE((a.states - b.states).lpNorm<Eigen::Infinity>(), 1e-9);
+}
+
+TEST(IndirectNewton, ResultIsComplete) {
+  const LocalPendulum ocp(0.8);
+  const SolveResult r = IndirectNewton().Solve(ocp, Request(ocp, 50));
+  ExpectConverged(r);
+  EXPECT_EQ(r.solver, "indirect-newton");
+  EXPECT_EQ(r.controls.interpolation(), ControlTrajectory::Interpolation::kPiecewiseLinear);
+  EXPECT_EQ(r.controls.values().cols(), 51);
+  EXPECT_EQ(r.states.cols(), 51);
+  EXPECT_EQ(r.costates.cols(), 51);
+  EXPECT_EQ(r.history.front().armijo_j, -1);
+  EXPECT_EQ(r.objective, r.history.back().J);
+  for (const char* key : {"assembly_seconds", "factorization_seconds", "solve_seconds"}) {
+    ASSERT_EQ(r.solver_stats.count(key), 1u) << key;
+    EXPECT_GE(r.solver_stats.at(key), 0.0) << key;
+  }
+  EXPECT_EQ(r.solver_stats.at("unknowns"), 2 * 2 * 51);
+  EXPECT_EQ(r.solver_stats.at("residual_inf"), r.history.back().primal_inf);
+  // The controls are u*(x_k, p_k) and respect U.
+  Vec u(1);
+  for (int k = 0; k <= 50; ++k) {
+    ocp.MinimizeHamiltonian(r.state_grid.t(k), r.states.col(k), r.costates.col(k), u);
+    EXPECT_EQ(r.controls.values()(0, k), u[0]);
+    EXPECT_LE(std::abs(u[0]), 0.8);
+  }
+}
+
+// ---- statuses ----------------------------------------------------------------------------------
+
+TEST(IndirectNewtonStatus, MaxIterationsKeepsTheLastIterate) {
+  const LocalPendulum ocp;
+  const SolveResult r = IndirectNewton().Solve(
+      ocp, Request(ocp, 50, TerminalMode::kPenalty, {{"max_iterations", "1"}}));
+  EXPECT_EQ(r.status, SolveStatus::kMaxIterations);
+  EXPECT_EQ(r.solver_status, "max_iterations");
+  EXPECT_EQ(r.iterations, 1);
+  ASSERT_EQ(r.history.size(), 2u);
+  EXPECT_GT(r.history[1].primal_inf, 1e-10);
+  const SolveResult r0 = IndirectNewton().Solve(
+      ocp, Request(ocp, 50, TerminalMode::kPenalty, {{"max_iterations", "0"}}));
+  EXPECT_EQ(r0.status, SolveStatus::kMaxIterations);
+  EXPECT_EQ(r0.iterations, 0);
+  EXPECT_EQ(r0.history.size(), 1u);
+}
+
+TEST(IndirectNewtonStatus, SingularMinimizerIsANumericalFailure) {
+  const LocalQuartic ocp;  // the start has p(1) = 0, where H_uu = 0
+  const SolveResult r = IndirectNewton().Solve(ocp, Request(ocp, 20));
+  EXPECT_EQ(r.status, SolveStatus::kNumericalFailure);
+  EXPECT_EQ(r.solver_status, "singular_minimizer");
+  EXPECT_NE(r.message.find("node 20"), std::string::npos) << r.message;
+}
+
+TEST(IndirectNewtonStatus, SingularNewtonMatrixIsReportedByEitherSolver) {
+  const LocalRedundantDi ocp;
+  for (const char* lu : {"umfpack", "klu"}) {
+    const SolveResult r =
+        IndirectNewton().Solve(ocp, Request(ocp, 20, TerminalMode::kHard, {{"linear_solver", lu}}));
+    EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << lu << ": " << r.message;
+    EXPECT_EQ(r.solver_status, "singular_jacobian") << lu;
+    EXPECT_NE(r.message.find(lu), std::string::npos) << r.message;
+  }
+}
+
+TEST(IndirectNewtonStatus, LineSearchFailureIsStepTooSmall) {
+  // Only full steps allowed (min_step = 1): far from the solution the full step of a strongly
+  // nonlinear problem does not decrease |F|.
+  const auto ocp = Comm();
+  const SolveResult r =
+      IndirectNewton().Solve(*ocp, Request(*ocp, 40, TerminalMode::kPenalty, {{"min_step", "1"}}));
+  EXPECT_EQ(r.status, SolveStatus::kStepTooSmall) << r.solver_status << ": " << r.message;
+  EXPECT_EQ(r.solver_status, "line_search_failed");
+}
+
+TEST(IndirectNewtonStatus, NotApplicableWithoutMinimizerAndBadGridThrows) {
+  const testing::NonlinearTestOcp no_minimizer;  // no closed-form minimizer (and path constraints)
+  const SolveResult r = IndirectNewton().Solve(no_minimizer, Request(no_minimizer, 10));
+  EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
+  EXPECT_EQ(r.solver_status, "not_applicable");
+  EXPECT_NE(r.message.find("minimizer"), std::string::npos);
+  const auto comm = Comm();
+  SolveRequest bad_grid = Request(*comm, 10);
+  bad_grid.grid = TimeGrid::Uniform(0.0, 10.0, 10);  // does not span [0, 40]
+  EXPECT_THROW(IndirectNewton().Solve(*comm, bad_grid), std::invalid_argument);
+}
+
+// ---- comm-path2d: polishing the Hamiltonian descent --------------------------------------------
+
+TEST(IndirectNewton, PolishesTheHamiltonianDescentOnCommPath2d) {
+  const auto ocp = Comm();
+  const int N = 100;
+  SolveRequest request = Request(*ocp, N);
+  request.integrator = Integrator::kRk4;  // the descent's integrator, and the evaluator's below
+  request.options = {{"max_iterations", "200"}};  // the descent's (Newton's starts below are cheap)
+  const SolveResult descent = FindSolver("hamiltonian").make()->Solve(*ocp, request);
+  request.options.clear();
+  ASSERT_EQ(descent.states.cols(), N + 1) << descent.message;
+  ASSERT_EQ(descent.costates.cols(), N + 1) << descent.message;
+
+  const SolveResult newton =
+      IndirectNewton().SolveFrom(*ocp, request, descent.states, descent.costates);
+  ExpectConverged(newton);
+  EXPECT_LE(newton.history.back().primal_inf, 1e-9);
+  EXPECT_GE(ExpectQuadraticTail(newton, 1e3), 2);
+
+  // The common evaluator on the same grid with the descent's integrator (RK4), each method's
+  // controls with its own interpolation (the descent's piecewise constant, Newton's piecewise
+  // linear). (With forward Euler on this coarse grid, h = 0.4, Euler's own O(h) error would
+  // dominate the comparison; see solvers/README-indirect.md.)
+  const Evaluation ed = Evaluate(*ocp, descent.controls, request.grid, Integrator::kRk4);
+  const Evaluation en = Evaluate(*ocp, newton.controls, request.grid, Integrator::kRk4);
+  ASSERT_TRUE(ed.finite && en.finite);
+  EXPECT_LE(en.J, ed.J) << "newton " << en.J << " descent " << ed.J;
+  EXPECT_LE(en.control_violation, 1e-12);
+}
+
+TEST(IndirectNewton, WarmStartOptionRunsTheDescentAndReportsBothTimes) {
+  const auto ocp = Comm();
+  const std::map<std::string, std::string> options = {{"warm_start", "hamiltonian"},
+                                                      {"hamiltonian.max_iterations", "200"}};
+  const SolveResult r =
+      IndirectNewton().Solve(*ocp, Request(*ocp, 40, TerminalMode::kPenalty, options));
+  ExpectConverged(r);
+  EXPECT_EQ(r.solver_stats.at("warm_start_iterations"), 200);
+  EXPECT_GT(r.solver_stats.at("warm_start_cpu_seconds"), 0.0);
+  EXPECT_GT(r.solver_stats.at("newton_cpu_seconds"), 0.0);
+  EXPECT_GE(r.cpu_seconds, r.solver_stats.at("warm_start_cpu_seconds"));
+  EXPECT_GE(r.history.front().cpu_seconds, r.solver_stats.at("warm_start_cpu_seconds"));
+  EXPECT_NE(r.message.find("warm start: hamiltonian max_iterations after 200"), std::string::npos)
+      << r.message;
+  // The same as Newton from the descent's states and costates (both deterministic).
+  const SolveResult descent =
+      FindSolver("hamiltonian")
+          .make()
+          ->Solve(*ocp, Request(*ocp, 40, TerminalMode::kPenalty, {{"max_iterations", "200"}}));
+  const SolveResult from =
+      IndirectNewton().SolveFrom(*ocp, Request(*ocp, 40), descent.states, descent.costates);
+  ExpectConverged(from);
+  EXPECT_EQ(from.iterations, r.iterations);
+  EXPECT_LE((from.costates - r.costates).lpNorm<Eigen::Infinity>(), 1e-9);
+}
+
+TEST(IndirectNewton, WarmStartServesTheHardFormToo) {
+  // The descent solves the penalty form; Newton starts from it with nu from least squares on
+  // p_N = psi_x^T nu and solves the hard form.
+  const auto ocp = MakeProblem("double-integrator", {}, 0);
+  const SolveResult r = IndirectNewton().Solve(
+      *ocp, Request(*ocp, 50, TerminalMode::kHard, {{"warm_start", "hamiltonian"}}));
+  ExpectConverged(r);
+  EXPECT_NEAR(r.costates(0, 50), -12.0, 0.02);
+  EXPECT_NEAR(r.costates(1, 50), 6.0, 0.02);
+  EXPECT_THROW(
+      IndirectNewton().Solve(*ocp,
+                             Request(*ocp,
+                                     50,
+                                     TerminalMode::kPenalty,
+                                     {{"warm_start", "hamiltonian"}, {"hamiltonian.alpha", "2"}})),
+      std::invalid_argument);
+}
+
+// ---- problems registered by other modules (skipped until they exist) ---------------------------
+
+// The registry entry `name`, or null.
+const ProblemInfo* Registered(const std::string& name) {
+  for (const ProblemInfo& p : Problems()) {
+    if (p.name == name) return &p;
+  }
+  return nullptr;
+}
+
+// max_k |P_k - P_fine(t_k)|_inf on the common nodes of a uniform grid and its refinement.
+double CostateDistance(const SolveResult& coarse, const SolveResult& fine) {
+  const int N = coarse.state_grid.intervals(), factor = fine.state_grid.intervals() / N;
+  double e = 0.0;
+  for (int k = 0; k <= N; ++k) {
+    e = std::max(
+        e, (coarse.costates.col(k) - fine.costates.col(k * factor)).lpNorm<Eigen::Infinity>());
+  }
+  return e;
+}
+
+class SmoothRegisteredProblem : public ::testing::TestWithParam<const char*> {};
+
+// Smooth problems without terminal constraints (the penalty and hard forms coincide): from u = 0,
+// Newton converges quadratically; the costates converge at second order (against N = 1600) and the
+// common evaluator's Jbar reaches the published optimum.
+TEST_P(SmoothRegisteredProblem, SecondOrderCostatesQuadraticConvergenceAndReferenceValue) {
+  const ProblemInfo* info = Registered(GetParam());
+  if (!info) GTEST_SKIP() << "problem '" << GetParam() << "' is not registered yet";
+  const auto ocp = MakeProblem(GetParam(), {}, 0);
+  ASSERT_TRUE(ocp->HasHamiltonianMinimizer());
+  auto solve = [&](int N) { return IndirectNewton().Solve(*ocp, Request(*ocp, N)); };
+  const SolveResult fine = solve(1600);
+  ExpectConverged(fine);
+  double err[2];
+  for (int i = 0; i < 2; ++i) {
+    const SolveResult r = solve(100 << i);
+    ExpectConverged(r);
+    ExpectQuadraticTail(r, 1e3);
+    err[i] = CostateDistance(r, fine);
+  }
+  EXPECT_NEAR(std::log2(err[0] / err[1]), 2.0, 0.2) << err[0] << " " << err[1];
+  ASSERT_TRUE(info->reference_value.has_value());
+  const SolveResult r = solve(400);
+  ExpectConverged(r);
+  const Evaluation ev = Evaluate(*ocp, r.controls, r.state_grid, Integrator::kRk4);
+  EXPECT_NEAR(
+      ev.Jbar, *info->reference_value, 1e-5 * std::max(1.0, std::abs(*info->reference_value)));
+}
+
+INSTANTIATE_TEST_SUITE_P(IndirectNewton,
+                         SmoothRegisteredProblem,
+                         ::testing::Values("lqr", "hager", "vanderpol"));
+
+TEST(IndirectNewton, BrysonDenhamThroughItsPenaltyReformulation) {
+  if (!Registered("bryson-denham")) GTEST_SKIP() << "bryson-denham is not registered yet";
+  const auto ocp = MakeProblem("bryson-denham", {}, 0);
+  // x1 <= 1/9 becomes rho max(0, x1 - 1/9)^2 in L (Ocp::HamiltonianReformulation). Measured gap
+  // Jbar - 4 at N = 800: -0.136 (rho = 1e4, the problem's default), -5.1e-3 (1e6), -1.4e-4 (1e8).
+  const std::map<std::string, std::string> options = {{"path_penalty", "1e8"}};
+  double err[2];
+  for (int i = 0; i < 2; ++i) {
+    const int N = 200 << i;
+    const SolveResult r =
+        IndirectNewton().Solve(*ocp, Request(*ocp, N, TerminalMode::kHard, options));
+    ExpectConverged(r);
+    EXPECT_NE(r.message.find("reformulation"), std::string::npos) << r.message;
+    EXPECT_EQ(r.solver_stats.at("reformulated"), 1.0);
+    ExpectQuadraticTail(r, 1e3);
+    const Evaluation ev = Evaluate(*ocp, r.controls, r.state_grid, Integrator::kRk4);
+    EXPECT_NEAR(ev.Jbar, 4.0, 1e-3);
+    EXPECT_LE(ev.terminal_violation, 1e-9);
+    EXPECT_LE(ev.path_violation, 1e-3);
+    // p2 = -u* is continuous (p1 jumps at the junctions, which the penalty smooths).
+    err[i] = 0.0;
+    for (int k = 0; k <= N; ++k) {
+      const double t = r.state_grid.t(k);
+      err[i] = std::max(err[i], std::abs(r.costates(1, k) - BrysonDenham::OptimalCostate(t)[1]));
+    }
+  }
+  EXPECT_LT(err[1], 0.05) << err[0] << " " << err[1];
+}
+
+TEST(IndirectNewton, RayleighFromTheHamiltonianDescent) {
+  const ProblemInfo* info = Registered("rayleigh");
+  if (!info) GTEST_SKIP() << "rayleigh is not registered yet";
+  const auto ocp = MakeProblem("rayleigh", {}, 0);
+  // The mixed constraint u + x1/6 <= 0 as a penalty (rho = 1e6); from u = 0 Newton may wander
+  // between active sets, from the descent it converges in a few steps.
+  const SolveResult r = IndirectNewton().Solve(*ocp,
+                                               Request(*ocp,
+                                                       400,
+                                                       TerminalMode::kPenalty,
+                                                       {{"path_penalty", "1e6"},
+                                                        {"warm_start", "hamiltonian"},
+                                                        {"hamiltonian.max_iterations", "100"}}));
+  ExpectConverged(r);
+  EXPECT_LE(r.iterations, 15);
+  // With rho = 1e6 the Jacobian's entries reach rho h ~ 1e4, so roundoff in F is ~1e-12: the
+  // quadratic-rate check stops at 1e-10.
+  EXPECT_GE(ExpectQuadraticTail(r, 1e3, 1e-10), 1);
+  const Evaluation ev = Evaluate(*ocp, r.controls, r.state_grid, Integrator::kRk4);
+  ASSERT_TRUE(info->reference_value.has_value());
+  EXPECT_NEAR(ev.Jbar, *info->reference_value, 1e-3);
+}
+
+TEST(IndirectNewton, CatmixThroughItsRegularization) {
+  const ProblemInfo* info = Registered("catmix");
+  if (!info) GTEST_SKIP() << "catmix is not registered yet";
+  const auto ocp = MakeProblem("catmix", {}, 0);
+  const SolveResult r = IndirectNewton().Solve(*ocp, Request(*ocp, 100));
+  ExpectConverged(r);
+  ExpectQuadraticTail(r, 1e3);
+  const Evaluation ev = Evaluate(*ocp, r.controls, r.state_grid, Integrator::kRk4);
+  ASSERT_TRUE(info->reference_value.has_value());
+  // COPS' value is the optimum of its own discretization at nh = 100.
+  EXPECT_NEAR(ev.Jbar, *info->reference_value, 1e-5);
+}
+
+}  // namespace
+}  // namespace ocpb

@@ -1,0 +1,214 @@
+// The sparse NLP shared by OCPBench's direct transcriptions (Euler, trapezoid, Hermite-Simpson,
+// Legendre-Gauss-Radau): one description of variables, evaluation points and defects, and one
+// implementation of values, exact sparse derivatives, bounds, starting point and costates.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/integrator.h"
+#include "core/ocp.h"
+#include "transcriptions/transcription.h"
+
+namespace ocpb {
+
+/// What a direct transcription is made of. A scheme fills one of these; CollocationNlp does the
+/// rest.
+///
+///  - State blocks X_j (nx variables each) at times t_j, strictly increasing; block 0 is x(t0)
+///    (fixed to x0 by its bounds) and the last block is x(tf).
+///  - Control blocks U_i (nu variables each) at times s_i.
+///  - Points e = (t_e, X_{state(e)}, U_{control(e)}) where f, L and c are evaluated.
+///  - Defects d, nx rows each, for one interval k(d):
+///        sum_j a_dj X_j - sum_e b_de f(t_e, X_{state(e)}, U_{control(e)}) = 0
+///    (b carries the step length).
+///  - Objective  sum_e w_e L(t_e, X_{state(e)}, U_{control(e)}) + Phi(X_last), Phi = phi (+ the
+///    terminal penalty sum_i w_i psi_i^2 in TerminalMode::kPenalty).
+///  - Path constraints c(t_e, X_{state(e)}, U_{control(e)}) <= 0 at the points marked `path`;
+///    ball blocks of U as |U_i,b - center|^2 <= radius^2 for every control block; box blocks of U
+///    as variable bounds; psi(X_last) = 0 in TerminalMode::kHard.
+struct CollocationLayout {
+  struct Term {
+    int index = 0;
+    double coeff = 0.0;
+  };
+  struct StateBlock {
+    double t = 0.0;
+    int offset = 0;
+    /// k when this block is x(t_k), the first state of interval k (N for x(tf)); -1 for a block
+    /// inside an interval. Its costate is then the gradient with respect to X_j of the part of
+    /// the Lagrangian that belongs to intervals >= k (and the terminal terms; path constraints at
+    /// t_k count there too): the sensitivity of the cost-to-go, which at a KKT point equals minus
+    /// the rest by stationarity. For x(t0) it is the multiplier of the fixing bounds.
+    int interval_start = -1;
+    /// Blocks inside an interval: costate = costate_scale * (multiplier of defect costate_defect)
+    /// + sum over costate_blocks (j, c) of c * (costate of interval-start block j).
+    int costate_defect = -1;
+    double costate_scale = 0.0;
+    std::vector<Term> costate_blocks;
+  };
+  struct ControlBlock {
+    double t = 0.0;
+    int offset = 0;
+  };
+  struct Point {
+    double t = 0.0;
+    int state = 0;
+    int control = 0;
+    double cost_weight = 0.0;  ///< w_e
+    /// The part of w_e that belongs to the interval starting at this point's state block (for
+    /// the costate rule above; 0 when the block is not an interval start).
+    double future_cost_weight = 0.0;
+    bool path = false;
+  };
+  struct Defect {
+    int interval = 0;
+    std::vector<Term> states;    ///< (state block j, a_dj)
+    std::vector<Term> dynamics;  ///< (point e, b_de)
+  };
+
+  int nx = 0, nu = 0;
+  int num_variables = 0;
+  std::vector<StateBlock> states;
+  std::vector<ControlBlock> controls;
+  std::vector<Point> points;
+  std::vector<Defect> defects;
+
+  /// Appends a state (control) block at the next free offset; returns its index.
+  int AddState(double t, int interval_start = -1);
+  int AddControl(double t);
+};
+
+/// A TranscribedNlp built from a CollocationLayout; subclasses only say how control blocks
+/// become a ControlTrajectory.
+///
+/// Constraint rows, in this order: all defects (nx rows each, in layout order), path constraints
+/// (nc rows per path point, in point order), ball constraints (one row per control block and
+/// ball block), terminal constraints psi (hard mode only).
+///
+/// Derivatives are exact: the constraint Jacobian from Ocp::DynamicsJacobian and
+/// PathConstraintsJacobian; the Hessian of sigma f + lambda^T g as the sum over points of
+/// Ocp::PointHessian(t_e, x_e, u_e, sigma w_e, -sum_d b_de lambda_d, mu_e), plus TerminalHessian
+/// (with the penalty's Gauss-Newton term 2 psi_x^T W psi_x + 2 sum w_i psi_i psi_i,xx) and 2 mu I
+/// for the balls. Both sparsity patterns are built once, in the constructor, from dense
+/// (x, u)-blocks, and hold unique (row, col) entries (no repeated triplets); the Hessian pattern
+/// is the lower triangle (row >= col).
+///
+/// Multipliers follow the convention of HessianValues: at a KKT point sigma grad f + J^T lambda
+/// (plus bound multipliers) vanishes, as in Ipopt. Costates() turns them into p with
+/// H = p^T f + L.
+///
+/// The Ocp must outlive this object. Evaluations return false when a value is not finite.
+class CollocationNlp : public TranscribedNlp {
+ public:
+  CollocationNlp(const Ocp& ocp,
+                 const TranscriptionOptions& options,
+                 CollocationLayout layout,
+                 Integrator start_integrator);
+
+  // ---- Nlp ----
+  int num_variables() const override { return layout_.num_variables; }
+  int num_constraints() const override { return num_constraints_; }
+  void Bounds(Vec* z_lower, Vec* z_upper, Vec* g_lower, Vec* g_upper) const override;
+  /// Controls from TranscriptionOptions::initial_guess (default: u = 0 projected onto U) at every
+  /// control block's time (the left limit at tf, the right limit elsewhere), projected onto U;
+  /// states by simulating the resulting ControlTrajectory from x0 on state_grid() with the
+  /// scheme's start integrator (Euler for the Euler transcription, so its start is feasible;
+  /// RK4 otherwise). If that simulation is not finite, every state block is set to x0.
+  Vec StartingPoint() const override;
+  bool Objective(ConstVecRef z, double* f) const override;
+  bool Gradient(ConstVecRef z, VecRef grad) const override;
+  bool Constraints(ConstVecRef z, VecRef g) const override;
+  bool JacobianValues(ConstVecRef z, VecRef values) const override;
+  bool HasHessian() const override { return true; }
+  bool HessianValues(ConstVecRef z, double sigma, ConstVecRef lambda, VecRef values) const override;
+
+  // ---- TranscribedNlp ----
+  ControlTrajectory Controls(ConstVecRef z) const override;
+  const TimeGrid& state_grid() const override { return state_grid_; }
+  Mat States(ConstVecRef z) const override;
+  /// p (nx x state_grid().size()) from the NLP's multipliers `lambda` at z (as a solver returns
+  /// them, scaled NLP); empty when lambda.size() != num_constraints().
+  Mat Costates(ConstVecRef z, ConstVecRef lambda) const override;
+
+  // ---- for tests and tools ----
+  const CollocationLayout& layout() const { return layout_; }
+  const Ocp& ocp() const { return ocp_; }
+  TerminalMode terminal_mode() const { return mode_; }
+  /// Control block values (nu x controls), physical units.
+  Mat ControlValues(ConstVecRef z) const;
+  /// First row of each constraint group.
+  int defect_row(int d) const { return d * layout_.nx; }
+  int path_row_begin() const { return path_row_begin_; }
+  int ball_row_begin() const { return ball_row_begin_; }
+  int terminal_row_begin() const { return terminal_row_begin_; }
+  /// Physical variables z = D zhat from the NLP's (scaled) variables, and back.
+  Vec Unscale(ConstVecRef zhat) const { return zhat.cwiseProduct(var_scale_); }
+  Vec Scale(ConstVecRef z) const { return z.cwiseQuotient(var_scale_); }
+
+ protected:
+  /// The scheme's interpolation of the control block values (nu x controls, physical).
+  virtual ControlTrajectory MakeControls(const Mat& values) const = 0;
+  const TimeGrid& grid() const { return grid_; }
+
+ private:
+  struct PointUse {  // point e appears in defect d with coefficient -b
+    int defect;
+    double coeff;
+    int x_slots;  // base into jac_slots_ of the nx x nx block (row-major)
+    int u_slots;  // base of the nx x nu block
+  };
+  struct StateUse {  // X_j appears in defect d with coefficient a: diagonal entries
+    int defect;
+    int state;
+    double coeff;
+    int x_slots;
+  };
+
+  void BuildStructure();
+  // Physical evaluations (z physical, lambda physical).
+  bool EvalObjective(const Vec& z, double* f) const;
+  bool EvalGradient(const Vec& z, Vec* grad) const;
+  bool EvalConstraints(const Vec& z, Vec* g) const;
+  bool EvalJacobian(const Vec& z, Vec* values) const;
+  bool EvalHessian(const Vec& z, double sigma, const Vec& lambda, Vec* values) const;
+
+  const Ocp& ocp_;
+  TimeGrid grid_;
+  TerminalMode mode_;
+  std::optional<ControlTrajectory> initial_guess_;
+  CollocationLayout layout_;
+  Integrator start_integrator_;
+  TimeGrid state_grid_;
+  int nx_, nu_, nc_, npsi_;
+  int num_constraints_ = 0;
+  int path_row_begin_ = 0, ball_row_begin_ = 0, terminal_row_begin_ = 0;
+  std::vector<int> path_point_row_;  // per point: first path row, or -1
+  std::vector<int> ball_blocks_;     // indices into control_set().blocks() of the ball blocks
+
+  // Scaling: z = var_scale .* zhat, ghat = row_scale .* g, fhat = objective_scale * f.
+  double objective_scale_ = 1.0;
+  Vec var_scale_, row_scale_;
+  Vec jac_value_scale_, hess_value_scale_;
+
+  // Jacobian structure.
+  std::vector<int> jac_slots_;
+  std::vector<std::vector<PointUse>> point_uses_;  // per point
+  std::vector<StateUse> state_uses_;
+  std::vector<int> path_x_slots_, path_u_slots_;  // per point (base into jac_slots_), or -1
+  std::vector<int> ball_slots_;                   // per ball row: base of its `size` slots
+  int terminal_slots_ = -1;                       // npsi x nx
+  // Hessian structure.
+  std::vector<int> hess_slots_;
+  std::vector<int> point_hess_slots_;  // per point: base of (nx+nu)^2 entries (-1: upper)
+  int terminal_hess_slots_ = -1;       // nx x nx
+  std::vector<int> ball_hess_slots_;   // per ball row: base of `size` diagonal slots
+};
+
+/// Throws std::invalid_argument unless `options` is a valid request for `ocp`: the grid spans
+/// [t0, tf] (to 1e-12 relative), the initial guess has nu components, the scaling is valid for
+/// (nx, nu).
+void ValidateTranscriptionOptions(const Ocp& ocp, const TranscriptionOptions& options);
+
+}  // namespace ocpb
