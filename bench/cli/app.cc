@@ -3,6 +3,7 @@
 #include <exception>
 #include <iostream>
 #include <stdexcept>
+#include <string>
 
 #include "bench/cli/channel_command.h"
 #include "bench/cli/version.h"
@@ -25,6 +26,18 @@ int RunOcpbench(int argc, char** argv) {
   AddRunCommand(app);
   AddChannelCommand(app);
   try {
+    // Name an unknown command plainly (CLI11 alone would say "A subcommand is required").
+    if (argc >= 2 && argv[1][0] != '-') {
+      std::string valid;
+      bool known = false;
+      for (const CLI::App* sub : app.get_subcommands({})) {
+        known = known || sub->get_name() == argv[1];
+        valid += (valid.empty() ? "" : ", ") + sub->get_name();
+      }
+      if (!known) {
+        throw std::invalid_argument("unknown command '" + std::string(argv[1]) + "' (valid: " + valid + ")");
+      }
+    }
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

@@ -23,7 +23,7 @@ struct BadInput {
 #define CASE_OK R"("problem": "double-integrator", "solver": "hamiltonian")"
 
 const BadInput kBadInputs[] = {
-    {"unknown subcommand", {"frobnicate"}, nullptr, "frobnicate"},
+    {"unknown subcommand", {"frobnicate"}, nullptr, "unknown command 'frobnicate' (valid: list, solve, run"},
     {"list of nothing", {"list", "foo"}, nullptr, "foo not in {problems,solvers,transcriptions}"},
     {"unknown problem", {"solve", "--problem", "nope", "--solver", "hamiltonian"}, nullptr,
      "unknown problem 'nope' (valid: "},
