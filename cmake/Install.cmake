@@ -42,8 +42,7 @@ endforeach()
 install(TARGETS ${OCPB_EXPORTED_TARGETS}
   EXPORT OCPBenchTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  INCLUDES DESTINATION ${OCPB_INSTALL_INCLUDEDIR})
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 if(TARGET ocpbench)
   install(TARGETS ocpbench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
@@ -59,12 +58,14 @@ install(EXPORT OCPBenchTargets
   DESTINATION ${OCPB_INSTALL_CMAKEDIR})
 
 # The package configuration: third-party dependencies first (the same packages
-# cmake/Dependencies.cmake uses), then the exported targets.
+# cmake/Dependencies.cmake uses; SuiteSparse comes in as absolute library paths), then the
+# exported targets.
 file(WRITE ${PROJECT_BINARY_DIR}/OCPBenchConfig.cmake.in [=[
 @PACKAGE_INIT@
 include(CMakeFindDependencyMacro)
 find_dependency(Eigen3 3.4 NO_MODULE)
 find_dependency(NLopt)
+find_dependency(Threads)
 find_dependency(PkgConfig)
 if(NOT TARGET PkgConfig::IPOPT)
   pkg_check_modules(IPOPT REQUIRED IMPORTED_TARGET ipopt)

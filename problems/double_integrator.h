@@ -12,7 +12,7 @@ namespace ocpb {
 /// minimize    J = 1/2 int_0^1 u^2 dt
 /// subject to  x1' = x2, x2' = u,  x(0) = (-1, 0),  psi = x(1) - (0, 0) = 0,  |u| <= umax.
 ///
-/// Unbounded (umax = inf): u*(t) = 6 - 12 t, x1*(t) = -1 + 3t^2 - 2t^3, p*(t) = (12, 12t - 6)
+/// Unbounded (umax = inf): u*(t) = 6 - 12 t, x1*(t) = -1 + 3t^2 - 2t^3, p*(t) = (-12, 12t - 6)
 /// (H = p^T f + L), J* = 6. Bounded, umax = 5: J* = 6.0450277563 with
 /// u*(t) = clip(6.4549722 - 12.9099445 t, -5, 5) (reference-problems notes, section 2.1-2.2;
 /// CTProblems.jl double_integrator_energy[_control_constraint]).

@@ -125,9 +125,13 @@ BENCHMARK(BM_IpoptHermiteSimpsonScaling)
 // Same discrete problem (DiscreteOcp with Euler), same start (u = 0 projected onto U). Reports
 // both final J and the CPU time each history needs to come within 1% of the better final J.
 
+// The first CPU time at which the history's J is <= target, counting for an NLP solver only
+// iterates whose constraint violation (Ipopt's inf_pr: here the Euler defects) is <= 1e-6, so
+// that an infeasible iterate cannot "reach" a cost its controls do not have.
 double CpuToWithin(const SolveResult& r, double target) {
   for (const IterationRecord& rec : r.history) {
-    if (std::isfinite(rec.J) && rec.J <= target) return rec.cpu_seconds;
+    const bool feasible = std::isnan(rec.primal_inf) || rec.primal_inf <= 1e-6;
+    if (std::isfinite(rec.J) && rec.J <= target && feasible) return rec.cpu_seconds;
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -208,7 +212,7 @@ void BM_NloptSingleShootingScaling(benchmark::State& state) {
   SolveRequest request = Request(*ocp, "single-shooting", N, TerminalMode::kPenalty);
   request.algorithm = kNloptAlgorithms[state.range(0)];
   // Large limits: this benchmark measures where the algorithms stop being practical.
-  request.options = {{"maxtime", "600"},
+  request.options = {{"maxtime", "300"},
                      {"slsqp_max_variables", "100000"},
                      {"mma_max_inequalities", "100000"},
                      {"max_dense_jacobian", "1e12"}};
@@ -224,7 +228,7 @@ void BM_NloptSingleShootingScaling(benchmark::State& state) {
 }
 BENCHMARK(BM_NloptSingleShootingScaling)
     ->ArgNames({"alg", "N"})
-    ->ArgsProduct({{0, 1, 2, 3}, {25, 50, 100, 200, 400}})
+    ->ArgsProduct({{0, 1, 2, 3}, {25, 50, 100, 200}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 

@@ -17,8 +17,8 @@ enum class GridVarianceMethod {
   /// Conditioning on a subset can only raise the variance, so 0 <= Sigma_R - Sigma <= the
   /// screened information of the measurements beyond R, which decays quickly with R: measured
   /// on the paper's setting (m = 500, estimated parameters, 4 seeds) the largest excess is
-  /// 1e-4 to 2e-3 dB^2 at R = 3.5 eta (1e-5 to 1.4e-4 at 4 eta), i.e. a relative error in s of
-  /// at most 5e-5 (problems/channel/README.md). Cost per point n_R^2 / 2, n_R the measurements
+  /// 1e-4 to 2e-3 dB^2 at R = 3.5 eta (2e-5 to 1.4e-4 at 4 eta), i.e. a relative error in s of
+  /// at most 6e-5 (problems/channel/README.md). Cost per point n_R^2 / 2, n_R the measurements
   /// within R of the tile.
   kLocal,
   /// The paper's formula with all m measurements: Sigma = xi^2 + rho^2 - |L^{-1} Psi|^2 as
