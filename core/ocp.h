@@ -99,6 +99,10 @@ class Ocp {
   /// u* = argmin_{u in U} H(t, x, u, p) = p^T f(t, x, u) + L(t, x, u).
   /// Only called when HasHamiltonianMinimizer(); the default throws std::logic_error.
   virtual void MinimizeHamiltonian(double t, ConstVecRef x, ConstVecRef p, VecRef u) const;
+  /// A number m with L(t, x, u) >= m for every t, every x and every u in U, when the problem
+  /// knows one (default: none). The Hamiltonian descent uses it to reject Armijo trials from a
+  /// states-only simulation, J >= m (tf - t0) + Phi(x(tf)), without changing its iterates.
+  virtual std::optional<double> RunningCostLowerBound() const { return std::nullopt; }
 
   // ---- reformulation for the Hamiltonian method ------------------------------------
   /// The problem the Hamiltonian method should solve in place of this one, or nullptr (the

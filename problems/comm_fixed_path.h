@@ -33,10 +33,10 @@ class PlanarPath {
   struct Piece {
     bool arc = false;
     double s0 = 0.0, length = 0.0;
-    Eigen::Vector2d start = Eigen::Vector2d::Zero();      // line: q = start + (sigma - s0) dir
+    Eigen::Vector2d start = Eigen::Vector2d::Zero();  // line: q = start + (sigma - s0) dir
     Eigen::Vector2d direction = Eigen::Vector2d::Zero();
-    Eigen::Vector2d center = Eigen::Vector2d::Zero();     // arc: q = center + r (cos a, sin a),
-    double angle0 = 0.0, turn = 1.0;   //      a = angle0 + turn (sigma - s0) / r, turn = +-1
+    Eigen::Vector2d center = Eigen::Vector2d::Zero();  // arc: q = center + r (cos a, sin a),
+    double angle0 = 0.0, turn = 1.0;  //      a = angle0 + turn (sigma - s0) / r, turn = +-1
   };
   std::vector<Eigen::Vector2d> waypoints_;
   double fillet_;
@@ -53,8 +53,8 @@ class PlanarPath {
 ///                          k5 n(u) + k6 n(u) n(x2))] dt
 ///               + C1 (x1(tf) - length)^2 + C2 x2(tf)^2 + C3 (x3(tf) - c)^2,
 /// with the power model and smoothing n(.) of CommPowerModel, d s(q(x1))/dx1 = grad s . q' and
-/// d2/dx1^2 = q'^T (hess s) q' + grad s . q''. Terminal constraints psi = (x1 - length, x2, x3 - c),
-/// weights (C1, C2, C3).
+/// d2/dx1^2 = q'^T (hess s) q' + grad s . q''. Terminal constraints
+/// psi = (x1 - length, x2, x3 - c), weights (C1, C2, C3).
 ///
 /// Default path: S = (20, 40) -> W = (7, 9) -> D = (10, 5), a detour past the base station (5, 5)
 /// (W is 4.5 m from it), with the corner at W rounded by a 2 m arc; length 38.405 m. The fillet
@@ -106,6 +106,10 @@ class CommFixedPath final : public AutoDiffOcp<CommFixedPath, 3, 2, 3, 0> {
 
   bool HasHamiltonianMinimizer() const override { return true; }
   void MinimizeHamiltonian(double t, ConstVecRef x, ConstVecRef p, VecRef u) const override;
+  /// gamma k4, as in CommPath2d.
+  std::optional<double> RunningCostLowerBound() const override {
+    return options_.power.gamma * options_.power.k[3];
+  }
 
   /// s(q(sigma)) as a double or a jet in sigma.
   template <class T>

@@ -1,6 +1,8 @@
 #include "solvers/hamiltonian_descent.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -12,7 +14,7 @@ namespace {
 
 constexpr const char* kValidKeys =
     "alpha, beta, max_iterations, max_armijo_exponent, theta_tolerance, max_cpu_seconds, "
-    "path_penalty, regularization";
+    "path_penalty, regularization, armijo_prefilter";
 
 double ParseDouble(const std::string& key, const std::string& text) {
   size_t used = 0;
@@ -23,8 +25,7 @@ double ParseDouble(const std::string& key, const std::string& text) {
     used = 0;
   }
   if (used == 0 || used != text.size() || std::isnan(v)) {
-    throw std::invalid_argument("hamiltonian option '" + key + "': '" + text +
-                                "' is not a number");
+    throw std::invalid_argument("hamiltonian option '" + key + "': '" + text + "' is not a number");
   }
   return v;
 }
@@ -36,6 +37,30 @@ int ParseInt(const std::string& key, const std::string& text) {
                                 "' is not an integer");
   }
   return static_cast<int>(v);
+}
+
+bool ParseBool(const std::string& key, const std::string& text) {
+  if (text == "1" || text == "true") return true;
+  if (text == "0" || text == "false") return false;
+  throw std::invalid_argument("hamiltonian option '" + key + "': '" + text +
+                              "' is not a boolean (1, 0, true, false)");
+}
+
+// A lower bound on the discrete J of U under forward Euler: the states x_N by exactly
+// DiscreteOcp's Euler update (x += h f, same calls, so the same x_N), the running part by
+// sum_k h_k m with m <= L. `x` and `f` are scratch of size nx.
+double EulerCostLowerBound(
+    const Ocp& ocp, const TimeGrid& grid, const Mat& U, double m, Vec* x, Vec* f) {
+  *x = ocp.x0();
+  double running = 0.0;
+  const int N = grid.intervals();
+  for (int k = 0; k < N; ++k) {
+    const double h = grid.h(k);
+    ocp.Dynamics(grid.t(k), *x, U.col(k), *f);
+    running += h * m;
+    *x += h * *f;
+  }
+  return running + ocp.TerminalObjective(*x, TerminalMode::kPenalty);
 }
 
 std::string Format(double v) {
@@ -64,14 +89,15 @@ double HamiltonianDescent::Direction(const DiscreteOcp& docp,
                                      const Mat& X,
                                      const Mat& Lambda,
                                      Mat* D,
-                                     Vec* scratch) {
+                                     Vec* scratch,
+                                     double* theta_scale) {
   const Ocp& ocp = docp.ocp();
   const TimeGrid& grid = docp.grid();
   const int N = grid.intervals();
   D->resize(ocp.nu(), N);
   Vec& f = *scratch;
   if (f.size() != ocp.nx()) f.resize(ocp.nx());
-  double theta = 0.0;
+  double theta = 0.0, scale = 0.0;
   for (int k = 0; k < N; ++k) {
     const double t = grid.t(k), h = grid.h(k);
     const auto x = X.col(k);
@@ -84,8 +110,10 @@ double HamiltonianDescent::Direction(const DiscreteOcp& docp,
     ocp.Dynamics(t, x, u, f);
     const double h_now = p.dot(f) + ocp.RunningCost(t, x, u);
     theta += h * (h_star - h_now);
+    scale += h * (std::abs(h_star) + std::abs(h_now));
     d -= u;
   }
+  if (theta_scale) *theta_scale = scale;
   return theta;
 }
 
@@ -142,9 +170,11 @@ HamiltonianDescent::Options HamiltonianDescent::ParseOptions(
       o.path_penalty = ParseDouble(key, text);
     } else if (key == "regularization") {
       o.regularization = ParseDouble(key, text);
+    } else if (key == "armijo_prefilter") {
+      o.armijo_prefilter = ParseBool(key, text);
     } else {
-      throw std::invalid_argument("hamiltonian: unknown option '" + key + "' (valid: " +
-                                  kValidKeys + ")");
+      throw std::invalid_argument("hamiltonian: unknown option '" + key +
+                                  "' (valid: " + kValidKeys + ")");
     }
   }
   std::string error;
@@ -180,7 +210,8 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
   HamiltonianReformulationOptions reformulation_options;
   reformulation_options.path_penalty = opt.path_penalty;
   reformulation_options.regularization = opt.regularization;
-  const std::unique_ptr<Ocp> reformulated = original.HamiltonianReformulation(reformulation_options);
+  const std::unique_ptr<Ocp> reformulated =
+      original.HamiltonianReformulation(reformulation_options);
   const Ocp& target = reformulated ? *reformulated : original;
   const std::string solved =
       reformulated ? "solved the problem's Hamiltonian reformulation '" + target.name() + "'; "
@@ -208,14 +239,18 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
                                 : DefaultInitialGuess(target, grid).values();
   for (int k = 0; k < N; ++k) set.Project(U.col(k));
   Mat trial(nu, N), D(nu, N), X(nx, N + 1), X_trial(nx, N + 1), Lambda(nx, N + 1), G(nu, N);
-  Vec f(nx);
+  Vec f(nx), x_bound(nx), f_bound(nx);
+  const std::optional<double> lower_bound =
+      opt.armijo_prefilter && request.integrator == Integrator::kEuler
+          ? target.RunningCostLowerBound()
+          : std::nullopt;
 
   SolveResult result;
   result.solver = "hamiltonian";
   result.history.reserve(static_cast<size_t>(opt.max_iterations) + 1);
 
   double J = docp.Simulate(U, &X);
-  int iteration = 0, last_j = -1, simulations = 1;
+  int iteration = 0, last_j = -1, simulations = 1, rejections = 0;
   double theta = NAN;
   bool have_costates = false;
   auto stop = [&](SolveStatus status, const char* code, const std::string& why) {
@@ -233,13 +268,24 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
     for (;;) {
       docp.Adjoint(U, X, &Lambda, &G);
       have_costates = true;
-      theta = Direction(docp, U, X, Lambda, &D, &f);
+      double theta_scale = 0.0;
+      theta = Direction(docp, U, X, Lambda, &D, &f, &theta_scale);
       result.history.push_back({iteration, J, theta, last_j, NAN, NAN, clock.cpu()});
 
       if (!std::isfinite(theta)) {
         stop(SolveStatus::kNumericalFailure,
              "nonfinite_theta",
              "theta is not finite at iteration " + std::to_string(iteration));
+        break;
+      }
+      // At a stationary point every term H(u*) - H(u) is zero up to rounding, and their sum can
+      // come out as +1e-17: that is convergence to machine precision, not a failed minimizer.
+      const double roundoff = 64.0 * std::numeric_limits<double>::epsilon() * theta_scale;
+      if (theta > 0.0 && theta <= roundoff) {
+        stop(SolveStatus::kConverged,
+             "theta_at_roundoff",
+             "theta = " + Format(theta) + " is at the rounding level " + Format(roundoff) +
+                 " of the Hamiltonian sums: stationary to machine precision");
         break;
       }
       if (theta > 0.0) {
@@ -272,6 +318,15 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
       double step = 1.0, J_trial = NAN;
       for (int j = 0; j <= opt.max_armijo_exponent; ++j, step *= opt.beta) {
         trial.noalias() = U + step * D;
+        if (lower_bound) {
+          const double threshold = J + opt.alpha * step * theta;
+          const double bound =
+              EulerCostLowerBound(target, grid, trial, *lower_bound, &x_bound, &f_bound);
+          if (bound > threshold + 1e-10 * std::max(1.0, std::abs(threshold))) {
+            ++rejections;  // J(trial) >= bound > threshold: the Armijo test fails
+            continue;
+          }
+        }
         J_trial = docp.Simulate(trial, &X_trial);
         ++simulations;
         if (std::isfinite(J_trial) && J_trial - J <= opt.alpha * step * theta) {
@@ -305,6 +360,7 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
   result.objective = J;
   result.solver_stats["final_theta"] = theta;
   result.solver_stats["simulations"] = simulations;
+  result.solver_stats["prefilter_rejections"] = rejections;
   result.solver_stats["reformulated"] = reformulated ? 1.0 : 0.0;
   result.iterations = iteration;
   result.cpu_seconds = clock.cpu();

@@ -192,8 +192,7 @@ int ParseInteger(const std::string& key, const std::string& text) {
   const long v = std::strtol(text.c_str(), &end, 10);
   if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE ||
       v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) {
-    throw std::invalid_argument("ipopt option '" + key + "': '" + text +
-                                "' is not an integer");
+    throw std::invalid_argument("ipopt option '" + key + "': '" + text + "' is not an integer");
   }
   return static_cast<int>(v);
 }
@@ -227,8 +226,8 @@ class NlpTnlp final : public Ipopt::TNLP {
     return true;
   }
 
-  bool get_bounds_info(Index n, Number* x_l, Number* x_u, Index m, Number* g_l, Number* g_u)
-      override {
+  bool get_bounds_info(
+      Index n, Number* x_l, Number* x_u, Index m, Number* g_l, Number* g_u) override {
     Vec zl, zu, gl, gu;
     try {
       nlp_.Bounds(&zl, &zu, &gl, &gu);
@@ -338,10 +337,8 @@ class NlpTnlp final : public Ipopt::TNLP {
     }
     return Guard("HessianValues", [&] {
       Eigen::Map<Vec> v(values, nele_hess);
-      return nlp_.HessianValues(Eigen::Map<const Vec>(x, n),
-                                obj_factor,
-                                Eigen::Map<const Vec>(lambda, m),
-                                v) &&
+      return nlp_.HessianValues(
+                 Eigen::Map<const Vec>(x, n), obj_factor, Eigen::Map<const Vec>(lambda, m), v) &&
              v.allFinite();
     });
   }
@@ -496,10 +493,10 @@ bool IpoptOptionTableMatchesIpopt(std::string* error) {
       problems += s.name + ": not registered by Ipopt; ";
       continue;
     }
-    const Ipopt::RegisteredOptionType expected = s.type == IpoptOptionType::kNumber ? Ipopt::OT_Number
-                                                 : s.type == IpoptOptionType::kInteger
-                                                     ? Ipopt::OT_Integer
-                                                     : Ipopt::OT_String;
+    const Ipopt::RegisteredOptionType expected =
+        s.type == IpoptOptionType::kNumber    ? Ipopt::OT_Number
+        : s.type == IpoptOptionType::kInteger ? Ipopt::OT_Integer
+                                              : Ipopt::OT_String;
     if (opt->Type() != expected) {
       problems += s.name + ": Ipopt registers another type; ";
       continue;
@@ -749,8 +746,9 @@ NlpSolution SolveNlpWithIpopt(const Nlp& nlp, const Vec& z0, const IpoptOptions&
   bool exact = nlp.HasHessian();
   if (options.hessian_approximation == "limited-memory") exact = false;
   if (options.hessian_approximation == "exact" && !nlp.HasHessian()) {
-    message += "hessian_approximation=exact requested, but the NLP has no Hessian: using "
-               "limited-memory. ";
+    message +=
+        "hessian_approximation=exact requested, but the NLP has no Hessian: using "
+        "limited-memory. ";
   }
   out.stats["ipopt_exact_hessian"] = exact ? 1.0 : 0.0;
 

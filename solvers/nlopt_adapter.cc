@@ -137,8 +137,8 @@ class NloptProblem {
     return f;
   }
 
-  static void Equalities(unsigned m, double* result, unsigned n, const double* x, double* grad,
-                         void* data) {
+  static void Equalities(
+      unsigned m, double* result, unsigned n, const double* x, double* grad, void* data) {
     auto* self = static_cast<NloptProblem*>(data);
     const Eigen::Map<const Vec> z(x, n);
     self->PrepareValues(z);
@@ -158,8 +158,8 @@ class NloptProblem {
     }
   }
 
-  static void Inequalities(unsigned m, double* result, unsigned n, const double* x, double* grad,
-                           void* data) {
+  static void Inequalities(
+      unsigned m, double* result, unsigned n, const double* x, double* grad, void* data) {
     auto* self = static_cast<NloptProblem*>(data);
     const Eigen::Map<const Vec> z(x, n);
     self->PrepareValues(z);
@@ -251,9 +251,9 @@ class NloptProblem {
 // Why `options.algorithm` cannot run on this NLP, or "" when it can.
 std::string Refusal(const NloptOptions& o, int n, int num_eq, int num_ineq) {
   const AlgorithmInfo& a = *FindAlgorithm(o.algorithm);
-  const std::string sizes = " (n = " + std::to_string(n) + ", equalities = " +
-                            std::to_string(num_eq) + ", inequalities = " +
-                            std::to_string(num_ineq) + ")";
+  const std::string sizes = " (n = " + std::to_string(n) +
+                            ", equalities = " + std::to_string(num_eq) +
+                            ", inequalities = " + std::to_string(num_ineq) + ")";
   if (num_eq > 0 && !a.equalities) {
     return o.algorithm + " takes no equality constraints; use LD_SLSQP, AUGLAG or AUGLAG_EQ" +
            sizes;
@@ -271,9 +271,12 @@ std::string Refusal(const NloptOptions& o, int n, int num_eq, int num_ineq) {
   const bool local_sees_ineq = o.algorithm == "AUGLAG_EQ" && num_ineq > 0;
   std::string dense_alg = o.algorithm;
   if (IsAuglag(o.algorithm)) dense_alg = o.local_algorithm;
-  if (o.algorithm == "AUGLAG_EQ" && num_ineq > 0 && !FindAlgorithm(o.local_algorithm)->inequalities) {
-    return "AUGLAG_EQ passes the inequality constraints to its local algorithm " + o.local_algorithm +
-           ", which takes none; use local_algorithm=LD_MMA, LD_CCSAQ or LD_SLSQP, or AUGLAG" + sizes;
+  if (o.algorithm == "AUGLAG_EQ" && num_ineq > 0 &&
+      !FindAlgorithm(o.local_algorithm)->inequalities) {
+    return "AUGLAG_EQ passes the inequality constraints to its local algorithm " +
+           o.local_algorithm +
+           ", which takes none; use local_algorithm=LD_MMA, LD_CCSAQ or LD_SLSQP, or AUGLAG" +
+           sizes;
   }
   if (dense_alg == "LD_SLSQP" && n > o.slsqp_max_variables) {
     return "LD_SLSQP works with dense n x n matrices (O(n^2) memory, O(n^3) per iteration): n = " +
@@ -282,8 +285,8 @@ std::string Refusal(const NloptOptions& o, int n, int num_eq, int num_ineq) {
   const int mma_ineq = IsAuglag(o.algorithm) ? (local_sees_ineq ? num_ineq : 0) : num_ineq;
   if ((dense_alg == "LD_MMA" || dense_alg == "LD_CCSAQ") && mma_ineq > o.mma_max_inequalities) {
     return dense_alg + "'s dual subproblem is dense in the inequality constraints: " +
-           std::to_string(mma_ineq) + " > mma_max_inequalities = " +
-           std::to_string(o.mma_max_inequalities);
+           std::to_string(mma_ineq) +
+           " > mma_max_inequalities = " + std::to_string(o.mma_max_inequalities);
   }
   return "";
 }
@@ -455,11 +458,10 @@ NlpSolution SolveNlpWithNlopt(const Nlp& nlp, const Vec& z0, const NloptOptions&
   // Start inside the bounds (NLopt requires it).
   std::vector<double> x(n);
   for (int i = 0; i < n; ++i) {
-    x[i] = std::clamp(z0[i], problem.z_lower()[i], std::max(problem.z_lower()[i], problem.z_upper()[i]));
+    x[i] = std::clamp(
+        z0[i], problem.z_lower()[i], std::max(problem.z_lower()[i], problem.z_upper()[i]));
   }
-  auto bound = [](double v) {
-    return v >= kNoBound ? HUGE_VAL : v <= -kNoBound ? -HUGE_VAL : v;
-  };
+  auto bound = [](double v) { return v >= kNoBound ? HUGE_VAL : v <= -kNoBound ? -HUGE_VAL : v; };
   std::vector<double> lower(n), upper(n);
   for (int i = 0; i < n; ++i) {
     lower[i] = bound(problem.z_lower()[i]);
@@ -480,9 +482,10 @@ NlpSolution SolveNlpWithNlopt(const Nlp& nlp, const Vec& z0, const NloptOptions&
                                    std::vector<double>(problem.num_eq(), options.constraint_tol));
     }
     if (problem.num_ineq() > 0) {
-      opt.add_inequality_mconstraint(&NloptProblem::Inequalities,
-                                     &problem,
-                                     std::vector<double>(problem.num_ineq(), options.constraint_tol));
+      opt.add_inequality_mconstraint(
+          &NloptProblem::Inequalities,
+          &problem,
+          std::vector<double>(problem.num_ineq(), options.constraint_tol));
     }
     opt.set_ftol_rel(options.ftol_rel);
     opt.set_xtol_rel(options.xtol_rel);

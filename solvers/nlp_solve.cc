@@ -25,7 +25,8 @@ std::unique_ptr<TranscribedNlp> TranscribeRequest(const Ocp& ocp,
                                                   const NlpScaling& scaling) {
   if (request.transcription.empty()) {
     std::string names;
-    for (const TranscriptionInfo& t : Transcriptions()) names += (names.empty() ? "" : ", ") + t.name;
+    for (const TranscriptionInfo& t : Transcriptions())
+      names += (names.empty() ? "" : ", ") + t.name;
     throw std::invalid_argument("an NLP solver needs a transcription (valid: " + names + ")");
   }
   TranscriptionOptions options;

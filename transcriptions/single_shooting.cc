@@ -41,8 +41,7 @@ SingleShootingNlp::SingleShootingNlp(const Ocp& ocp,
     throw std::invalid_argument("single-shooting: " + error);
   }
   objective_scale_ = options.scaling.objective;
-  control_scale_ = options.scaling.control.size() == nu_ ? options.scaling.control
-                                                          : Vec::Ones(nu_);
+  control_scale_ = options.scaling.control.size() == nu_ ? options.scaling.control : Vec::Ones(nu_);
   column_scale_ = control_scale_.replicate(N_, 1);
   const ControlSet& U = ocp.control_set();
   if (U.dimension() != 0 && U.dimension() != nu_) {
@@ -169,7 +168,8 @@ bool SingleShootingNlp::Constraints(ConstVecRef z, VecRef g) const {
   for (int k = 0; k < N_; ++k) {
     for (size_t b = 0; b < balls_.size(); ++b) {
       const int row = ball_row() + k * static_cast<int>(balls_.size()) + static_cast<int>(b);
-      g[row] = (U.col(k).segment(balls_[b].offset, balls_[b].size) - balls_[b].center).squaredNorm();
+      g[row] =
+          (U.col(k).segment(balls_[b].offset, balls_[b].size) - balls_[b].center).squaredNorm();
     }
   }
   const int nc = ocp_.num_path();
@@ -210,8 +210,9 @@ bool SingleShootingNlp::JacobianValues(ConstVecRef z, VecRef values) const {
   // Ball rows: d/dv |v - c|^2 = 2 (v - c).
   for (int k = 0; k < N_; ++k) {
     for (const ControlSet::Block& b : balls_) {
-      values.segment(pos, b.size) = 2.0 * (U.col(k).segment(b.offset, b.size) - b.center)
-                                              .cwiseProduct(control_scale_.segment(b.offset, b.size));
+      values.segment(pos, b.size) =
+          2.0 * (U.col(k).segment(b.offset, b.size) - b.center)
+                    .cwiseProduct(control_scale_.segment(b.offset, b.size));
       pos += b.size;
     }
   }
@@ -240,8 +241,8 @@ bool SingleShootingNlp::JacobianValues(ConstVecRef z, VecRef values) const {
   return values.allFinite();
 }
 
-void SingleShootingNlp::StepJacobian(int k, ConstVecRef x, ConstVecRef u, Mat* A, Mat* B,
-                                     Vec* ell_x, Vec* ell_u) const {
+void SingleShootingNlp::StepJacobian(
+    int k, ConstVecRef x, ConstVecRef u, Mat* A, Mat* B, Vec* ell_x, Vec* ell_u) const {
   const double t = docp_.grid().t(k), h = docp_.grid().h(k);
   Vec f(nx_), Lx(nx_), Lu(nu_);
   Mat fx(nx_, nx_), fu(nx_, nu_);
@@ -316,7 +317,8 @@ Mat SingleShootingNlp::Costates(ConstVecRef z, ConstVecRef lambda_scaled) const 
   Mat cx(nc, nx_), cu(nc, nu_);
   auto add_path = [&](int k) {
     if (nc == 0) return;
-    ocp_.PathConstraintsJacobian(docp_.grid().t(k), X.col(k), U.col(std::min(k, N_ - 1)), c, cx, cu);
+    ocp_.PathConstraintsJacobian(
+        docp_.grid().t(k), X.col(k), U.col(std::min(k, N_ - 1)), c, cx, cu);
     p += cx.transpose() * lambda.segment(path_row() + k * nc, nc);
   };
   add_path(N_);
@@ -332,8 +334,8 @@ Mat SingleShootingNlp::Costates(ConstVecRef z, ConstVecRef lambda_scaled) const 
   return P;
 }
 
-std::unique_ptr<TranscribedNlp> SingleShooting::Transcribe(const Ocp& ocp,
-                                                           const TranscriptionOptions& options) const {
+std::unique_ptr<TranscribedNlp> SingleShooting::Transcribe(
+    const Ocp& ocp, const TranscriptionOptions& options) const {
   return std::make_unique<SingleShootingNlp>(ocp, options, integrator_);
 }
 

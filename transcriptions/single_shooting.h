@@ -45,7 +45,8 @@ namespace ocpb {
 /// physical values.
 ///
 /// Costates(z, lambda): the discrete adjoint of the Lagrangian J + nu^T psi + sum mu_k^T c_k,
-///   p_N = Phi_x + psi_x^T nu + c_x(t_N)^T mu_N,  p_k = A_k^T p_{k+1} + d ell_k/dx + c_x(t_k)^T mu_k,
+///   p_N = Phi_x + psi_x^T nu + c_x(t_N)^T mu_N,  p_k = A_k^T p_{k+1} + d ell_k/dx + c_x(t_k)^T
+///   mu_k,
 /// an estimate of p(t_k) in the convention H = p^T f + L. States() is empty, as the interface asks
 /// of single shooting: the states are a simulation, not unknowns.
 class SingleShootingNlp final : public TranscribedNlp {
@@ -86,8 +87,8 @@ class SingleShootingNlp final : public TranscribedNlp {
   /// (nx x nu), ell_x = d ell_k/dx, ell_u = d ell_k/du, for the NLP's integrator (Euler:
   /// A = I + h f_x, B = h f_u, ell_x = h L_x, ell_u = h L_u; RK4: the chain rule through the four
   /// stages of DiscreteOcp's step).
-  void StepJacobian(int k, ConstVecRef x, ConstVecRef u, Mat* A, Mat* B, Vec* ell_x,
-                    Vec* ell_u) const;
+  void StepJacobian(
+      int k, ConstVecRef x, ConstVecRef u, Mat* A, Mat* B, Vec* ell_x, Vec* ell_u) const;
 
  private:
   struct Cache {

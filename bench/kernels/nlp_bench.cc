@@ -17,8 +17,8 @@
 namespace ocpb {
 namespace {
 
-const char* const kTranscriptions[] = {"euler", "trapezoid", "hermite-simpson", "lgr",
-                                       "single-shooting"};
+const char* const kTranscriptions[] = {
+    "euler", "trapezoid", "hermite-simpson", "lgr", "single-shooting"};
 
 // The paper's problem with the registry's defaults (the predicted channel), seed 1. Returns null
 // and marks the benchmark skipped when it cannot be built.
@@ -43,7 +43,9 @@ SolveRequest Request(const Ocp& ocp, const std::string& transcription, int N, Te
 // Counters every NLP benchmark reports, from the last run: the solver's status, iterations, its
 // objective, and the common evaluator's J, Jbar and terminal violation on the request's grid
 // (Euler: the discrete problem of the paper).
-void Report(benchmark::State& state, const Ocp& ocp, const SolveRequest& request,
+void Report(benchmark::State& state,
+            const Ocp& ocp,
+            const SolveRequest& request,
             const SolveResult& r) {
   const Evaluation ev = Evaluate(ocp, r.controls, request.grid, Integrator::kEuler);
   state.counters["success"] = IsSuccess(r.status) ? 1 : 0;
@@ -62,8 +64,8 @@ void Report(benchmark::State& state, const Ocp& ocp, const SolveRequest& request
 void BM_IpoptDoubleIntegrator(benchmark::State& state) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   const std::string transcription = kTranscriptions[state.range(0)];
-  const SolveRequest request = Request(*ocp, transcription, static_cast<int>(state.range(1)),
-                                       TerminalMode::kHard);
+  const SolveRequest request =
+      Request(*ocp, transcription, static_cast<int>(state.range(1)), TerminalMode::kHard);
   const auto solver = FindSolver("ipopt").make();
   SolveResult r;
   for (auto _ : state) r = solver->Solve(*ocp, request);
@@ -121,7 +123,7 @@ BENCHMARK(BM_IpoptHermiteSimpsonScaling)
     ->Iterations(1)
     ->Complexity();
 
-// ---- Ipopt against the Hamiltonian descent: the paper's problem, Euler, penalty, N = 400 ---------
+// ---- Ipopt against the Hamiltonian descent: the paper's problem, Euler, penalty, N = 400 ----
 // Same discrete problem (DiscreteOcp with Euler), same start (u = 0 projected onto U). Reports
 // both final J and the CPU time each history needs to come within 1% of the better final J.
 
@@ -177,14 +179,14 @@ void BM_PaperHardTerminal(benchmark::State& state) {
   r_penalty = solver->Solve(*ocp, penalty);
   // The scheme's own terminal residual (NLP constraint violation) and the evaluator's on a fine
   // RK4 grid (collocation controls re-simulated).
-  const Evaluation fine_hard = Evaluate(*ocp, r_hard.controls, hard.grid.Refined(10), Integrator::kRk4);
+  const Evaluation fine_hard =
+      Evaluate(*ocp, r_hard.controls, hard.grid.Refined(10), Integrator::kRk4);
   const Evaluation fine_penalty =
       Evaluate(*ocp, r_penalty.controls, hard.grid.Refined(10), Integrator::kRk4);
   state.counters["success"] = IsSuccess(r_hard.status) ? 1 : 0;
   state.counters["iterations"] = r_hard.iterations;
-  state.counters["nlp_violation"] = r_hard.solver_stats.count("nlp_violation")
-                                        ? r_hard.solver_stats.at("nlp_violation")
-                                        : NAN;
+  state.counters["nlp_violation"] =
+      r_hard.solver_stats.count("nlp_violation") ? r_hard.solver_stats.at("nlp_violation") : NAN;
   state.counters["Jbar_hard"] = r_hard.objective;
   state.counters["Jbar_penalty_rk4"] = fine_penalty.Jbar;
   state.counters["Jbar_hard_rk4"] = fine_hard.Jbar;

@@ -151,19 +151,23 @@ def record_figures(rec, outdir, tag=""):
     ax.set_title("position against time", fontsize=10)
     save(fig, "fig5-position-time")
 
-    # Fig. 6: acceleration arrows along the path.
-    fig, ax = plt.subplots(figsize=(7, 6))
-    ax.plot(px, py, "r-", lw=1.5, label="path")
+    # Fig. 6: acceleration arrows along the path (the longest arrow is drawn 3 m long).
+    fig, ax = plt.subplots(figsize=(7, 7))
+    ax.plot(px, py, "-", color="0.6", lw=1.0, label="path", zorder=1)
     step = max(1, n // 60)
     ks = list(range(0, n, step))
+    umax_seen = max(math.hypot(ax_[k], ay_[k]) for k in range(n)) or 1.0
     ax.quiver([px[k] for k in ks], [py[k] for k in ks], [ax_[k] for k in ks], [ay_[k] for k in ks],
-              angles="xy", scale_units="xy", scale=0.25, color="b", width=0.003,
-              label="acceleration u (1 m/s^2 = 4 m)")
+              angles="xy", scale_units="xy", scale=umax_seen / 3.0, color="b", width=0.004,
+              zorder=3, label="acceleration u (longest: %.3g m/s^2)" % umax_seen)
     _markers(ax, S, D, base)
+    pad = 5.0
+    ax.set_xlim(min(min(px), S[0], D[0], base[0]) - pad, max(max(px), S[0], D[0], base[0]) + pad)
+    ax.set_ylim(min(min(py), S[1], D[1], base[1]) - pad, max(max(py), S[1], D[1], base[1]) + pad)
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0))
     ax.set_title("acceleration along the path", fontsize=10)
     save(fig, "fig6-acceleration")
 

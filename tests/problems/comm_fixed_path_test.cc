@@ -166,7 +166,8 @@ TEST(CommFixedPath, MinimizerBeatsBruteForce) {
 
 // u = R = 0: J = C1 length^2 + C3 c^2 + gamma k4 tf.
 TEST(CommFixedPath, InitialCost) {
-  const CommFixedPath ocp(CommFixedPath::Options(), DefaultPath(), std::make_shared<PathLossChannel>());
+  const CommFixedPath ocp(
+      CommFixedPath::Options(), DefaultPath(), std::make_shared<PathLossChannel>());
   const TimeGrid grid = TimeGrid::Uniform(0.0, 40.0, 400);
   const Evaluation ev =
       Evaluate(ocp, ControlTrajectory::Constant(grid, Vec::Zero(2)), grid, Integrator::kEuler);
@@ -186,7 +187,8 @@ TEST(CommFixedPath, RegistryEntryAndValidation) {
               (kW - kS).norm() + (kD - kW).norm(),
               1e-12);
   EXPECT_THROW(MakeProblem("comm-fixed-path", {"channel=0", "W=20,40"}, 1), std::invalid_argument);
-  EXPECT_THROW(MakeProblem("comm-fixed-path", {"channel=0", "fillet=20"}, 1), std::invalid_argument);
+  EXPECT_THROW(MakeProblem("comm-fixed-path", {"channel=0", "fillet=20"}, 1),
+               std::invalid_argument);
   EXPECT_THROW(MakeProblem("comm-fixed-path", {"channel=0", "W=70,9"}, 1), std::invalid_argument);
 }
 

@@ -10,8 +10,9 @@
 //   B. C = (500, 500, 500), 500 iterations.
 // Every result is judged by the common evaluator (Euler on the solver's grid, as everywhere in
 // OCPBench). Writes DIR/seed<k>_<run>.json (the fields of `ocpbench solve --json` that the
-// figures use; the 56-iteration record also carries the s map) and DIR/table.md (mean, standard deviation, min and max over the
-// seeds next to the paper's values). Not a test: built on request (EXCLUDE_FROM_ALL).
+// figures use; the 56-iteration record also carries the s map) and DIR/table.md (mean, standard
+// deviation, min and max over the seeds next to the paper's values). Not a test: built on
+// request (EXCLUDE_FROM_ALL).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -80,8 +81,8 @@ json SMap(const CommPath2d& ocp) {
     json row = json::array();
     for (int i = 0; i < n; ++i) {
       double s = 0.0;
-      ocp.channel().Evaluate(Eigen::Vector2d(50.0 * i / (n - 1), 50.0 * j / (n - 1)), &s, nullptr,
-                             nullptr);
+      ocp.channel().Evaluate(
+          Eigen::Vector2d(50.0 * i / (n - 1), 50.0 * j / (n - 1)), &s, nullptr, nullptr);
       row.push_back(Short(std::log10(s)));
     }
     rows.push_back(row);
@@ -89,8 +90,11 @@ json SMap(const CommPath2d& ocp) {
   return json{{"x", xs}, {"y", ys}, {"log10_s", rows}, {"rows", "y"}};
 }
 
-RunSummary Run(const std::string& name, const std::vector<std::string>& set, std::uint64_t seed,
-               const std::map<std::string, std::string>& options, const std::string& out_dir,
+RunSummary Run(const std::string& name,
+               const std::vector<std::string>& set,
+               std::uint64_t seed,
+               const std::map<std::string, std::string>& options,
+               const std::string& out_dir,
                bool with_map) {
   Parameters params;
   const std::unique_ptr<Ocp> ocp = MakeProblem("comm-path2d", set, seed, &params);
@@ -162,8 +166,16 @@ struct Stat {
     for (double x : v) var += (x - mean) * (x - mean);
     const double sd = v.size() > 1 ? std::sqrt(var / (v.size() - 1)) : 0.0;
     char buf[160];
-    std::snprintf(buf, sizeof buf, "%.*f ± %.*f [%.*f, %.*f]", precision, mean, precision, sd,
-                  precision, *std::min_element(v.begin(), v.end()), precision,
+    std::snprintf(buf,
+                  sizeof buf,
+                  "%.*f ± %.*f [%.*f, %.*f]",
+                  precision,
+                  mean,
+                  precision,
+                  sd,
+                  precision,
+                  *std::min_element(v.begin(), v.end()),
+                  precision,
                   *std::max_element(v.begin(), v.end()));
     return buf;
   }
@@ -217,9 +229,9 @@ int Main(int argc, char** argv) {
     b["J"].Add(rb.J);
     b["Jbar"].Add(rb.Jbar);
     b["cpu"].Add(rb.cpu);
-    std::cerr << "seed " << seed << ": A " << ra.status << " it " << ra.iterations << " J "
-              << ra.J << " Jbar " << ra.Jbar << " | A56 J " << r56.J << " Jbar " << r56.Jbar
-              << " | B J " << rb.J << " Jbar " << rb.Jbar << "\n";
+    std::cerr << "seed " << seed << ": A " << ra.status << " it " << ra.iterations << " J " << ra.J
+              << " Jbar " << ra.Jbar << " | A56 J " << r56.J << " Jbar " << r56.Jbar << " | B J "
+              << rb.J << " Jbar " << rb.Jbar << "\n";
   }
   std::ostringstream t;
   const int n = last - first + 1;

@@ -37,7 +37,8 @@ Mat DenseJacobian(const Nlp& nlp, const Vec& z) {
   Vec v(nlp.jacobian_rows().size());
   EXPECT_TRUE(nlp.JacobianValues(z, v));
   Mat J = Mat::Zero(nlp.num_constraints(), nlp.num_variables());
-  for (Eigen::Index k = 0; k < v.size(); ++k) J(nlp.jacobian_rows()[k], nlp.jacobian_cols()[k]) += v[k];
+  for (Eigen::Index k = 0; k < v.size(); ++k)
+    J(nlp.jacobian_rows()[k], nlp.jacobian_cols()[k]) += v[k];
   return J;
 }
 
@@ -68,7 +69,7 @@ void ExpectDerivativesMatchFiniteDifferences(const Nlp& nlp, const Vec& z, const
   const Mat fd_hess =
       CentralJacobian([&](const Vec& v) { return LagrangianGradient(nlp, v, sigma, lambda); }, z);
   EXPECT_LT((H - fd_hess).cwiseAbs().maxCoeff(), 1e-6 * (1 + fd_hess.norm())) << H << "\n\n"
-                                                                             << fd_hess;
+                                                                              << fd_hess;
 }
 
 TEST(TestNlps, Hs071DerivativesMatchFiniteDifferences) {
@@ -184,15 +185,15 @@ TEST(IpoptStatus, EveryReturnStatusHasItsIpoptNameAndAGroup) {
   }
   EXPECT_EQ(names.size(), AllIpoptStatusCodes().size());
   EXPECT_EQ(AllIpoptStatusCodes().size(), 19u);
-  EXPECT_EQ(MapIpoptStatus(0), SolveStatus::kConverged);         // Solve_Succeeded
-  EXPECT_EQ(MapIpoptStatus(1), SolveStatus::kAcceptable);        // Solved_To_Acceptable_Level
-  EXPECT_EQ(MapIpoptStatus(2), SolveStatus::kInfeasible);        // Infeasible_Problem_Detected
-  EXPECT_EQ(MapIpoptStatus(3), SolveStatus::kStepTooSmall);      // Search_Direction_...
-  EXPECT_EQ(MapIpoptStatus(-1), SolveStatus::kMaxIterations);    // Maximum_Iterations_Exceeded
+  EXPECT_EQ(MapIpoptStatus(0), SolveStatus::kConverged);          // Solve_Succeeded
+  EXPECT_EQ(MapIpoptStatus(1), SolveStatus::kAcceptable);         // Solved_To_Acceptable_Level
+  EXPECT_EQ(MapIpoptStatus(2), SolveStatus::kInfeasible);         // Infeasible_Problem_Detected
+  EXPECT_EQ(MapIpoptStatus(3), SolveStatus::kStepTooSmall);       // Search_Direction_...
+  EXPECT_EQ(MapIpoptStatus(-1), SolveStatus::kMaxIterations);     // Maximum_Iterations_Exceeded
   EXPECT_EQ(MapIpoptStatus(-2), SolveStatus::kNumericalFailure);  // Restoration_Failed
-  EXPECT_EQ(MapIpoptStatus(-4), SolveStatus::kMaxTime);          // Maximum_CpuTime_Exceeded
-  EXPECT_EQ(MapIpoptStatus(-12), SolveStatus::kInvalidInput);    // Invalid_Option
-  EXPECT_EQ(MapIpoptStatus(-199), SolveStatus::kError);          // Internal_Error
+  EXPECT_EQ(MapIpoptStatus(-4), SolveStatus::kMaxTime);           // Maximum_CpuTime_Exceeded
+  EXPECT_EQ(MapIpoptStatus(-12), SolveStatus::kInvalidInput);     // Invalid_Option
+  EXPECT_EQ(MapIpoptStatus(-199), SolveStatus::kError);           // Internal_Error
   EXPECT_EQ(IpoptStatusName(-2), "Restoration_Failed");
   EXPECT_EQ(IpoptStatusName(42), "Unknown_Status(42)");
   EXPECT_EQ(MapIpoptStatus(42), SolveStatus::kError);
@@ -350,7 +351,8 @@ TEST(IpoptSolver, CostatesFromMultipliersMatchTheAnalyticCostate) {
 
 TEST(IpoptSolver, ControlsAreWhatTheEvaluatorJudges) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
-  const SolveRequest request = DoubleIntegratorRequest("single-shooting", 30, TerminalMode::kPenalty);
+  const SolveRequest request =
+      DoubleIntegratorRequest("single-shooting", 30, TerminalMode::kPenalty);
   const SolveResult r = IpoptSolver().Solve(*ocp, request);
   ASSERT_EQ(r.status, SolveStatus::kConverged) << r.message;
   const Evaluation ev = Evaluate(*ocp, r.controls, request.grid, Integrator::kEuler);
@@ -383,6 +385,23 @@ TEST(IpoptSolver, IterationLimitThroughTheRequestOptions) {
   EXPECT_EQ(r.controls.values().cols(), 30);
 }
 
+TEST(IpoptSolver, StartsFromTheRequestsInitialGuess) {
+  // With max_iter = 0 Ipopt returns its starting point: the guess (no bounds to push it from).
+  const auto ocp = MakeProblem("double-integrator", {}, 0);
+  for (const std::string transcription : {"single-shooting", "euler"}) {
+    if (!Registered(transcription)) continue;
+    SolveRequest request = DoubleIntegratorRequest(transcription, 10, TerminalMode::kHard);
+    Mat guess(1, 10);
+    for (int k = 0; k < 10; ++k) guess(0, k) = 0.3 * k - 1.0;
+    request.initial_guess = ControlTrajectory::PiecewiseConstant(request.grid, guess);
+    request.options = {{"max_iter", "0"}};
+    const SolveResult r = IpoptSolver().Solve(*ocp, request);
+    EXPECT_EQ(r.status, SolveStatus::kMaxIterations) << transcription;
+    EXPECT_LT((r.controls.SampleIntervals(request.grid) - guess).cwiseAbs().maxCoeff(), 1e-12)
+        << transcription;
+  }
+}
+
 TEST(IpoptSolver, RejectsInvalidRequests) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   const IpoptSolver solver;
@@ -398,6 +417,32 @@ TEST(IpoptSolver, RejectsInvalidRequests) {
   request.options = {};
   request.grid = TimeGrid::Uniform(0.0, 2.0, 10);  // the horizon is [0, 1]
   EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
+}
+
+TEST(IpoptSolver, PaperProblemHardTerminalFormSmallGrid) {
+  // The paper's problem (deterministic path-loss channel), Euler, N = 40, psi(x(tf)) = 0 enforced:
+  // the terminal residual of the returned controls (re-simulated by the evaluator) is <= 1e-6,
+  // and the unpenalized cost is at least the penalty solution's (which may miss the target).
+  const auto ocp = MakeProblem("comm-path2d", {"channel=0"}, 1);
+  SolveRequest request;
+  request.grid = TimeGrid::Uniform(0.0, ocp->tf(), 40);
+  request.transcription = "euler";
+  request.terminal = TerminalMode::kHard;
+  const SolveResult hard = IpoptSolver().Solve(*ocp, request);
+  request.terminal = TerminalMode::kPenalty;
+  const SolveResult penalty = IpoptSolver().Solve(*ocp, request);
+  ASSERT_EQ(hard.status, SolveStatus::kConverged) << hard.message;
+  ASSERT_EQ(penalty.status, SolveStatus::kConverged) << penalty.message;
+  const Evaluation ev_hard = Evaluate(*ocp, hard.controls, request.grid, Integrator::kEuler);
+  const Evaluation ev_penalty = Evaluate(*ocp, penalty.controls, request.grid, Integrator::kEuler);
+  EXPECT_LT(ev_hard.terminal_violation, 1e-6);
+  EXPECT_GT(ev_penalty.terminal_violation, 1e-4);  // the penalty (C = 10, 50, 10) leaves a gap
+  EXPECT_NEAR(ev_hard.Jbar, hard.objective, 1e-9 * hard.objective);
+  EXPECT_GE(ev_hard.Jbar, ev_penalty.Jbar - 1e-9 * ev_penalty.Jbar);
+  EXPECT_LE(ev_penalty.J, ev_hard.J + 1e-9 * ev_hard.J);  // the penalty optimum is optimal for J
+  // Costates from the defect multipliers exist on the whole grid.
+  EXPECT_EQ(hard.costates.cols(), 41);
+  EXPECT_TRUE(hard.costates.allFinite());
 }
 
 TEST(IpoptSolver, IsRegisteredAsAnNlpSolver) {

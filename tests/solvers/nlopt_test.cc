@@ -46,7 +46,8 @@ class NoisyQuadratic final : public Nlp {
   bool JacobianValues(ConstVecRef, VecRef) const override { return true; }
 };
 
-NlpSolution RunNlopt(const Nlp& nlp, const std::string& algorithm,
+NlpSolution RunNlopt(const Nlp& nlp,
+                     const std::string& algorithm,
                      const std::string& local = "LD_LBFGS") {
   NloptOptions options;
   options.algorithm = algorithm;
@@ -61,8 +62,11 @@ TEST(NloptAdapter, Hs071EqualityAndInequality) {
   const NlpSolution ipopt = SolveNlpWithIpopt(nlp, nlp.StartingPoint(), IpoptOptions());
   ASSERT_EQ(ipopt.status, SolveStatus::kConverged);
   // Algorithms that take equality constraints reach Ipopt's optimum (measured: |df| < 2e-7).
-  for (const auto& [alg, local] : std::vector<std::pair<std::string, std::string>>{
-           {"LD_SLSQP", ""}, {"AUGLAG", "LD_LBFGS"}, {"AUGLAG", "LD_SLSQP"}, {"AUGLAG_EQ", "LD_SLSQP"}}) {
+  for (const auto& [alg, local] :
+       std::vector<std::pair<std::string, std::string>>{{"LD_SLSQP", ""},
+                                                        {"AUGLAG", "LD_LBFGS"},
+                                                        {"AUGLAG", "LD_SLSQP"},
+                                                        {"AUGLAG_EQ", "LD_SLSQP"}}) {
     const NlpSolution s = RunNlopt(nlp, alg, local.empty() ? "LD_LBFGS" : local);
     EXPECT_EQ(s.status, SolveStatus::kConverged) << alg << "(" << local << "): " << s.message;
     EXPECT_NEAR(s.objective, ipopt.objective, 1e-6) << alg << "(" << local << ")";
@@ -89,12 +93,12 @@ TEST(NloptAdapter, RosenbrockDiscInequalityOnly) {
   const NlpSolution ipopt = SolveNlpWithIpopt(nlp, nlp.StartingPoint(), IpoptOptions());
   ASSERT_EQ(ipopt.status, SolveStatus::kConverged);
   EXPECT_NEAR(ipopt.objective, 0.0456748, 1e-6);
-  for (const auto& [alg, local] : std::vector<std::pair<std::string, std::string>>{
-           {"LD_SLSQP", "LD_LBFGS"},
-           {"LD_MMA", "LD_LBFGS"},
-           {"LD_CCSAQ", "LD_LBFGS"},
-           {"AUGLAG", "LD_LBFGS"},
-           {"AUGLAG_EQ", "LD_MMA"}}) {
+  for (const auto& [alg, local] :
+       std::vector<std::pair<std::string, std::string>>{{"LD_SLSQP", "LD_LBFGS"},
+                                                        {"LD_MMA", "LD_LBFGS"},
+                                                        {"LD_CCSAQ", "LD_LBFGS"},
+                                                        {"AUGLAG", "LD_LBFGS"},
+                                                        {"AUGLAG_EQ", "LD_MMA"}}) {
     const NlpSolution s = RunNlopt(nlp, alg, local);
     EXPECT_EQ(s.status, SolveStatus::kConverged) << alg << ": " << s.message;
     // Measured: every one within 1e-9 of Ipopt's f.
