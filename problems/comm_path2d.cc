@@ -7,7 +7,6 @@
 
 #include "problems/channel/paper_channel.h"
 
-
 namespace ocpb {
 namespace {
 
@@ -84,11 +83,8 @@ double CommPowerModel::Rate(double p3, double s, double rmax) const {
 
 // ---- PathLossChannel ----------------------------------------------------------------------
 
-PathLossChannel::PathLossChannel(const Eigen::Vector2d& base,
-                                 double k_pl,
-                                 double n_pl,
-                                 double noise_dbm,
-                                 double floor)
+PathLossChannel::PathLossChannel(
+    const Eigen::Vector2d& base, double k_pl, double n_pl, double noise_dbm, double floor)
     : base_(base), k_pl_(k_pl), n_pl_(n_pl), noise_dbm_(noise_dbm), floor_(floor) {
   if (!base.allFinite() || !std::isfinite(k_pl) || !std::isfinite(n_pl) ||
       !std::isfinite(noise_dbm)) {
@@ -137,6 +133,11 @@ bool CommPath2d::Options::IsValid(std::string* error) const {
   }
   if (!(bits >= 0.0) || !std::isfinite(bits)) return fail("c must be finite and >= 0");
   if (!(tf > 0.0) || !std::isfinite(tf)) return fail("tf must be finite and > 0");
+  if (!(t0 >= 0.0) || !(t0 < tf)) return fail("t0 must satisfy 0 <= t0 < tf");
+  if (!v0.allFinite()) return fail("v0 must be finite");
+  if (!(bits_sent >= 0.0) || !std::isfinite(bits_sent)) {
+    return fail("x3_0 (bits already sent) must be finite and >= 0");
+  }
   if (!(umax > 0.0) || !std::isfinite(umax)) return fail("umax must be finite and > 0");
   if (!(rmax > 0.0) || !std::isfinite(rmax)) return fail("Rmax must be finite and > 0");
   for (int i = 0; i < 3; ++i) {
@@ -153,9 +154,11 @@ CommPath2d::CommPath2d(const Options& options, std::shared_ptr<const ChannelQual
   if (!options_.IsValid(&error)) throw std::invalid_argument("comm-path2d: " + error);
   if (!channel_) throw std::invalid_argument("comm-path2d: channel must not be null");
   SetDimensions(5, 3, 5, 0);
-  SetHorizon(0.0, options_.tf);
+  SetHorizon(options_.t0, options_.tf);
   Vec x0 = Vec::Zero(5);
   x0.head<2>() = options_.start;
+  x0.segment<2>(2) = options_.v0;
+  x0[4] = options_.bits_sent;
   SetInitialState(x0);
   Vec w(5);
   w << options_.penalty[0], options_.penalty[0], options_.penalty[1], options_.penalty[1],
@@ -183,12 +186,8 @@ double CommPath2d::RunningCost(double, ConstVecRef x, ConstVecRef u) const {
   return options_.power.Transmission(u[2], s, inv_k_) + options_.power.Motion(acc2, speed2);
 }
 
-void CommPath2d::DynamicsJacobian(double t,
-                                  ConstVecRef x,
-                                  ConstVecRef u,
-                                  VecRef f,
-                                  MatRef fx,
-                                  MatRef fu) const {
+void CommPath2d::DynamicsJacobian(
+    double t, ConstVecRef x, ConstVecRef u, VecRef f, MatRef fx, MatRef fu) const {
   Dynamics(t, x, u, f);
   for (int j = 0; j < 5; ++j) {
     for (int i = 0; i < 5; ++i) fx(i, j) = (i == 0 && j == 2) || (i == 1 && j == 3) ? 1.0 : 0.0;
@@ -198,12 +197,8 @@ void CommPath2d::DynamicsJacobian(double t,
   }
 }
 
-void CommPath2d::RunningCostGradient(double,
-                                     ConstVecRef x,
-                                     ConstVecRef u,
-                                     double* L,
-                                     VecRef Lx,
-                                     VecRef Lu) const {
+void CommPath2d::RunningCostGradient(
+    double, ConstVecRef x, ConstVecRef u, double* L, VecRef Lx, VecRef Lu) const {
   const CommPowerModel& m = options_.power;
   double s = 0.0;
   Eigen::Vector2d grad_s;
@@ -260,8 +255,12 @@ std::vector<ParameterSpec> CommParameterSpecs() {
       {"umax", {0.5}, "acceleration bound |u| <= umax (m/s^2)", 0.0, 1e3, true},
       {"Rmax", {6.0}, "spectral-efficiency bound 0 <= R <= Rmax (bits/s/Hz)", 0.0, 100.0, true},
       {"gamma", {0.01}, "weight of motion power in L", 0.0, 1e6, true},
-      {"C", {10.0, 50.0, 10.0}, "penalty weights C1 (position), C2 (velocity), C3 (bits)", 0.0,
-       1e12, true},
+      {"C",
+       {10.0, 50.0, 10.0},
+       "penalty weights C1 (position), C2 (velocity), C3 (bits)",
+       0.0,
+       1e12,
+       true},
       {"k", {17.75, 1.16, 10.46, 1175.0, 0.0, 0.0}, "motion power constants k1..k6", 0.0, 1e9},
       {"eps", {1e-3}, "smoothing of |v|: sqrt(|v|^2 + eps^2) - eps", 0.0, 1.0, true},
       {"pb", {2e-6}, "bit error rate threshold, K = -1.5 / ln(5 pb)", 0.0, 0.1, true},
@@ -311,10 +310,8 @@ std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params,
   const Eigen::Vector2d base = params.Vector("base");
   const int model = params.Integer("channel");
   if (model == 0) {
-    return std::make_shared<PathLossChannel>(base,
-                                             params.Scalar("K_PL"),
-                                             params.Scalar("n_PL"),
-                                             params.Scalar("N0_dBm"));
+    return std::make_shared<PathLossChannel>(
+        base, params.Scalar("K_PL"), params.Scalar("n_PL"), params.Scalar("N0_dBm"));
   }
   // The paper's experiment: simulate the channel of these parameters (realization `seed`),
   // measure it at `samples` random grid points, estimate the parameters, predict s.
@@ -334,6 +331,22 @@ std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params,
   return channel.Quality(model == 2 ? ChannelProvider::kMap : ChannelProvider::kExact);
 }
 
+CommPath2d::Options CommPath2dOptionsFromParameters(const Parameters& params) {
+  CommPath2d::Options o;
+  o.start = params.Vector("S");
+  o.destination = params.Vector("D");
+  o.bits = params.Scalar("c");
+  o.tf = params.Scalar("tf");
+  o.umax = params.Scalar("umax");
+  o.rmax = params.Scalar("Rmax");
+  o.penalty = params.Vector("C");
+  o.t0 = params.Scalar("t0");
+  o.v0 = params.Vector("v0");
+  o.bits_sent = params.Scalar("x3_0");
+  o.power = CommPowerFromParameters(params);
+  return o;
+}
+
 ProblemInfo CommPath2dProblemInfo() {
   ProblemInfo p;
   p.name = "comm-path2d";
@@ -341,17 +354,15 @@ ProblemInfo CommPath2dProblemInfo() {
       "robot path, acceleration and transmission rate co-optimized over a predicted channel "
       "(Ali, Cai, Mostofi, Wardi, ACC 2016, Sec. III)";
   p.parameters = CommParameterSpecs();
+  // The initial condition of the cost-to-go problem J_{t0} (online re-planning, paper Sec. IV);
+  // the defaults are the offline problem from rest.
+  p.parameters.push_back(
+      {"t0", {0.0}, "initial time (s); the problem is posed on [t0, tf]", 0.0, 1e5});
+  p.parameters.push_back({"v0", {0.0, 0.0}, "initial velocity x2(t0) (m/s)", -1e3, 1e3});
+  p.parameters.push_back({"x3_0", {0.0}, "bits/Hz already sent at t0, x3(t0)", 0.0, 1e6});
   p.make = [](const Parameters& params, std::uint64_t seed) -> std::unique_ptr<Ocp> {
-    CommPath2d::Options o;
-    o.start = params.Vector("S");
-    o.destination = params.Vector("D");
-    o.bits = params.Scalar("c");
-    o.tf = params.Scalar("tf");
-    o.umax = params.Scalar("umax");
-    o.rmax = params.Scalar("Rmax");
-    o.penalty = params.Vector("C");
-    o.power = CommPowerFromParameters(params);
-    return std::make_unique<CommPath2d>(o, MakeCommChannel(params, seed));
+    return std::make_unique<CommPath2d>(CommPath2dOptionsFromParameters(params),
+                                        MakeCommChannel(params, seed));
   };
   p.default_intervals = 400;
   p.uses_seed = true;

@@ -34,10 +34,10 @@ namespace ocpb {
 /// the paper's scenario while keeping the Hessian bounded for the NLP methods. The smoothing is
 /// part of the problem, so every method optimizes the same cost.
 struct CommPowerModel {
-  double gamma = 0.01;                                      ///< weight of motion power (> 0)
+  double gamma = 0.01;  ///< weight of motion power (> 0)
   std::array<double, 6> k = {17.75, 1.16, 10.46, 1175.0, 0.0, 0.0};  ///< k1..k6 (>= 0)
-  double eps = 1e-3;                                        ///< norm smoothing (> 0)
-  double bit_error_rate = 2e-6;                             ///< pb in (0, 0.2)
+  double eps = 1e-3;                                                 ///< norm smoothing (> 0)
+  double bit_error_rate = 2e-6;                                      ///< pb in (0, 0.2)
 
   /// K = -1.5 / ln(5 pb).
   double K() const;
@@ -112,9 +112,13 @@ class PathLossChannel final : public ChannelQuality {
   double k_pl_, n_pl_, noise_dbm_, floor_, scale_;
 };
 
-/// minimize   J = int_0^tf L(x1, x2, u, R) dt + C1 |x1(tf) - D|^2 + C2 |x2(tf)|^2 + C3 (x3(tf) - c)^2
-/// subject to x1' = x2, x2' = u, x3' = R,  x1(0) = S, x2(0) = 0, x3(0) = 0,
+/// minimize   J = int_0^tf L(x1, x2, u, R) dt
+///                + C1 |x1(tf) - D|^2 + C2 |x2(tf)|^2 + C3 (x3(tf) - c)^2
+/// subject to x1' = x2, x2' = u, x3' = R,  x1(t0) = S, x2(t0) = v0, x3(t0) = b0,
 ///            |u| <= umax,  0 <= R <= Rmax,
+/// on [t0, tf] (defaults t0 = 0, v0 = 0, b0 = 0: the paper's offline problem from rest; the online
+/// re-planning of the paper's Section IV poses the cost-to-go J_{t0} from the current position,
+/// velocity and bits already sent, with the same terminal target c),
 /// with L of CommPowerModel and s(x1) from a ChannelQuality (Ali, Cai, Mostofi, Wardi, ACC 2016,
 /// Sections II-III). State (x1 position in R^2, x2 velocity in R^2, x3 bits/Hz sent): 5; control
 /// (u acceleration in R^2, R spectral efficiency): 3. Terminal constraints psi = (x1 - D, x2,
@@ -131,14 +135,17 @@ class PathLossChannel final : public ChannelQuality {
 class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0> {
  public:
   struct Options {
-    Eigen::Vector2d start{20.0, 40.0};       ///< S, in the workspace
-    Eigen::Vector2d destination{10.0, 5.0};  ///< D, in the workspace
-    double bits = 150.0;                     ///< c = Q/B in bits/Hz (>= 0)
-    double tf = 40.0;                        ///< horizon in s (> 0)
-    double umax = 0.5;                       ///< acceleration bound in m/s^2 (> 0)
-    double rmax = 6.0;                       ///< spectral-efficiency bound in bits/s/Hz (> 0)
+    Eigen::Vector2d start{20.0, 40.0};          ///< S, in the workspace
+    Eigen::Vector2d destination{10.0, 5.0};     ///< D, in the workspace
+    double bits = 150.0;                        ///< c = Q/B in bits/Hz (>= 0)
+    double tf = 40.0;                           ///< horizon in s (> 0)
+    double umax = 0.5;                          ///< acceleration bound in m/s^2 (> 0)
+    double rmax = 6.0;                          ///< spectral-efficiency bound in bits/s/Hz (> 0)
     Eigen::Vector3d penalty{10.0, 50.0, 10.0};  ///< C1, C2, C3 (> 0)
-    double workspace = 50.0;                 ///< S and D must lie in [0, workspace]^2
+    double workspace = 50.0;                    ///< S and D must lie in [0, workspace]^2
+    double t0 = 0.0;                            ///< initial time (finite, 0 <= t0 < tf)
+    Eigen::Vector2d v0{0.0, 0.0};               ///< x2(t0), initial velocity in m/s (finite)
+    double bits_sent = 0.0;                     ///< x3(t0), bits/Hz already sent (finite, >= 0)
     CommPowerModel power;
 
     bool IsValid(std::string* error) const;
@@ -181,21 +188,17 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0> {
   // come from AD of the template.
   void Dynamics(double t, ConstVecRef x, ConstVecRef u, VecRef f) const override;
   double RunningCost(double t, ConstVecRef x, ConstVecRef u) const override;
-  void DynamicsJacobian(double t,
-                        ConstVecRef x,
-                        ConstVecRef u,
-                        VecRef f,
-                        MatRef fx,
-                        MatRef fu) const override;
-  void RunningCostGradient(double t,
-                           ConstVecRef x,
-                           ConstVecRef u,
-                           double* L,
-                           VecRef Lx,
-                           VecRef Lu) const override;
+  void DynamicsJacobian(
+      double t, ConstVecRef x, ConstVecRef u, VecRef f, MatRef fx, MatRef fu) const override;
+  void RunningCostGradient(
+      double t, ConstVecRef x, ConstVecRef u, double* L, VecRef Lx, VecRef Lu) const override;
 
   bool HasHamiltonianMinimizer() const override { return true; }
   void MinimizeHamiltonian(double t, ConstVecRef x, ConstVecRef p, VecRef u) const override;
+  /// gamma k4: every other term of L is >= 0 on U (R >= 0, s = E[1/CNR] > 0, k_i >= 0, n >= 0).
+  std::optional<double> RunningCostLowerBound() const override {
+    return options_.power.gamma * options_.power.k[3];
+  }
 
   /// s(q) as a double or a jet (value, gradient and Hessian from the channel, by the chain rule).
   template <class T>
@@ -237,6 +240,9 @@ CommPowerModel CommPowerFromParameters(const Parameters& params);
 /// The channel `params` asks for, with realization `seed` (ignored by the path-loss channel).
 /// Throws std::invalid_argument naming the field on invalid values.
 std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params, std::uint64_t seed);
+/// CommPath2d::Options from the parameters of comm-path2d (its registry specs), without the
+/// channel (not validated here: the CommPath2d constructor does).
+CommPath2d::Options CommPath2dOptionsFromParameters(const Parameters& params);
 /// The registry entry of comm-path2d.
 ProblemInfo CommPath2dProblemInfo();
 

@@ -191,7 +191,8 @@ void ExpectMinimizerBeatsBruteForce(const Ocp& ocp, double umax, double rmax, st
       best = std::min(best, ocp.Hamiltonian(0.0, x, v, p));
     }
     for (int i = 0; i < 2000; ++i) {
-      v = u + Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * std::pow(10.0, -1.0 - 5.0 * (i % 6) / 5.0);
+      v = u + Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) *
+                  std::pow(10.0, -1.0 - 5.0 * (i % 6) / 5.0);
       ocp.control_set().Project(v);
       best = std::min(best, ocp.Hamiltonian(0.0, x, v, p));
     }
@@ -237,8 +238,8 @@ TEST(CommPath2d, PaperChannelFromTheRegistry) {
   const auto other = MakeProblem("comm-path2d", {"samples=60", "estimate=0"}, 4);
   double s3, s4;
   cp.channel().Evaluate(Eigen::Vector2d(30.0, 20.0), &s3, nullptr, nullptr);
-  static_cast<const CommPath2d&>(*other).channel().Evaluate(Eigen::Vector2d(30.0, 20.0), &s4,
-                                                              nullptr, nullptr);
+  static_cast<const CommPath2d&>(*other).channel().Evaluate(
+      Eigen::Vector2d(30.0, 20.0), &s4, nullptr, nullptr);
   EXPECT_NE(s3, s4);
 }
 
@@ -269,7 +270,7 @@ TEST(CommPowerModel, AccelerationMagnitudeMatchesTheClosedFormsAndA1dSearch) {
 TEST(CommPowerModel, RateIsClippedLog2) {
   const CommPowerModel m;
   const double s = 2e-4, K = m.K(), threshold = -std::log(2.0) * s / K;
-  EXPECT_EQ(m.Rate(0.5 * threshold, s, 6.0), 0.0);   // p3 above the threshold: 0
+  EXPECT_EQ(m.Rate(0.5 * threshold, s, 6.0), 0.0);  // p3 above the threshold: 0
   EXPECT_EQ(m.Rate(threshold, s, 6.0), 0.0);
   EXPECT_NEAR(m.Rate(8.0 * threshold, s, 6.0), 3.0, 1e-12);  // 2^R = 8
   EXPECT_EQ(m.Rate(1000.0 * threshold, s, 6.0), 6.0);        // clipped at Rmax
@@ -294,6 +295,25 @@ TEST(CommPath2d, InitialCostOfThePaper) {
   EXPECT_NEAR(ev500.J / 1e7, 1.1913, 5e-5);
 }
 
+// The bound the descent's Armijo prefilter relies on: L >= gamma k4 on U, attained at rest.
+TEST(CommPath2d, RunningCostLowerBoundHolds) {
+  const CommPath2d ocp(WithK56(0.5, 0.5), RippleMap());
+  ASSERT_TRUE(ocp.RunningCostLowerBound().has_value());
+  const double m = *ocp.RunningCostLowerBound();
+  EXPECT_DOUBLE_EQ(m, 0.01 * 1175.0);
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> pos(-10.0, 60.0), vel(-3.0, 3.0), unit(-1.0, 1.0);
+  for (int i = 0; i < 2000; ++i) {
+    Vec x(5), u(3);
+    x << pos(rng), pos(rng), vel(rng), vel(rng), 0.0;
+    u << unit(rng), unit(rng), 3.0 + 3.0 * unit(rng);
+    if (i % 4 == 0) x[2] = x[3] = u[0] = u[1] = u[2] = 0.0;
+    ocp.control_set().Project(u);
+    EXPECT_GE(ocp.RunningCost(0.0, x, u), m);
+  }
+  EXPECT_EQ(ocp.RunningCost(0.0, Vec::Zero(5), Vec::Zero(3)), m);
+}
+
 TEST(CommPath2d, SmoothingIsWithinEpsOfTheNorm) {
   const CommPowerModel m;
   for (double v : {0.0, 1e-4, 1e-3, 0.1, 1.0, 10.0}) {
@@ -309,8 +329,8 @@ TEST(CommPath2d, RegistryEntryAndParameters) {
   EXPECT_EQ(info.default_intervals, 400);
   EXPECT_TRUE(info.uses_seed);
   Parameters resolved;
-  const auto ocp = MakeProblem("comm-path2d", {"channel=0", "C=500,500,500", "k=1,2,3,4,5,6"}, 1,
-                               &resolved);
+  const auto ocp =
+      MakeProblem("comm-path2d", {"channel=0", "C=500,500,500", "k=1,2,3,4,5,6"}, 1, &resolved);
   ASSERT_EQ(ocp->name(), "comm-path2d");
   EXPECT_EQ(ocp->nx(), 5);
   EXPECT_EQ(ocp->nu(), 3);
