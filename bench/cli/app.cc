@@ -6,6 +6,7 @@
 #include <string>
 
 #include "bench/cli/channel_command.h"
+#include "bench/cli/online_command.h"
 #include "bench/cli/version.h"
 
 namespace ocpb {
@@ -17,14 +18,16 @@ void ReportSomeFailed() { g_some_failed = true; }
 
 int RunOcpbench(int argc, char** argv) {
   g_some_failed = false;
-  CLI::App app{"OCPBench: optimal-control problems solved by Hamiltonian descent and by sparse NLPs",
-               "ocpbench"};
+  CLI::App app{
+      "OCPBench: optimal-control problems solved by Hamiltonian descent and by sparse NLPs",
+      "ocpbench"};
   app.set_version_flag("--version", VersionString());
   app.require_subcommand(1);
   AddListCommand(app);
   AddSolveCommand(app);
   AddRunCommand(app);
   AddChannelCommand(app);
+  AddOnlineCommand(app);
   try {
     // Name an unknown command plainly (CLI11 alone would say "A subcommand is required").
     if (argc >= 2 && argv[1][0] != '-') {
@@ -35,7 +38,8 @@ int RunOcpbench(int argc, char** argv) {
         valid += (valid.empty() ? "" : ", ") + sub->get_name();
       }
       if (!known) {
-        throw std::invalid_argument("unknown command '" + std::string(argv[1]) + "' (valid: " + valid + ")");
+        throw std::invalid_argument("unknown command '" + std::string(argv[1]) +
+                                    "' (valid: " + valid + ")");
       }
     }
     app.parse(argc, argv);

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "bench/cli/online_command.h"
 #include "bench/cli/version.h"
 #include "core/evaluator.h"
 #include "core/parameters.h"
@@ -67,11 +68,24 @@ std::string OptionValueToString(const json& v, const std::string& where) {
 }  // namespace
 
 std::string CaseSpec::Key() const {
-  std::string key = fmt::format("{}|seed={}|{}|{}|{}|N={}|deg={}|{}|{}|eval={}", problem, seed,
-                                solver, transcription, algorithm, intervals, degree,
-                                ToString(terminal), ToString(integrator), ToString(evaluate_with));
+  std::string key = fmt::format("{}|seed={}|{}|{}|{}|N={}|deg={}|{}|{}|eval={}",
+                                problem,
+                                seed,
+                                solver,
+                                transcription,
+                                algorithm,
+                                intervals,
+                                degree,
+                                ToString(terminal),
+                                ToString(integrator),
+                                ToString(evaluate_with));
   for (const std::string& s : set) key += "|set:" + s;
   for (const auto& [k, v] : options) key += "|opt:" + k + "=" + v;
+  if (kind != "solve") {
+    key += "|kind=" + kind;
+    for (const auto& [k, v] : online) key += "|online:" + k + "=" + v;
+    for (const auto& [k, v] : replan_options) key += "|replan:" + k + "=" + v;
+  }
   return key;
 }
 
@@ -85,6 +99,13 @@ void CaseSpec::Validate() const {
   }
   if (degree < 1 || degree > 20) throw std::invalid_argument("degree: must be in 1..20");
   if (repeats < 1 || repeats > 1000) throw std::invalid_argument("repeats: must be in 1..1000");
+  if (kind == "online") {
+    ValidateOnlineCase(*this);
+  } else if (kind != "solve") {
+    throw std::invalid_argument("kind: unknown '" + kind + "' (valid: solve, online)");
+  } else if (!online.empty() || !replan_options.empty()) {
+    throw std::invalid_argument("online, replan_options: only for kind \"online\"");
+  }
 }
 
 bool IsFailure(SolveStatus status) {
@@ -94,10 +115,23 @@ bool IsFailure(SolveStatus status) {
 
 CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
   if (!j.is_object()) throw std::invalid_argument(where + ": a case must be a JSON object");
-  static const std::set<std::string> kKeys = {
-      "problem",  "set",    "seed",       "solver",    "transcription", "algorithm",
-      "N",        "degree", "terminal",   "integrator", "evaluate_with", "options",
-      "repeats",  "keep_trajectory"};
+  static const std::set<std::string> kKeys = {"problem",
+                                              "set",
+                                              "seed",
+                                              "solver",
+                                              "transcription",
+                                              "algorithm",
+                                              "N",
+                                              "degree",
+                                              "terminal",
+                                              "integrator",
+                                              "evaluate_with",
+                                              "options",
+                                              "repeats",
+                                              "keep_trajectory",
+                                              "kind",
+                                              "online",
+                                              "replan_options"};
   for (const auto& [k, v] : j.items()) {
     if (!kKeys.count(k)) {
       std::string valid;
@@ -119,7 +153,8 @@ CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
     }
     const long long x = v.get<long long>();
     if (x < lo || x > hi) {
-      throw std::invalid_argument(fmt::format("{}: {} out of range [{}, {}]", field(name), x, lo, hi));
+      throw std::invalid_argument(
+          fmt::format("{}: {} out of range [{}, {}]", field(name), x, lo, hi));
     }
     *out = x;
   };
@@ -151,7 +186,8 @@ CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
     s.clear();
     get_string(name, &s);
     try {
-      (std::string(name) == "integrator" ? spec.integrator : spec.evaluate_with) = ParseIntegrator(s);
+      (std::string(name) == "integrator" ? spec.integrator : spec.evaluate_with) =
+          ParseIntegrator(s);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(field(name) + ": " + e.what());
     }
@@ -165,13 +201,15 @@ CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
   if (j.contains("set")) {
     const json& set = j["set"];
     if (!set.is_object()) {
-      throw std::invalid_argument(field("set") + ": must be an object {\"key\": value or [values]}");
+      throw std::invalid_argument(field("set") +
+                                  ": must be an object {\"key\": value or [values]}");
     }
     for (const auto& [k, v] : set.items()) {
       const std::string where_k = field("set") + "." + k;
       std::vector<double> values;
       auto push = [&](const json& x) {
-        if (!x.is_number()) throw std::invalid_argument(where_k + ": must be a number or a list of numbers");
+        if (!x.is_number())
+          throw std::invalid_argument(where_k + ": must be a number or a list of numbers");
         const double d = x.get<double>();
         if (!std::isfinite(d)) throw std::invalid_argument(where_k + ": must be finite");
         values.push_back(d);
@@ -183,17 +221,23 @@ CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
         push(v);
       }
       std::string text = k + "=";
-      for (size_t i = 0; i < values.size(); ++i) text += (i ? "," : "") + fmt::format("{}", values[i]);
+      for (size_t i = 0; i < values.size(); ++i)
+        text += (i ? "," : "") + fmt::format("{}", values[i]);
       spec.set.push_back(text);
     }
   }
-  if (j.contains("options")) {
-    const json& opts = j["options"];
-    if (!opts.is_object()) throw std::invalid_argument(field("options") + ": must be an object");
+  get_string("kind", &spec.kind);
+  auto get_map = [&](const char* name, std::map<std::string, std::string>* out) {
+    if (!j.contains(name)) return;
+    const json& opts = j[name];
+    if (!opts.is_object()) throw std::invalid_argument(field(name) + ": must be an object");
     for (const auto& [k, v] : opts.items()) {
-      spec.options[k] = OptionValueToString(v, field("options") + "." + k);
+      (*out)[k] = OptionValueToString(v, field(name) + "." + k);
     }
-  }
+  };
+  get_map("options", &spec.options);
+  get_map("online", &spec.online);
+  get_map("replan_options", &spec.replan_options);
   if (spec.problem.empty()) throw std::invalid_argument(field("problem") + ": required");
   if (spec.solver.empty()) throw std::invalid_argument(field("solver") + ": required");
   return spec;
@@ -209,12 +253,14 @@ json VersionsJson() {
 
 json RunCase(const CaseSpec& spec) {
   spec.Validate();
+  if (spec.kind == "online") return RunOnlineCase(spec);
   // Resolve every name and parameter before solving: bad input fails fast and whole.
   const ProblemInfo& pinfo = FindProblem(spec.problem);
   const SolverInfo& sinfo = FindSolver(spec.solver);
   if (sinfo.uses_transcription) {
     if (spec.transcription.empty()) {
-      throw std::invalid_argument("solver '" + spec.solver + "' needs a transcription (--transcription)");
+      throw std::invalid_argument("solver '" + spec.solver +
+                                  "' needs a transcription (--transcription)");
     }
     FindTranscription(spec.transcription);
   } else if (!spec.transcription.empty()) {
@@ -305,8 +351,9 @@ json RunCase(const CaseSpec& spec) {
                             result.states.cols() == result.state_grid.size() &&
                             result.state_grid.size() >= 2;
     rec["resimulation_defect"] =
-        has_states ? Number(ResimulationDefect(*ocp, result.controls, result.state_grid, result.states))
-                   : json(nullptr);
+        has_states
+            ? Number(ResimulationDefect(*ocp, result.controls, result.state_grid, result.states))
+            : json(nullptr);
     if (!ev.finite && !IsFailure(result.status) && result.status != SolveStatus::kNotApplicable) {
       rec["status"] = ToString(SolveStatus::kNumericalFailure);
       rec["message"] = result.message + " (evaluator: trajectory or cost not finite)";
@@ -321,8 +368,15 @@ json RunCase(const CaseSpec& spec) {
       rec["trajectory"] = traj;
     }
   } else {
-    for (const char* k : {"J", "Jbar", "terminal_violation", "control_violation", "path_violation",
-                          "J_fine", "Jbar_fine", "terminal_violation_fine", "resimulation_defect"}) {
+    for (const char* k : {"J",
+                          "Jbar",
+                          "terminal_violation",
+                          "control_violation",
+                          "path_violation",
+                          "J_fine",
+                          "Jbar_fine",
+                          "terminal_violation_fine",
+                          "resimulation_defect"}) {
       rec[k] = nullptr;
     }
     rec["final_state"] = json::array();

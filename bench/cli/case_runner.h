@@ -17,22 +17,28 @@ namespace ocpb {
 
 /// What to solve and how. Defaults are what `ocpbench solve` uses when an option is omitted.
 struct CaseSpec {
-  std::string problem;                 ///< registry name
-  std::vector<std::string> set;        ///< parameter overrides, "key=value" or "key=v1,v2"
-  std::uint64_t seed = 1;              ///< channel realization (problems that use one)
-  std::string solver;                  ///< registry name
-  std::string transcription;           ///< NLP solvers only
-  std::string algorithm;               ///< NLopt only
-  int intervals = 0;                   ///< N; 0: the problem's default grid
-  int degree = 3;                      ///< LGR degree
+  std::string problem;           ///< registry name
+  std::vector<std::string> set;  ///< parameter overrides, "key=value" or "key=v1,v2"
+  std::uint64_t seed = 1;        ///< channel realization (problems that use one)
+  std::string solver;            ///< registry name
+  std::string transcription;     ///< NLP solvers only
+  std::string algorithm;         ///< NLopt only
+  int intervals = 0;             ///< N; 0: the problem's default grid
+  int degree = 3;                ///< LGR degree
   TerminalMode terminal = TerminalMode::kPenalty;
   Integrator integrator = Integrator::kEuler;  ///< the method's own integrator (Hamiltonian)
   /// The common evaluator's integrator on the method's grid. Every record also carries the
   /// RK4 evaluation on a 10x finer grid (the "fine" fields).
   Integrator evaluate_with = Integrator::kEuler;
   std::map<std::string, std::string> options;  ///< solver options
-  int repeats = 1;                     ///< timing repeats; the record keeps the median CPU time
-  bool keep_trajectory = true;         ///< store t, x, u in the record (for figures)
+  int repeats = 1;              ///< timing repeats; the record keeps the median CPU time
+  bool keep_trajectory = true;  ///< store t, x, u in the record (for figures)
+  /// "solve" (one solve, the default) or "online" (re-planning with channel updates, paper
+  /// Section IV: `options` are the solver options of every solve, `replan_options` override them
+  /// for the re-plans, `online` holds the scenario settings; see bench/cli/online_command.h).
+  std::string kind = "solve";
+  std::map<std::string, std::string> online;          ///< kind "online": scenario settings
+  std::map<std::string, std::string> replan_options;  ///< kind "online": re-plan solver options
 
   /// A stable identifier of the case (for --resume and shard assignment).
   std::string Key() const;
