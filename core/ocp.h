@@ -72,26 +72,30 @@ class Ocp {
 
   // ---- first derivatives ---------------------------------------------------------
   /// f, f_x (nx x nx) and f_u (nx x nu).
-  virtual void DynamicsJacobian(double t, ConstVecRef x, ConstVecRef u, VecRef f, MatRef fx,
-                                MatRef fu) const = 0;
+  virtual void DynamicsJacobian(
+      double t, ConstVecRef x, ConstVecRef u, VecRef f, MatRef fx, MatRef fu) const = 0;
   /// L, L_x and L_u.
-  virtual void RunningCostGradient(double t, ConstVecRef x, ConstVecRef u, double* L, VecRef Lx,
-                                   VecRef Lu) const = 0;
+  virtual void RunningCostGradient(
+      double t, ConstVecRef x, ConstVecRef u, double* L, VecRef Lx, VecRef Lu) const = 0;
   virtual void TerminalCostGradient(ConstVecRef x, double* phi, VecRef phix) const = 0;
   /// psi and psi_x (npsi x nx).
   virtual void TerminalConstraintsJacobian(ConstVecRef x, VecRef psi, MatRef psix) const = 0;
   /// c, c_x (nc x nx), c_u (nc x nu).
-  virtual void PathConstraintsJacobian(double t, ConstVecRef x, ConstVecRef u, VecRef c, MatRef cx,
-                                       MatRef cu) const = 0;
+  virtual void PathConstraintsJacobian(
+      double t, ConstVecRef x, ConstVecRef u, VecRef c, MatRef cx, MatRef cu) const = 0;
 
   // ---- second derivatives -------------------------------------------------------
   /// The Hessian with respect to z = (x, u) ((nx+nu) x (nx+nu), full and symmetric) of
   ///   sigma L(t, x, u) + lambda^T f(t, x, u) + mu^T c(t, x, u).
-  virtual void PointHessian(double t, ConstVecRef x, ConstVecRef u, double sigma,
-                            ConstVecRef lambda, ConstVecRef mu, MatRef hess) const = 0;
+  virtual void PointHessian(double t,
+                            ConstVecRef x,
+                            ConstVecRef u,
+                            double sigma,
+                            ConstVecRef lambda,
+                            ConstVecRef mu,
+                            MatRef hess) const = 0;
   /// The Hessian with respect to x (nx x nx) of sigma phi(x) + nu^T psi(x).
-  virtual void TerminalHessian(ConstVecRef x, double sigma, ConstVecRef nu,
-                               MatRef hess) const = 0;
+  virtual void TerminalHessian(ConstVecRef x, double sigma, ConstVecRef nu, MatRef hess) const = 0;
 
   // ---- pointwise Hamiltonian minimizer -------------------------------------------
   /// True when MinimizeHamiltonian is available in closed form.
@@ -103,6 +107,10 @@ class Ocp {
   /// knows one (default: none). The Hamiltonian descent uses it to reject Armijo trials from a
   /// states-only simulation, J >= m (tf - t0) + Phi(x(tf)), without changing its iterates.
   virtual std::optional<double> RunningCostLowerBound() const { return std::nullopt; }
+  /// The control every method starts from when the request gives no initial guess, constant in
+  /// time and projected onto U by the method (default: u = 0). A problem overrides it when u = 0
+  /// is a poor start (the minimum-time problems: w = 0 does not steer).
+  virtual Vec NominalControl() const { return Vec::Zero(nu_); }
 
   // ---- reformulation for the Hamiltonian method ------------------------------------
   /// The problem the Hamiltonian method should solve in place of this one, or nullptr (the
@@ -127,7 +135,9 @@ class Ocp {
   /// phi(x) + TerminalPenalty(x) in penalty mode, phi(x) in hard mode.
   double TerminalObjective(ConstVecRef x, TerminalMode mode) const;
   /// The gradient of TerminalObjective.
-  void TerminalObjectiveGradient(ConstVecRef x, TerminalMode mode, double* value,
+  void TerminalObjectiveGradient(ConstVecRef x,
+                                 TerminalMode mode,
+                                 double* value,
                                  VecRef grad) const;
   /// H(t, x, u, p) = p^T f + L.
   double Hamiltonian(double t, ConstVecRef x, ConstVecRef u, ConstVecRef p) const;

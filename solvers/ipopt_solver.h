@@ -12,7 +12,7 @@ namespace ocpb {
 /// "hermite-simpson", "lgr" with SolveRequest::degree, or "single-shooting") into a sparse NLP on
 /// SolveRequest::grid and running Ipopt (interior point, filter line search; Wächter & Biegler,
 /// Math. Prog. 106, 2006) with MUMPS from the transcription's starting point, built from
-/// SolveRequest::initial_guess (u = 0 projected onto U when absent).
+/// SolveRequest::initial_guess (Ocp::NominalControl() projected onto U when absent).
 ///
 /// The result: controls from the transcription (what the evaluator judges), its states, costates
 /// from Ipopt's constraint multipliers (TranscribedNlp::Costates), the NLP objective, Ipopt's

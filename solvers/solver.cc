@@ -3,7 +3,7 @@
 namespace ocpb {
 
 ControlTrajectory DefaultInitialGuess(const Ocp& ocp, const TimeGrid& grid) {
-  Vec u = Vec::Zero(ocp.nu());
+  Vec u = ocp.NominalControl();
   ocp.control_set().Project(u);
   return ControlTrajectory::Constant(grid, u);
 }

@@ -17,13 +17,14 @@ namespace ocpb {
 /// solver parses them into its typed Options struct and rejects unknown keys or bad values with
 /// std::invalid_argument naming the key and the rule.
 struct SolveRequest {
-  TimeGrid grid;                                  ///< the method's grid on [t0, tf]
-  TerminalMode terminal = TerminalMode::kPenalty; ///< penalty (paper) or hard psi = 0
-  Integrator integrator = Integrator::kEuler;     ///< for methods that simulate (Hamiltonian)
-  std::string transcription;                      ///< NLP solvers: "euler", "trapezoid", ...
-  std::string algorithm;                          ///< NLopt: "LD_SLSQP", ...
-  int degree = 3;                                 ///< LGR collocation degree
-  std::optional<ControlTrajectory> initial_guess; ///< default: u = 0 projected onto U
+  TimeGrid grid;                                   ///< the method's grid on [t0, tf]
+  TerminalMode terminal = TerminalMode::kPenalty;  ///< penalty (paper) or hard psi = 0
+  Integrator integrator = Integrator::kEuler;      ///< for methods that simulate (Hamiltonian)
+  std::string transcription;                       ///< NLP solvers: "euler", "trapezoid", ...
+  std::string algorithm;                           ///< NLopt: "LD_SLSQP", ...
+  int degree = 3;                                  ///< LGR collocation degree
+  std::optional<ControlTrajectory>
+      initial_guess;  ///< default: Ocp::NominalControl() projected onto U
   std::map<std::string, std::string> options;
 };
 
@@ -36,7 +37,7 @@ class Solver {
   virtual SolveResult Solve(const Ocp& ocp, const SolveRequest& request) const = 0;
 };
 
-/// The default starting controls: u = 0 projected onto U, piecewise constant on `grid`.
+/// The default starting controls: Ocp::NominalControl() projected onto U, constant on `grid`.
 ControlTrajectory DefaultInitialGuess(const Ocp& ocp, const TimeGrid& grid);
 
 }  // namespace ocpb

@@ -111,7 +111,7 @@ class CollocationNlp : public TranscribedNlp {
   int num_variables() const override { return layout_.num_variables; }
   int num_constraints() const override { return num_constraints_; }
   void Bounds(Vec* z_lower, Vec* z_upper, Vec* g_lower, Vec* g_upper) const override;
-  /// Controls from TranscriptionOptions::initial_guess (default: u = 0 projected onto U) at every
+  /// Controls from TranscriptionOptions::initial_guess (default: Ocp::NominalControl() projected onto U) at every
   /// control block's time (the left limit at tf, the right limit elsewhere), projected onto U;
   /// states by simulating the resulting ControlTrajectory from x0 on state_grid() with the
   /// scheme's start integrator (Euler for the Euler transcription, so its start is feasible;

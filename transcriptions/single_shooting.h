@@ -58,7 +58,7 @@ class SingleShootingNlp final : public TranscribedNlp {
   int num_variables() const override { return nu_ * N_; }
   int num_constraints() const override { return m_; }
   void Bounds(Vec* z_lower, Vec* z_upper, Vec* g_lower, Vec* g_upper) const override;
-  /// The initial guess sampled on the grid's intervals (default u = 0), each u_k projected onto U.
+  /// The initial guess sampled on the grid's intervals (default Ocp::NominalControl()), each u_k projected onto U.
   Vec StartingPoint() const override;
 
   bool Objective(ConstVecRef z, double* f) const override;
