@@ -1,11 +1,14 @@
 #include "problems/reference/reference_problems.h"
 
+#include "problems/reference/brachistochrone.h"
 #include "problems/reference/bryson_denham.h"
 #include "problems/reference/catmix.h"
 #include "problems/reference/hager.h"
 #include "problems/reference/lqr.h"
 #include "problems/reference/rayleigh.h"
+#include "problems/reference/steering.h"
 #include "problems/reference/vanderpol.h"
+#include "problems/reference/zermelo.h"
 
 namespace ocpb {
 
@@ -16,6 +19,9 @@ void AppendReferenceProblems(std::vector<ProblemInfo>* list) {
   list->push_back(VanDerPolProblemInfo());
   list->push_back(RayleighProblemInfo());
   list->push_back(CatmixProblemInfo());
+  list->push_back(BrachistochroneProblemInfo());
+  list->push_back(ZermeloProblemInfo());
+  list->push_back(SteeringProblemInfo());
 }
 
 }  // namespace ocpb

@@ -7,8 +7,9 @@
 
 namespace ocpb {
 
-/// Appends, in this order, "bryson-denham", "lqr", "hager", "vanderpol", "rayleigh" and "catmix"
-/// (problems/reference/*.h state each formulation, reference value and source).
+/// Appends, in this order, "bryson-denham", "lqr", "hager", "vanderpol", "rayleigh", "catmix",
+/// "brachistochrone", "zermelo" and "steering" (problems/reference/*.h state each formulation,
+/// reference value and source).
 void AppendReferenceProblems(std::vector<ProblemInfo>* list);
 
 }  // namespace ocpb

@@ -175,6 +175,32 @@ TEST(HamiltonianDescentDirection, ThetaBoundsTheDirectionalDerivativeOnCommPath2
   }
 }
 
+// The minimum-time problems' reformulation (controls (v, sigma), cone as a convex penalty): H is
+// convex in u, so theta bounds the derivative. (With controls (w, sigma) H was bilinear and the
+// Armijo search failed at the first iteration.) Random controls around the nominal one, with the
+// cone penalty active at some nodes.
+TEST(HamiltonianDescentDirection, ThetaBoundsTheDirectionalDerivativeOnScaledMinimumTime) {
+  for (const char* name : {"brachistochrone", "zermelo", "steering"}) {
+    const auto ocp = MakeProblem(name, {}, 0);
+    HamiltonianReformulationOptions o;
+    o.path_penalty = 50.0;
+    const auto re = ocp->HamiltonianReformulation(o);
+    ASSERT_NE(re, nullptr);
+    const int N = 60;
+    std::mt19937_64 rng(6);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const Vec nominal = ocp->NominalControl();
+    Mat U(3, N);
+    for (int k = 0; k < N; ++k) {
+      const double sigma = nominal[2] * (1.0 + 0.3 * unit(rng));
+      U.col(k) << nominal[0] * (1.0 + 0.4 * unit(rng)) + 0.2 * sigma * unit(rng),
+          nominal[1] * (1.0 + 0.4 * unit(rng)) + 0.2 * sigma * unit(rng), sigma;
+    }
+    SCOPED_TRACE(name);
+    ExpectThetaBoundsDirectionalDerivative(*re, U, N);
+  }
+}
+
 // ---- solves -------------------------------------------------------------------------------------
 
 // The unbounded double integrator in penalty form is a quadratic in U: its discrete minimizer
