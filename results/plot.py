@@ -5,7 +5,9 @@ Reads <dir>/derived.jsonl (written by `ocpbench run`/`merge`) and writes PNG fil
   convergence-<problem>.png   J against iteration and against CPU time, one line per method (log scale)
   profile-time.png            Dolan-More performance profile of CPU time to target
   profile-cost.png            profile of the final J's relative gap to the best J
-and, for the paper's problems, the paper's own figures through plotting/paper_figures.py.
+and, for the paper's problems, the paper's own figures through plotting/paper_figures.py, and for
+records of kind "online" the re-planning figures and online-summary.md through
+plotting/online_figures.py.
 Never edit the figures by hand: re-run this script.
 """
 import json
@@ -132,6 +134,10 @@ def main(argv):
         paper_figures = None
     if paper_figures is not None and hasattr(paper_figures, "figures_from_records"):
         paper_figures.figures_from_records(records, outdir)
+    if any(r.get("kind") == "online" for r in records):
+        import online_figures  # noqa: WPS433 (lives in results/plotting)
+
+        online_figures.figures_from_records(records, outdir)
     print("figures in %s" % outdir)
     return 0
 
