@@ -217,11 +217,23 @@ def record_figures(rec, outdir, tag=""):
 
 
 def figures_from_records(records, outdir):
-    """Entry point for results/plot.py: figures for every comm-path2d record with a trajectory."""
+    """Entry point for results/plot.py: the paper's figures for the comm-path2d records of the
+    first seed, for the Hamiltonian descent and Ipopt on the Euler transcription (the pair that
+    solves the same discrete problem), one set per terminal form and penalty setting. Every
+    record would give hundreds of near-identical figures; the others' paths are in the records."""
+    paper = [r for r in records if r.get("problem") == "comm-path2d" and r.get("trajectory")]
+    if not paper:
+        return []
+    first_seed = min(r.get("seed", 0) for r in paper)
     files = []
-    for i, rec in enumerate(records):
-        if rec.get("problem") == "comm-path2d" and rec.get("trajectory"):
-            files += record_figures(rec, os.path.join(outdir, "paper"), tag=str(i))
+    for rec in paper:
+        method = rec.get("solver", "") + ("-" + rec["transcription"] if rec.get("transcription") else "")
+        if rec.get("seed", 0) != first_seed or method not in ("hamiltonian", "ipopt-euler"):
+            continue
+        C = (rec.get("parameters") or {}).get("C", [0])
+        tag = "%s%s-C%g" % (rec["transcription"] + "-" if rec.get("transcription") else "",
+                            rec.get("terminal", ""), C[0] if C else 0)
+        files += record_figures(rec, os.path.join(outdir, "paper"), tag=tag)
     return files
 
 
