@@ -3,9 +3,11 @@
 #include "problems/reference/brachistochrone.h"
 #include "problems/reference/bryson_denham.h"
 #include "problems/reference/catmix.h"
+#include "problems/reference/goddard.h"
 #include "problems/reference/hager.h"
 #include "problems/reference/lqr.h"
 #include "problems/reference/rayleigh.h"
+#include "problems/reference/robot_arm.h"
 #include "problems/reference/steering.h"
 #include "problems/reference/vanderpol.h"
 #include "problems/reference/zermelo.h"
@@ -22,6 +24,8 @@ void AppendReferenceProblems(std::vector<ProblemInfo>* list) {
   list->push_back(BrachistochroneProblemInfo());
   list->push_back(ZermeloProblemInfo());
   list->push_back(SteeringProblemInfo());
+  list->push_back(GoddardProblemInfo());
+  list->push_back(RobotArmProblemInfo());
 }
 
 }  // namespace ocpb
