@@ -14,8 +14,8 @@ Goddard::Goddard(const Parameters& params) {
   // h = 1 meets drag growing like exp(500 (1 - h)).
   InitializeScaling(params,
                     Eigen::Vector3d(1.0, 0.0, 1.0),
-                    Vec::Zero(1),
-                    Vec::Constant(1, kMaxThrust),
+                    {0.0},
+                    {kMaxThrust},
                     Vec::Constant(1, kMaxThrust),
                     (1.0 - kFinalMass) * kExhaustSpeed / kMaxThrust);
 }
@@ -35,9 +35,8 @@ ProblemInfo GoddardProblemInfo() {
       "optimum of that discrete NLP";
   p.hamiltonian_applicable = false;
   p.hamiltonian_note =
-      "not applicable: with free T by time scaling the dynamics sigma f(x, Th) are bilinear in "
-      "(Th, sigma), so H is not convex in u (the cone form sigma lo <= v <= sigma hi is not "
-      "written)";
+      "not applicable: the method needs the penalty terminal form, and with C (m(T) - mf)^2 the "
+      "rocket problem is unbounded below (burning past mf pays; the descent ran to h = 1e152)";
   return p;
 }
 

@@ -2,6 +2,7 @@
 // "goddard").
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,18 +20,27 @@ namespace ocpb {
 /// ANL/MCS-TM-273, 2004, problem `rocket`). The optimal thrust is bang-singular-bang: full thrust,
 /// a singular arc where drag and thrust balance, then coasting with Th = 0.
 ///
-/// Posed with time scaling (problems/reference/scaled_free_time.h): u = (Th, sigma), horizon
-/// s in [0, 1], clock t as the last state, J = -h(T) at the optimum (sigma = T constant).
-/// COPS' state bounds h >= 1, v >= 0, 0.6 <= m <= 1 are left out: on the optimum they hold
-/// strictly after t = 0 (h and v grow under full thrust; m decreases monotonically to mf since
-/// Th >= 0), where h = 1 and v = 0 are fixed initial values; the tests check them on the
-/// solution. The terminal form's penalty weight C (default 1e3) acts on m(T) - mf.
+/// Posed with time scaling (problems/reference/scaled_free_time.h): u = (v, sigma) with
+/// v = sigma Th in the cone 0 <= v <= sigma Tmax (one path constraint; v >= 0 is U's bound),
+/// horizon s in [0, 1], clock t as the last state, J = -h(T) at the optimum (sigma = T
+/// constant). COPS' state bounds h >= 1, v >= 0, 0.6 <= m <= 1 are left out: on the optimum
+/// they hold strictly after t = 0 (h and v grow under full thrust; m decreases monotonically to
+/// mf since Th >= 0), where h = 1 and v = 0 are fixed initial values (a constraint active at the
+/// fixed initial state is degenerate for an NLP; m >= mf as a path constraint is active along
+/// the whole coasting arc and made Ipopt take 153 iterations instead of 49); the tests check
+/// them on the solution. The terminal form's penalty weight C (default 1e3) acts on m(T) - mf.
 ///
 /// Reference: COPS reports h(T) = 1.01283 for its trapezoid scheme at nh = 400 with a constant
 /// step T/nh (an optimum of that discrete problem); compare at that scheme and grid.
 ///
-/// Hamiltonian method: not applicable (bilinear in (Th, sigma); see scaled_free_time.h).
-class Goddard final : public ScaledFreeTimeOcp<Goddard, 4, 1, 1> {
+/// Hamiltonian method: not applicable. It needs the penalty terminal form, and with
+/// C (m(T) - mf)^2 in place of m(T) = mf the problem is unbounded below: burning past mf pays
+/// (the rocket equation gives v a gain c ln(m0 / m) without bound as m -> 0, and a negative m
+/// turns thrust and drag around). Measured with the cone-penalty reformulation of
+/// scaled_free_time.h: at eps = 1 the descent ran to h = 1e152; at eps = 1e4 and 0.01 it stayed
+/// near the nominal h = 1.004-1.007 after 2000 iterations. HamiltonianReformulation() is
+/// therefore nullptr and the method reports not_applicable.
+class Goddard final : public ScaledFreeTimeOcp<Goddard, 4, 1, 1, 1> {
  public:
   static constexpr double kDragHeightScale = 500.0;  // hc
   static constexpr double kExhaustSpeed = 0.5;       // c
@@ -46,7 +56,7 @@ class Goddard final : public ScaledFreeTimeOcp<Goddard, 4, 1, 1> {
   std::string name() const override { return "goddard"; }
 
   template <class T>
-  void EvalPhysical(const VecT<T, 4>& x, const VecT<T, 2>& u, VecT<T, 4>* f) const {
+  void EvalPhysical(const VecT<T, 4>& x, const VecT<T, 1>& u, VecT<T, 4>* f) const {
     const T& h = x[0];
     const T& v = x[1];
     const T& m = x[2];
@@ -63,6 +73,11 @@ class Goddard final : public ScaledFreeTimeOcp<Goddard, 4, 1, 1> {
   template <class T>
   void EvalTerminalConstraints(const VecT<T, 4>& x, VecT<T, 1>* psi) const {
     (*psi)[0] = x[2] - kFinalMass;
+  }
+  /// None: the Hamiltonian method is not applicable here (see above).
+  std::unique_ptr<Ocp> HamiltonianReformulation(
+      const HamiltonianReformulationOptions&) const override {
+    return nullptr;
   }
 };
 

@@ -15,7 +15,7 @@ RobotArm::RobotArm(const Parameters& params) {
   Vec y0 = Vec::Zero(6);
   y0[0] = 4.5;
   y0[2] = M_PI / 4.0;
-  InitializeScaling(params, y0, Vec::Constant(3, -1.0), Vec::Constant(3, 1.0), Vec::Zero(3), 9.0);
+  InitializeScaling(params, y0, {-1.0, -1.0, -1.0}, {1.0, 1.0, 1.0}, Vec::Zero(3), 9.0);
 }
 
 ProblemInfo RobotArmProblemInfo() {
@@ -31,11 +31,10 @@ ProblemInfo RobotArmProblemInfo() {
   p.reference_source =
       "COPS 3.0 (Dolan, More, Munson 2004) robot, trapezoid nh = 200: T = 9.14138, an optimum of "
       "that discrete NLP";
-  p.hamiltonian_applicable = false;
   p.hamiltonian_note =
-      "not applicable: with free T by time scaling the dynamics sigma f(x, u) are bilinear in "
-      "(u, sigma), so H is not convex in u (the cone form sigma lo <= v <= sigma hi is not "
-      "written)";
+      "free T by time scaling (sigma = dt/ds a control, eps Var(sigma) in J: exact), torques as "
+      "v = sigma w in the cone |v_i| <= sigma, penalized in the Hamiltonian reformulation (rho "
+      "dist^2, parameter rho)";
   return p;
 }
 

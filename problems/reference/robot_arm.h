@@ -18,18 +18,20 @@ namespace ocpb {
 /// ANL/MCS-TM-273, 2004, problem `robot`). State order (rho, theta, phi, rho', theta', phi', t).
 /// The optimal controls are bang-bang.
 ///
-/// Posed with time scaling (problems/reference/scaled_free_time.h): u = (u_rho, u_theta, u_phi,
-/// sigma), horizon s in [0, 1], clock t as the last state, J = T at the optimum (sigma = T
-/// constant). COPS' state bounds 0 <= rho <= L, |theta| <= pi, 0 <= phi <= pi are inactive on the
-/// optimum (rho stays within [4.5 - 0.1, 4.5 + 0.1] or so, theta within [0, 2 pi/3], phi near
-/// pi/4) and are left out; the tests check them on the solution. The penalty form weighs the six
-/// terminal residuals with C (default 1e3).
+/// Posed with time scaling (problems/reference/scaled_free_time.h): u = (v, sigma) with
+/// v = sigma (u_rho, u_theta, u_phi) in the cone |v_i| <= sigma (six path constraints), horizon
+/// s in [0, 1], clock t as the last state, J = T at the optimum (sigma = T constant). COPS' state
+/// bounds 0 <= rho <= L, |theta| <= pi, 0 <= phi <= pi are inactive on the optimum (measured at
+/// nh = 200: rho in [3.46, 4.5], theta in [0, 2 pi/3], phi in [0.54, pi/4]) and are left out;
+/// the tests check them on the solution. The penalty form weighs the six terminal residuals with C
+/// (default 1e3).
 ///
 /// Reference: COPS reports T = 9.14138 for its trapezoid scheme at nh = 200 with a constant step
 /// T/nh (an optimum of that discrete problem); compare at that scheme and grid.
 ///
-/// Hamiltonian method: not applicable (bilinear in (u, sigma); see scaled_free_time.h).
-class RobotArm final : public ScaledFreeTimeOcp<RobotArm, 7, 3, 6> {
+/// Hamiltonian method: through the cone-penalty reformulation (scaled_free_time.h); H is linear
+/// in v apart from the penalty (bang-bang).
+class RobotArm final : public ScaledFreeTimeOcp<RobotArm, 7, 3, 6, 6> {
  public:
   static constexpr double kLength = 5.0;
   static constexpr double kCopsReferenceTime = 9.14138;
@@ -41,7 +43,7 @@ class RobotArm final : public ScaledFreeTimeOcp<RobotArm, 7, 3, 6> {
   std::string name() const override { return "robot-arm"; }
 
   template <class T>
-  void EvalPhysical(const VecT<T, 7>& x, const VecT<T, 4>& u, VecT<T, 7>* f) const {
+  void EvalPhysical(const VecT<T, 7>& x, const VecT<T, 3>& u, VecT<T, 7>* f) const {
     const T& rho = x[0];
     const T& phi = x[2];
     const T arm = kLength - rho;
