@@ -13,6 +13,7 @@
 
 #include "core/autodiff_ocp.h"
 #include "core/parameters.h"
+#include "problems/reference/time_scaling.h"
 
 namespace ocpb {
 
@@ -64,28 +65,7 @@ class ScaledFreeTimeOcp : public AutoDiffOcp<Derived, NX, NW + 1, NPSI, NCONE> {
                                                           double eps,
                                                           double sigma_min,
                                                           double sigma_max) {
-    return {
-        {"C", {C}, "terminal penalty weight (penalty form)", 0.0, 1e300, true},
-        {"eps",
-         {eps},
-         "weight of the variance of sigma in J (0: Phi alone, degenerate in sigma)",
-         0.0,
-         1e300},
-        {"rho",
-         {1e4},
-         "weight of the cone penalty rho dist(v, sigma [lo, hi])^2 of the Hamiltonian "
-         "reformulation",
-         0.0,
-         1e300,
-         true},
-        {"sigma_min",
-         {sigma_min},
-         "lower bound of the time dilation sigma = dt/ds",
-         0.0,
-         1e300,
-         true},
-        {"sigma_max", {sigma_max}, "upper bound of the time dilation sigma", 0.0, 1e300, true},
-    };
+    return TimeScalingParameterSpecs(C, eps, sigma_min, sigma_max, "rho dist(v, sigma [lo, hi])^2");
   }
 
   double eps() const { return eps_; }
@@ -162,13 +142,11 @@ class ScaledFreeTimeOcp : public AutoDiffOcp<Derived, NX, NW + 1, NPSI, NCONE> {
                          const std::array<double, NW>& hi,
                          const Vec& w_nominal,
                          double sigma_nominal) {
-    eps_ = params.Scalar("eps");
-    rho_ = params.Scalar("rho");
-    sigma_min_ = params.Scalar("sigma_min");
-    sigma_max_ = params.Scalar("sigma_max");
-    if (!(sigma_min_ < sigma_max_)) {
-      throw std::invalid_argument(derived().name() + ": sigma_min must be < sigma_max");
-    }
+    const TimeScalingSettings settings = TimeScalingSettings::Read(params, derived().name());
+    eps_ = settings.eps;
+    rho_ = settings.rho;
+    sigma_min_ = settings.sigma_min;
+    sigma_max_ = settings.sigma_max;
     int nonzero = 0;
     for (int i = 0; i < NW; ++i) {
       if (!(lo[i] <= 0.0 && 0.0 <= hi[i] && lo[i] < hi[i])) {
@@ -240,13 +218,7 @@ class ScaledFreeTimePenalty final
   static constexpr int kNu = NW + 1;
 
   ScaledFreeTimePenalty(const Derived& problem, double rho, double eps) : problem_(problem) {
-    if (!std::isfinite(rho) || rho <= 0.0) {
-      throw std::invalid_argument(problem.name() + ": the cone penalty rho must be finite and > 0");
-    }
-    if (!std::isfinite(eps) || eps <= 0.0) {
-      throw std::invalid_argument(problem.name() +
-                                  ": the regularization eps must be finite and > 0");
-    }
+    CheckReformulationWeights(problem.name(), rho, eps);
     problem_.eps_ = eps;
     rho_ = rho;
     this->SetDimensions(NX, kNu, NPSI, 0);

@@ -11,6 +11,7 @@
 
 #include "core/autodiff_ocp.h"
 #include "core/parameters.h"
+#include "problems/reference/time_scaling.h"
 
 namespace ocpb {
 
@@ -64,31 +65,12 @@ namespace ocpb {
 template <class Derived, int NX, int NPSI>
 class ScaledMinTimeOcp : public AutoDiffOcp<Derived, NX, 3, NPSI, 1> {
  public:
-  /// Parameters shared by every scaled minimum-time problem, with the problem's defaults.
+  /// Parameters shared by every scaled minimum-time problem, with the problem's defaults
+  /// (eps = 1).
   static std::vector<ParameterSpec> ScalingParameterSpecs(double C,
                                                           double sigma_min,
                                                           double sigma_max) {
-    return {
-        {"C", {C}, "terminal penalty weight (penalty form)", 0.0, 1e300, true},
-        {"eps",
-         {1.0},
-         "weight of the variance of sigma in J (0: J = tau(1) alone, degenerate in sigma)",
-         0.0,
-         1e300},
-        {"rho",
-         {1e4},
-         "weight of the cone penalty rho max(0, |v| - sigma)^2 of the Hamiltonian reformulation",
-         0.0,
-         1e300,
-         true},
-        {"sigma_min",
-         {sigma_min},
-         "lower bound of the time dilation sigma = dt/ds",
-         0.0,
-         1e300,
-         true},
-        {"sigma_max", {sigma_max}, "upper bound of the time dilation sigma", 0.0, 1e300, true},
-    };
+    return TimeScalingParameterSpecs(C, 1.0, sigma_min, sigma_max, "rho max(0, |v| - sigma)^2");
   }
 
   double eps() const { return eps_; }
@@ -165,13 +147,11 @@ class ScaledMinTimeOcp : public AutoDiffOcp<Derived, NX, 3, NPSI, 1> {
                          const Vec& y0,
                          const Eigen::Vector2d& nominal_w,
                          double nominal_sigma) {
-    eps_ = params.Scalar("eps");
-    rho_ = params.Scalar("rho");
-    sigma_min_ = params.Scalar("sigma_min");
-    sigma_max_ = params.Scalar("sigma_max");
-    if (!(sigma_min_ < sigma_max_)) {
-      throw std::invalid_argument(derived().name() + ": sigma_min must be < sigma_max");
-    }
+    const TimeScalingSettings settings = TimeScalingSettings::Read(params, derived().name());
+    eps_ = settings.eps;
+    rho_ = settings.rho;
+    sigma_min_ = settings.sigma_min;
+    sigma_max_ = settings.sigma_max;
     nominal_w_ = nominal_w;
     nominal_sigma_ = nominal_sigma;
     this->SetDimensions(NX, 3, NPSI, 1);
@@ -223,13 +203,7 @@ class ScaledMinTimePenalty final
     : public AutoDiffOcp<ScaledMinTimePenalty<Derived, NX, NPSI>, NX, 3, NPSI, 0> {
  public:
   ScaledMinTimePenalty(const Derived& problem, double rho, double eps) : problem_(problem) {
-    if (!std::isfinite(rho) || rho <= 0.0) {
-      throw std::invalid_argument(problem.name() + ": the cone penalty rho must be finite and > 0");
-    }
-    if (!std::isfinite(eps) || eps <= 0.0) {
-      throw std::invalid_argument(problem.name() +
-                                  ": the regularization eps must be finite and > 0");
-    }
+    CheckReformulationWeights(problem.name(), rho, eps);
     problem_.eps_ = eps;
     rho_ = rho;
     this->SetDimensions(NX, 3, NPSI, 0);
