@@ -13,6 +13,21 @@ void Ocp::MinimizeHamiltonian(double, ConstVecRef, ConstVecRef, VecRef) const {
   throw std::logic_error("problem '" + name() + "' has no closed-form Hamiltonian minimizer");
 }
 
+void Ocp::MinimizeAndCompareHamiltonian(double t,
+                                        ConstVecRef x,
+                                        ConstVecRef p,
+                                        ConstVecRef u,
+                                        VecRef u_star,
+                                        double* h_star,
+                                        double* h_now,
+                                        VecRef f) const {
+  MinimizeHamiltonian(t, x, p, u_star);
+  Dynamics(t, x, u_star, f);
+  *h_star = p.dot(f) + RunningCost(t, x, u_star);
+  Dynamics(t, x, u, f);
+  *h_now = p.dot(f) + RunningCost(t, x, u);
+}
+
 double Ocp::TerminalPenalty(ConstVecRef x) const {
   if (npsi_ == 0) return 0.0;
   Vec psi(npsi_);
@@ -26,7 +41,9 @@ double Ocp::TerminalObjective(ConstVecRef x, TerminalMode mode) const {
   return value;
 }
 
-void Ocp::TerminalObjectiveGradient(ConstVecRef x, TerminalMode mode, double* value,
+void Ocp::TerminalObjectiveGradient(ConstVecRef x,
+                                    TerminalMode mode,
+                                    double* value,
                                     VecRef grad) const {
   TerminalCostGradient(x, value, grad);
   if (mode == TerminalMode::kPenalty && npsi_ > 0) {
@@ -46,7 +63,8 @@ double Ocp::Hamiltonian(double t, ConstVecRef x, ConstVecRef u, ConstVecRef p) c
 
 void Ocp::SetDimensions(int nx, int nu, int npsi, int nc) {
   if (nx < 1 || nu < 1 || npsi < 0 || nc < 0) {
-    throw std::invalid_argument("problem dimensions must satisfy nx >= 1, nu >= 1, npsi >= 0, nc >= 0");
+    throw std::invalid_argument(
+        "problem dimensions must satisfy nx >= 1, nu >= 1, npsi >= 0, nc >= 0");
   }
   nx_ = nx;
   nu_ = nu;

@@ -103,10 +103,30 @@ class Ocp {
   /// u* = argmin_{u in U} H(t, x, u, p) = p^T f(t, x, u) + L(t, x, u).
   /// Only called when HasHamiltonianMinimizer(); the default throws std::logic_error.
   virtual void MinimizeHamiltonian(double t, ConstVecRef x, ConstVecRef p, VecRef u) const;
+  /// The pointwise work of one descent direction: u* = MinimizeHamiltonian(t, x, p) written to
+  /// u_star, and the Hamiltonian at u* and at u, *h_star = H(t, x, u*, p) and
+  /// *h_now = H(t, x, u, p). `f` is caller-owned scratch of size nx(). The default computes them
+  /// from MinimizeHamiltonian, Dynamics and RunningCost; a problem whose L shares expensive work
+  /// between the two controls (comm-path2d evaluates its channel at x once, not three times)
+  /// overrides it, and must return the default's numbers to rounding (its tests check this).
+  virtual void MinimizeAndCompareHamiltonian(double t,
+                                             ConstVecRef x,
+                                             ConstVecRef p,
+                                             ConstVecRef u,
+                                             VecRef u_star,
+                                             double* h_star,
+                                             double* h_now,
+                                             VecRef f) const;
   /// A number m with L(t, x, u) >= m for every t, every x and every u in U, when the problem
   /// knows one (default: none). The Hamiltonian descent uses it to reject Armijo trials from a
   /// states-only simulation, J >= m (tf - t0) + Phi(x(tf)), without changing its iterates.
   virtual std::optional<double> RunningCostLowerBound() const { return std::nullopt; }
+  /// True when the problem asserts that f(t, x, u) = A(t) x + B(t) u + c(t), affine in x and u
+  /// jointly (default false). Then the forward-Euler final state is an affine function of the
+  /// control samples, and the Hamiltonian descent's Armijo prefilter gets x_N(U + s d) for
+  /// every trial step s from one extra states-only simulation per iteration instead of one per
+  /// trial (the iterates do not change; tests check both the claim and the iterates).
+  virtual bool HasAffineDynamics() const { return false; }
   /// The control every method starts from when the request gives no initial guess, constant in
   /// time and projected onto U by the method (default: u = 0). A problem overrides it when u = 0
   /// is a poor start (the minimum-time problems: w = 0 does not steer).

@@ -226,7 +226,7 @@ void CommPath2d::RunningCostGradient(
   Lu[2] = kLn2 * two_r * s * inv_k_;
 }
 
-void CommPath2d::MinimizeHamiltonian(double, ConstVecRef x, ConstVecRef p, VecRef u) const {
+void CommPath2d::MinimizerGivenChannel(ConstVecRef x, ConstVecRef p, double s, VecRef u) const {
   // H = p1.x2 + p2.u + p3 R + (2^R - 1)/K s(x1) + motion(u, x2): separable in u and R.
   const double a = std::sqrt(p[2] * p[2] + p[3] * p[3]);
   const double nv = options_.power.SmoothNorm(x[2] * x[2] + x[3] * x[3]);
@@ -237,9 +237,38 @@ void CommPath2d::MinimizeHamiltonian(double, ConstVecRef x, ConstVecRef p, VecRe
   } else {
     u[0] = u[1] = (a == 0.0 ? 0.0 : a);
   }
+  u[2] = options_.power.Rate(p[4], s, options_.rmax);
+}
+
+double CommPath2d::HamiltonianGivenChannel(ConstVecRef x,
+                                           ConstVecRef p,
+                                           ConstVecRef u,
+                                           double s) const {
+  const double acc2 = u[0] * u[0] + u[1] * u[1];
+  const double speed2 = x[2] * x[2] + x[3] * x[3];
+  const double pf = p[0] * x[2] + p[1] * x[3] + p[2] * u[0] + p[3] * u[1] + p[4] * u[2];
+  return pf + options_.power.Transmission(u[2], s, inv_k_) + options_.power.Motion(acc2, speed2);
+}
+
+void CommPath2d::MinimizeHamiltonian(double, ConstVecRef x, ConstVecRef p, VecRef u) const {
   double s = 0.0;
   channel_->Evaluate(Eigen::Vector2d(x[0], x[1]), &s, nullptr, nullptr);
-  u[2] = options_.power.Rate(p[4], s, options_.rmax);
+  MinimizerGivenChannel(x, p, s, u);
+}
+
+void CommPath2d::MinimizeAndCompareHamiltonian(double,
+                                               ConstVecRef x,
+                                               ConstVecRef p,
+                                               ConstVecRef u,
+                                               VecRef u_star,
+                                               double* h_star,
+                                               double* h_now,
+                                               VecRef) const {
+  double s = 0.0;
+  channel_->Evaluate(Eigen::Vector2d(x[0], x[1]), &s, nullptr, nullptr);
+  MinimizerGivenChannel(x, p, s, u_star);
+  *h_star = HamiltonianGivenChannel(x, p, u_star, s);
+  *h_now = HamiltonianGivenChannel(x, p, u, s);
 }
 
 // ---- registry support -------------------------------------------------------------------------

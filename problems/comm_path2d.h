@@ -195,6 +195,17 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0> {
 
   bool HasHamiltonianMinimizer() const override { return true; }
   void MinimizeHamiltonian(double t, ConstVecRef x, ConstVecRef p, VecRef u) const override;
+  /// One channel evaluation at x1 serves u* and both values of H (the default makes three).
+  void MinimizeAndCompareHamiltonian(double t,
+                                     ConstVecRef x,
+                                     ConstVecRef p,
+                                     ConstVecRef u,
+                                     VecRef u_star,
+                                     double* h_star,
+                                     double* h_now,
+                                     VecRef f) const override;
+  /// x1' = x2, x2' = u, x3' = R.
+  bool HasAffineDynamics() const override { return true; }
   /// gamma k4: every other term of L is >= 0 on U (R >= 0, s = E[1/CNR] > 0, k_i >= 0, n >= 0).
   std::optional<double> RunningCostLowerBound() const override {
     return options_.power.gamma * options_.power.k[3];
@@ -221,6 +232,11 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0> {
   }
 
  private:
+  /// u* of MinimizeHamiltonian given s = s(x1).
+  void MinimizerGivenChannel(ConstVecRef x, ConstVecRef p, double s, VecRef u) const;
+  /// H(x, u, p) given s = s(x1), with the operations of Dynamics and RunningCost.
+  double HamiltonianGivenChannel(ConstVecRef x, ConstVecRef p, ConstVecRef u, double s) const;
+
   Options options_;
   double inv_k_;
   std::shared_ptr<const ChannelQuality> channel_;

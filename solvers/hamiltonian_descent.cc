@@ -49,18 +49,22 @@ bool ParseBool(const std::string& key, const std::string& text) {
 // A lower bound on the discrete J of U under forward Euler: the states x_N by exactly
 // DiscreteOcp's Euler update (x += h f, same calls, so the same x_N), the running part by
 // sum_k h_k m with m <= L. `x` and `f` are scratch of size nx.
-double EulerCostLowerBound(
-    const Ocp& ocp, const TimeGrid& grid, const Mat& U, double m, Vec* x, Vec* f) {
+// The forward-Euler final state x_N of the controls U (states only: no running cost).
+void EulerFinalState(const Ocp& ocp, const TimeGrid& grid, const Mat& U, Vec* x, Vec* f) {
   *x = ocp.x0();
-  double running = 0.0;
   const int N = grid.intervals();
   for (int k = 0; k < N; ++k) {
     const double h = grid.h(k);
     ocp.Dynamics(grid.t(k), *x, U.col(k), *f);
-    running += h * m;
     *x += h * *f;
   }
-  return running + ocp.TerminalObjective(*x, TerminalMode::kPenalty);
+}
+
+// sum_k h_k m: the running cost's lower bound over the grid.
+double RunningLowerBound(const TimeGrid& grid, double m) {
+  double running = 0.0;
+  for (int k = 0; k < grid.intervals(); ++k) running += grid.h(k) * m;
+  return running;
 }
 
 std::string Format(double v) {
@@ -104,11 +108,8 @@ double HamiltonianDescent::Direction(const DiscreteOcp& docp,
     const auto p = Lambda.col(k + 1);
     const auto u = U.col(k);
     auto d = D->col(k);
-    ocp.MinimizeHamiltonian(t, x, p, d);  // d holds u*_k for now
-    ocp.Dynamics(t, x, d, f);
-    const double h_star = p.dot(f) + ocp.RunningCost(t, x, d);
-    ocp.Dynamics(t, x, u, f);
-    const double h_now = p.dot(f) + ocp.RunningCost(t, x, u);
+    double h_star = 0.0, h_now = 0.0;
+    ocp.MinimizeAndCompareHamiltonian(t, x, p, u, d, &h_star, &h_now, f);  // d holds u*_k for now
     theta += h * (h_star - h_now);
     scale += h * (std::abs(h_star) + std::abs(h_now));
     d -= u;
@@ -244,6 +245,12 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
       opt.armijo_prefilter && request.integrator == Integrator::kEuler
           ? target.RunningCostLowerBound()
           : std::nullopt;
+  // The prefilter's bound J(U') >= sum_k h m + Phi(x_N(U')). With affine dynamics,
+  // x_N(U + s D) = x_N(U) + s (x_N(U + D) - x_N(U)) exactly, so one states-only simulation per
+  // iteration serves every trial; otherwise each trial simulates its states.
+  const double running_bound = lower_bound ? RunningLowerBound(grid, *lower_bound) : 0.0;
+  const bool affine_final_state = lower_bound && target.HasAffineDynamics();
+  Vec final_step(nx);
 
   SolveResult result;
   result.solver = "hamiltonian";
@@ -314,19 +321,30 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
         break;
       }
       // Armijo search.
+      if (affine_final_state) {
+        trial.noalias() = U + D;
+        EulerFinalState(target, grid, trial, &final_step, &f_bound);
+        final_step -= X.col(N);
+      }
       int accepted = -1;
       double step = 1.0, J_trial = NAN;
       for (int j = 0; j <= opt.max_armijo_exponent; ++j, step *= opt.beta) {
-        trial.noalias() = U + step * D;
         if (lower_bound) {
           const double threshold = J + opt.alpha * step * theta;
+          if (affine_final_state) {
+            x_bound = X.col(N) + step * final_step;
+          } else {
+            trial.noalias() = U + step * D;
+            EulerFinalState(target, grid, trial, &x_bound, &f_bound);
+          }
           const double bound =
-              EulerCostLowerBound(target, grid, trial, *lower_bound, &x_bound, &f_bound);
+              running_bound + target.TerminalObjective(x_bound, TerminalMode::kPenalty);
           if (bound > threshold + 1e-10 * std::max(1.0, std::abs(threshold))) {
             ++rejections;  // J(trial) >= bound > threshold: the Armijo test fails
             continue;
           }
         }
+        trial.noalias() = U + step * D;
         J_trial = docp.Simulate(trial, &X_trial);
         ++simulations;
         if (std::isfinite(J_trial) && J_trial - J <= opt.alpha * step * theta) {

@@ -37,6 +37,8 @@ struct HamiltonianDescentOptions {
   ///   J(trial) >= sum_k h_k m + Phi(x_N),
   /// and a trial whose bound already exceeds J(U) + alpha beta^j theta (plus a 1e-10 relative
   /// margin for summation roundoff) fails the Armijo test without its running cost being computed.
+  /// When Ocp::HasAffineDynamics(), x_N is affine in the controls and one states-only simulation
+  /// per iteration (of U + d) gives x_N of every trial.
   /// The accepted exponents and iterates are exactly those without it (tested); it only saves
   /// time. Option string "armijo_prefilter" = 1 / 0.
   bool armijo_prefilter = true;

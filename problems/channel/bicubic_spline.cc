@@ -43,18 +43,24 @@ void SplineCoefficients1d(
   C(n) = 6.0 * F(n - 1) - 4.0 * C(n - 1) - C(n - 2);
 }
 
-// Uniform cubic B-spline basis on the cell [0, 1] and its first two derivatives at t.
-void Basis(double t, double b[4], double d[4], double dd[4]) {
+// Uniform cubic B-spline basis on the cell [0, 1] at t, and its first two derivatives (split so
+// that the value-only path, the hot one in the descent, computes only what it needs).
+inline void Basis(double t, double b[4]) {
   const double s = 1.0 - t, t2 = t * t, t3 = t2 * t;
   b[0] = s * s * s / 6.0;
   b[1] = (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0;
   b[2] = (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0;
   b[3] = t3 / 6.0;
+}
+inline void BasisDerivative(double t, double d[4]) {
+  const double s = 1.0 - t, t2 = t * t;
   d[0] = -0.5 * s * s;
   d[1] = 1.5 * t2 - 2.0 * t;
   d[2] = -1.5 * t2 + t + 0.5;
   d[3] = 0.5 * t2;
-  dd[0] = s;
+}
+inline void BasisSecondDerivative(double t, double dd[4]) {
+  dd[0] = 1.0 - t;
   dd[1] = 3.0 * t - 2.0;
   dd[2] = 1.0 - 3.0 * t;
   dd[3] = t;
@@ -88,9 +94,19 @@ void BicubicSpline::Evaluate(
   const double u = (x - x0_) / h_, v = (y - y0_) / h_;
   const int i = static_cast<int>(std::clamp(std::floor(u), 0.0, static_cast<double>(nx() - 2)));
   const int j = static_cast<int>(std::clamp(std::floor(v), 0.0, static_cast<double>(ny() - 2)));
+  const bool first = grad != nullptr || hess != nullptr, second = hess != nullptr;
+  const double tx = u - i, ty = v - j;
   double bx[4], dx[4], ddx[4], by[4], dy[4], ddy[4];
-  Basis(u - i, bx, dx, ddx);
-  Basis(v - j, by, dy, ddy);
+  Basis(tx, bx);
+  Basis(ty, by);
+  if (first) {
+    BasisDerivative(tx, dx);
+    BasisDerivative(ty, dy);
+  }
+  if (second) {
+    BasisSecondDerivative(tx, ddx);
+    BasisSecondDerivative(ty, ddy);
+  }
   // Coefficients c_{i-1..i+2} sit at rows i..i+3 of coef_.
   double f = 0.0, fx = 0.0, fy = 0.0, fxx = 0.0, fxy = 0.0, fyy = 0.0;
   for (int b = 0; b < 4; ++b) {
@@ -98,11 +114,11 @@ void BicubicSpline::Evaluate(
     const double c0 = col[0], c1 = col[1], c2 = col[2], c3 = col[3];
     const double sv = c0 * bx[0] + c1 * bx[1] + c2 * bx[2] + c3 * bx[3];
     f += sv * by[b];
-    if (grad == nullptr && hess == nullptr) continue;
+    if (!first) continue;
     const double sd = c0 * dx[0] + c1 * dx[1] + c2 * dx[2] + c3 * dx[3];
     fx += sd * by[b];
     fy += sv * dy[b];
-    if (hess == nullptr) continue;
+    if (!second) continue;
     const double sdd = c0 * ddx[0] + c1 * ddx[1] + c2 * ddx[2] + c3 * ddx[3];
     fxx += sdd * by[b];
     fxy += sd * dy[b];

@@ -216,6 +216,53 @@ TEST(CommPath2d, MinimizerBeatsBruteForceOnAMap) {
   ExpectMinimizerBeatsBruteForce(ocp, 0.5, 6.0, 23);
 }
 
+// The fused direction step (one channel evaluation) returns what the default composition of
+// MinimizeHamiltonian, Dynamics and RunningCost returns, at random (x, p, u).
+void ExpectFusedStepMatchesTheDefault(const CommPath2d& ocp, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> pos(0.0, 50.0), vel(-2.0, 2.0), unit(-1.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    Vec x(5), p(5), u(3), u_star(3), u_ref(3), f(5);
+    x << pos(rng), pos(rng), vel(rng), vel(rng), 10.0 * unit(rng);
+    if (trial % 10 == 0) x[2] = x[3] = 0.0;
+    for (int i = 0; i < 5; ++i) p[i] = 5.0 * unit(rng);
+    p[4] = -std::abs(p[4]) * 1e-3;
+    u << 0.3 * unit(rng), 0.3 * unit(rng), 3.0 + 3.0 * unit(rng);
+    double h_star = NAN, h_now = NAN;
+    ocp.MinimizeAndCompareHamiltonian(0.0, x, p, u, u_star, &h_star, &h_now, f);
+    ocp.MinimizeHamiltonian(0.0, x, p, u_ref);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(u_star[i], u_ref[i]) << i;
+    const double h_star_ref = ocp.Hamiltonian(0.0, x, u_ref, p);
+    const double h_now_ref = ocp.Hamiltonian(0.0, x, u, p);
+    EXPECT_NEAR(h_star, h_star_ref, 1e-13 * (1.0 + std::abs(h_star_ref)));
+    EXPECT_NEAR(h_now, h_now_ref, 1e-13 * (1.0 + std::abs(h_now_ref)));
+    EXPECT_LE(h_star, h_now + 1e-13 * (1.0 + std::abs(h_now)));
+  }
+}
+
+// HasAffineDynamics() is a claim the Armijo prefilter relies on: f at a convex combination of
+// two points (x, u) is the same combination of f at them.
+TEST(CommPath2d, DynamicsAreAffineAsDeclared) {
+  const CommPath2d ocp(CommPath2d::Options(), PaperPathLoss());
+  ASSERT_TRUE(ocp.HasAffineDynamics());
+  std::mt19937_64 rng(33);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    Vec x1 = 20.0 * Vec::Random(5), x2 = 20.0 * Vec::Random(5), u1 = Vec::Random(3),
+        u2 = Vec::Random(3), f1(5), f2(5), fm(5);
+    const double a = 0.5 + 0.5 * unit(rng);
+    ocp.Dynamics(1.0, x1, u1, f1);
+    ocp.Dynamics(1.0, x2, u2, f2);
+    ocp.Dynamics(1.0, a * x1 + (1.0 - a) * x2, a * u1 + (1.0 - a) * u2, fm);
+    EXPECT_LE((fm - (a * f1 + (1.0 - a) * f2)).norm(), 1e-12 * (1.0 + f1.norm() + f2.norm()));
+  }
+}
+
+TEST(CommPath2d, FusedDirectionStepMatchesTheDefault) {
+  ExpectFusedStepMatchesTheDefault(CommPath2d(CommPath2d::Options(), PaperPathLoss()), 31);
+  ExpectFusedStepMatchesTheDefault(CommPath2d(WithK56(0.5, 0.5), RippleMap()), 32);
+}
+
 // The registry's paper channel (simulated, measured, predicted, mapped), with few samples to keep
 // it cheap: the map is what the problem evaluates, the starting cost is still 238720, and the
 // derivatives through the map match finite differences.

@@ -341,6 +341,24 @@ TEST(HamiltonianDescent, ArmijoPrefilterChangesNothingButTheWork) {
             without.solver_stats.at("simulations"));
 }
 
+// The same on comm-fixed-path, which does not declare affine dynamics: the prefilter's general
+// path (a states-only simulation per trial) instead of the affine one above.
+TEST(HamiltonianDescent, ArmijoPrefilterWithoutTheAffineShortcut) {
+  const auto ocp = MakeProblem("comm-fixed-path", {"channel=0"}, 1);
+  ASSERT_TRUE(ocp->RunningCostLowerBound().has_value());
+  ASSERT_FALSE(ocp->HasAffineDynamics());
+  const SolveResult with =
+      HamiltonianDescent().Solve(*ocp, Request(*ocp, 100, {{"max_iterations", "30"}}));
+  const SolveResult without = HamiltonianDescent().Solve(
+      *ocp, Request(*ocp, 100, {{"max_iterations", "30"}, {"armijo_prefilter", "0"}}));
+  ASSERT_EQ(with.history.size(), without.history.size());
+  for (size_t i = 0; i < with.history.size(); ++i) {
+    EXPECT_EQ(with.history[i].J, without.history[i].J) << i;
+    EXPECT_EQ(with.history[i].armijo_j, without.history[i].armijo_j) << i;
+  }
+  EXPECT_GT(with.solver_stats.at("prefilter_rejections"), 0.0);
+}
+
 // ---- every stopping reason ----------------------------------------------------------------------
 
 TEST(HamiltonianDescentStops, ThetaBelowTolerance) {
