@@ -181,7 +181,7 @@ std::string ReferenceNote(const json& ref) {
   }
   return head +
          " The records do not say which problem the value is an optimum of (continuous or "
-         "a scheme and grid): no error column.";
+         "a scheme and grid): the error column stays empty.";
 }
 
 double ReferenceError(const json& r, const json& ref) {
