@@ -21,11 +21,17 @@ struct ProblemInfo {
   /// Builds the problem. `seed` picks any random ingredient (a channel realization); problems
   /// without randomness ignore it.
   std::function<std::unique_ptr<Ocp>(const Parameters& params, std::uint64_t seed)> make;
-  int default_intervals = 100;           ///< the grid a suite uses when it names none
-  std::optional<double> reference_value; ///< published optimum of the cost below, if known
-  std::string reference_quantity = "J";  ///< "J" (hard terminal form) or "tf" etc.
-  std::string reference_source;          ///< where the reference value comes from
-  bool uses_seed = false;                ///< true when `seed` changes the problem
+  int default_intervals = 100;            ///< the grid a suite uses when it names none
+  std::optional<double> reference_value;  ///< published optimum of the cost below, if known
+  std::string reference_quantity = "J";   ///< "J" (hard terminal form) or "tf" etc.
+  std::string reference_source;           ///< where the reference value comes from
+  /// What the reference value is an optimum of: "continuous" (the problem as posed in continuous
+  /// time, comparable with any method's re-simulated cost), or the name of the discretization
+  /// whose NLP at reference_intervals it solves (COPS' values: "trapezoid"), which only a record
+  /// of that transcription and grid may be compared with.
+  std::string reference_scheme = "continuous";
+  int reference_intervals = 0;  ///< the grid of a discrete reference (0 when continuous)
+  bool uses_seed = false;       ///< true when `seed` changes the problem
   /// Whether the Hamiltonian descent applies to this problem, directly or through
   /// Ocp::HamiltonianReformulation; when false the solver reports SolveStatus::kNotApplicable.
   bool hamiltonian_applicable = true;
@@ -44,7 +50,9 @@ const ProblemInfo& FindProblem(const std::string& name);
 /// it invalidates references previously returned by Problems() and FindProblem().
 void RegisterProblem(ProblemInfo info);
 /// Builds `name` with `assignments` ("key=value") applied over the defaults.
-std::unique_ptr<Ocp> MakeProblem(const std::string& name, const std::vector<std::string>& assignments,
-                                 std::uint64_t seed, Parameters* resolved = nullptr);
+std::unique_ptr<Ocp> MakeProblem(const std::string& name,
+                                 const std::vector<std::string>& assignments,
+                                 std::uint64_t seed,
+                                 Parameters* resolved = nullptr);
 
 }  // namespace ocpb

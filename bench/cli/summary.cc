@@ -15,8 +15,12 @@ using nlohmann::json;
 
 namespace {
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kTargetTolerance = 0.01;  // "within 1% of the best"
+constexpr double kFeasibleHistory = 1e-6;  // primal_inf of a history entry that may count
+
 double Num(const json& r, const char* key) {
-  if (!r.contains(key) || !r[key].is_number()) return std::numeric_limits<double>::quiet_NaN();
+  if (!r.contains(key) || !r[key].is_number()) return kNaN;
   return r[key].get<double>();
 }
 
@@ -33,12 +37,84 @@ std::string MethodLabel(const json& r) {
   if (Str(r, "solver") == "hamiltonian" && Str(r, "integrator") != "euler") {
     label += ", " + Str(r, "integrator");
   }
-  return label;
+  const std::string evaluated = Str(r, "evaluated_with");
+  if (!evaluated.empty() && evaluated != "euler") label += ", judged with " + evaluated;
+  return label + fmt::format(", N={}", r.value("N", 0));
+}
+
+std::string OptionsText(const json& r) {
+  std::string text;
+  if (r.contains("options") && r["options"].is_object()) {
+    for (const auto& [key, value] : r["options"].items()) {
+      text += (text.empty() ? "" : ", ") + key + "=" +
+              (value.is_string() ? value.get<std::string>() : value.dump());
+    }
+  }
+  return text;
 }
 
 std::string GroupKey(const json& r) {
-  return fmt::format("{}|seed={}|{}|{}", Str(r, "problem"), r.value("seed", 0),
-                     r.contains("parameters") ? r["parameters"].dump() : "", Str(r, "terminal"));
+  return fmt::format("{}|seed={}|{}|{}",
+                     Str(r, "problem"),
+                     r.value("seed", 0),
+                     r.contains("parameters") ? r["parameters"].dump() : "",
+                     Str(r, "terminal"));
+}
+
+// The section (table) and row label of every record. A problem's table splits by the
+// parameters that differ between its records (for example the penalty weights C), so no row
+// averages two different problems. Options name a row only where they tell two rows of the same
+// method apart somewhere in the suite, so one method has one label in every table and figure.
+struct Labels {
+  std::vector<std::string> section, row;
+};
+
+Labels LabelRecords(const std::vector<json>& records) {
+  std::map<std::string, std::map<std::string, std::set<std::string>>> values;
+  std::map<std::string, std::set<std::string>> options_of;
+  for (const json& r : records) {
+    options_of[MethodLabel(r)].insert(OptionsText(r));
+    if (!r.contains("parameters") || !r["parameters"].is_object()) continue;
+    for (const auto& [key, value] : r["parameters"].items()) {
+      values[Str(r, "problem")][key].insert(value.dump());
+    }
+  }
+  std::map<std::string, std::set<std::string>> varying;  // problem -> parameters that vary
+  for (const auto& [problem, keys] : values) {
+    for (const auto& [key, seen] : keys) {
+      if (seen.size() > 1) varying[problem].insert(key);
+    }
+  }
+  Labels labels;
+  for (const json& r : records) {
+    std::string setting;
+    for (const std::string& key : varying[Str(r, "problem")]) {
+      const std::string v = r.contains("parameters") && r["parameters"].contains(key)
+                                ? r["parameters"][key].dump()
+                                : std::string("default");
+      setting += (setting.empty() ? "" : ", ") + key + " = " + v;
+    }
+    labels.section.push_back(setting.empty() ? Str(r, "problem")
+                                             : Str(r, "problem") + " (" + setting + ")");
+    std::string row = MethodLabel(r);
+    if (options_of[row].size() > 1) {
+      const std::string o = OptionsText(r);
+      row += o.empty() ? ", default options" : ", " + o;
+    }
+    labels.row.push_back(row);
+  }
+  return labels;
+}
+
+double FinalValue(const json& r) {
+  const double fine = Num(r, "J_fine");
+  if (std::isfinite(fine)) return fine;
+  const double J = Num(r, "J");
+  return std::isfinite(J) ? J : kNaN;
+}
+
+bool WithinTarget(double value, double best) {
+  return std::isfinite(value) && std::abs(value - best) <= kTargetTolerance * std::abs(best);
 }
 
 std::string G(double v) {
@@ -49,7 +125,7 @@ std::string G(double v) {
 
 double Median(std::vector<double> v) {
   v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return std::isnan(x); }), v.end());
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  if (v.empty()) return kNaN;
   std::sort(v.begin(), v.end());
   const size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
@@ -69,153 +145,157 @@ std::string Spread(const std::vector<double>& v) {
   return fmt::format("{} [{}, {}]", G(mean), G(*lo), G(*hi));
 }
 
+// The worst case of a row (NaN where no case has a value, e.g. not applicable).
+double Worst(const std::vector<double>& v) {
+  double w = kNaN;
+  for (double x : v) {
+    if (!std::isnan(x)) w = std::isnan(w) ? x : std::max(w, x);
+  }
+  return w;
+}
+
+// A reference value is either a continuous optimum (scheme "continuous"), comparable with the
+// continuous-time cost of any method's controls, or an optimum of one discrete NLP (COPS: a scheme
+// at a grid), comparable only with a record that solved that very NLP. Records written before the
+// reference carried its scheme are compared with nothing.
+bool IsContinuous(const json& ref) { return Str(ref, "scheme") == "continuous"; }
+
+std::string ReferenceNote(const json& ref) {
+  const std::string head = fmt::format("Reference {} = {} ({}).",
+                                       ref.value("quantity", std::string("J")),
+                                       G(Num(ref, "value")),
+                                       ref.value("source", std::string("no source given")));
+  if (IsContinuous(ref)) {
+    return head +
+           " A continuous optimum: rel. error = |Jbar fine - reference| / |reference| for every "
+           "row (the continuous-time cost of the method's controls; see terminal viol. fine for "
+           "how well they meet the terminal conditions).";
+  }
+  if (!Str(ref, "scheme").empty()) {
+    return head + fmt::format(
+                      " An optimum of the discrete NLP of the {} scheme at N = {}: rel. error = "
+                      "|objective - reference| / |reference| (the NLP's own objective) only for "
+                      "rows that solve that NLP (that transcription and N, hard terminal form).",
+                      Str(ref, "scheme"),
+                      ref.value("N", 0));
+  }
+  return head +
+         " The records do not say which problem the value is an optimum of (continuous or "
+         "a scheme and grid): the error column stays empty.";
+}
+
+double ReferenceError(const json& r, const json& ref) {
+  const double value = Num(ref, "value");
+  if (!std::isfinite(value) || value == 0.0) return kNaN;
+  if (IsContinuous(ref)) return std::abs(Num(r, "Jbar_fine") - value) / std::abs(value);
+  const std::string scheme = Str(ref, "scheme");
+  if (scheme.empty() || Str(r, "transcription") != scheme || Str(r, "terminal") != "hard" ||
+      r.value("N", -1) != ref.value("N", -2)) {
+    return kNaN;
+  }
+  return std::abs(Num(r, "objective") - value) / std::abs(value);
+}
+
 }  // namespace
 
 void DeriveTargets(std::vector<json>* records) {
+  const Labels labels = LabelRecords(*records);
   std::map<std::string, double> best;
-  for (json& r : *records) {
+  for (size_t i = 0; i < records->size(); ++i) {
+    json& r = (*records)[i];
     r["group"] = GroupKey(r);
-    const double J = Num(r, "J");
-    if (!std::isfinite(J)) continue;
-    if (Str(r, "terminal") == "hard" && !(Num(r, "terminal_violation") <= 1e-6)) continue;
+    r["section"] = labels.section[i];
+    r["method_label"] = labels.row[i];
+    const double v = FinalValue(r);
+    r["final_J"] = std::isfinite(v) ? json(v) : json(nullptr);
+    if (!std::isfinite(v)) continue;
+    // A hard-form record that did not converge may sit below every feasible answer.
+    if (Str(r, "terminal") == "hard" && Str(r, "status") != "converged") continue;
     const std::string g = r["group"];
-    if (!best.count(g) || J < best[g]) best[g] = J;
+    if (!best.count(g) || v < best[g]) best[g] = v;
   }
   for (json& r : *records) {
-    const std::string g = r["group"];
-    if (!best.count(g)) {
-      r["best_J"] = nullptr;
-      r["time_to_target"] = nullptr;
-      continue;
-    }
-    const double b = best[g], tol = 0.01 * std::abs(b);
-    r["best_J"] = b;
+    const auto it = best.find(r["group"].get<std::string>());
+    r["best_J"] = it == best.end() ? json(nullptr) : json(it->second);
+    r["reached_target"] = it != best.end() && WithinTarget(FinalValue(r), it->second);
     r["time_to_target"] = nullptr;
-    if (r.contains("history")) {
+    if (!r["reached_target"].get<bool>()) continue;
+    const double b = it->second;
+    if (r.contains("history") && r["history"].is_array()) {
       for (const json& h : r["history"]) {
-        const double J = Num(h, "J");
         const double primal = Num(h, "primal_inf");
-        const bool feasible = Str(r, "terminal") != "hard" || !(primal > 1e-6);
-        if (std::isfinite(J) && J - b <= tol && feasible) {
+        if (WithinTarget(Num(h, "J"), b) && !(primal > kFeasibleHistory)) {
           r["time_to_target"] = Num(h, "cpu_seconds");
           break;
         }
       }
     }
-    // The method's final answer counts too (a history may be coarser than its result).
-    if (r["time_to_target"].is_null() && Num(r, "J") - b <= tol) r["time_to_target"] = Num(r, "cpu_seconds");
+    // The final answer reached it although no recorded iterate did (the history holds the
+    // method's own objective, which differs from J_fine by its discretization error).
+    if (r["time_to_target"].is_null()) r["time_to_target"] = Num(r, "cpu_seconds");
   }
 }
 
 std::string SummaryMarkdown(const std::string& suite_name, const std::vector<json>& records) {
   std::ostringstream md;
   md << "# Suite `" << suite_name << "`\n\n";
-  md << "Generated by `ocpbench run` from `records.jsonl`; do not edit. J, Jbar and violations come "
-        "from the common evaluator on each method's grid (forward Euler unless the record says "
-        "otherwise); \"fine\" is RK4 on a 10x finer grid, the continuous-time judge for every "
-        "method. Numbers are mean [min, max] over seeds, violations the worst case of the row; "
-        "CPU and time to target are medians "
-        "(time to target: CPU seconds until the method's history came within 1% of the best J "
-        "any method found for that problem, seed and terminal form; n/m = reached in n of m).\n\n";
-  // One table per problem and setting: the parameters that differ between a problem's records
-  // (for example the penalty weights C) split it, so no row averages two different problems.
+  md << "Generated by `ocpbench run` from `records.jsonl`; do not edit. J, Jbar and violations "
+        "come from the common evaluator on each method's grid (forward Euler unless the row says "
+        "otherwise; J is penalized, Jbar is not); \"fine\" is RK4 on a 10x finer grid, the "
+        "continuous-time judge for every method; resim. defect is the largest gap between a "
+        "method's own states and its controls re-simulated (methods that carry states). Numbers "
+        "are mean [min, max] over seeds, violations and defects the worst case of the row; CPU "
+        "(each case: the median of its repeats) and time to target are medians over the row.\n\n"
+        "Time to target: the target is the best J fine (J where J fine is missing) of any method "
+        "on the same problem, seed, parameters and terminal form; in the hard form only converged "
+        "cases count for the best. A case reaches the target when its own final J fine is within "
+        "1% of it; its time to target is then the CPU seconds at its first iterate whose own "
+        "objective is within 1% of the target with primal infeasibility (where the solver "
+        "reports one) at most 1e-6, or its total CPU time if no iterate qualifies; otherwise "
+        "never. n/m = reached in n of m cases.\n\n";
+  const Labels labels = LabelRecords(records);
   std::vector<std::string> sections;
-  std::map<std::string, std::set<std::string>> varying;  // problem -> parameter names that vary
-  {
-    std::map<std::string, std::map<std::string, std::set<std::string>>> values;
-    for (const json& r : records) {
-      if (!r.contains("parameters") || !r["parameters"].is_object()) continue;
-      for (const auto& [key, value] : r["parameters"].items()) {
-        values[Str(r, "problem")][key].insert(value.dump());
-      }
-    }
-    for (const auto& [problem, keys] : values) {
-      for (const auto& [key, seen] : keys) {
-        if (seen.size() > 1) varying[problem].insert(key);
-      }
-    }
-  }
-  auto section_title = [&](const json& r) {
-    std::string title = Str(r, "problem"), setting;
-    for (const std::string& key : varying[Str(r, "problem")]) {
-      const std::string v = r.contains("parameters") && r["parameters"].contains(key)
-                                ? r["parameters"][key].dump()
-                                : std::string("default");
-      setting += (setting.empty() ? "" : ", ") + key + " = " + v;
-    }
-    return setting.empty() ? title : title + " (" + setting + ")";
-  };
-  for (const json& r : records) {
-    const std::string t = section_title(r);
-    if (std::find(sections.begin(), sections.end(), t) == sections.end()) sections.push_back(t);
+  for (const std::string& s : labels.section) {
+    if (std::find(sections.begin(), sections.end(), s) == sections.end()) sections.push_back(s);
   }
   for (const std::string& section : sections) {
     md << "## " << section << "\n\n";
     std::vector<std::string> methods;
     std::map<std::string, std::vector<const json*>> by_method;
-    std::string p;
-    // Options name a row only where they tell two rows of the same method apart.
-    std::map<std::string, std::set<std::string>> options_of;
-    auto options_text = [](const json& r) {
-      std::string text;
-      if (r.contains("options") && r["options"].is_object()) {
-        for (const auto& [key, value] : r["options"].items()) {
-          text += (text.empty() ? "" : ", ") + key + "=" +
-                  (value.is_string() ? value.get<std::string>() : value.dump());
-        }
-      }
-      return text;
-    };
-    for (const json& r : records) {
-      if (section_title(r) != section) continue;
-      options_of[MethodLabel(r) + fmt::format(", N={}", r.value("N", 0))].insert(options_text(r));
-    }
-    for (const json& r : records) {
-      if (section_title(r) != section) continue;
-      p = Str(r, "problem");
-      std::string label = MethodLabel(r) + fmt::format(", N={}", r.value("N", 0));
-      if (options_of[label].size() > 1) {
-        const std::string o = options_text(r);
-        label += o.empty() ? ", default options" : ", " + o;
-      }
-      if (!by_method.count(label)) methods.push_back(label);
-      by_method[label].push_back(&r);
-    }
-    // Problems with a published optimum get its value and a relative-error column:
-    // |Jbar fine - reference| / |reference| (the continuous-time cost of the method's controls).
     const json* reference = nullptr;
-    for (const json& r : records) {
-      if (Str(r, "problem") == p && r.contains("reference") && r["reference"].is_object() &&
-          r["reference"].contains("value") && r["reference"]["value"].is_number()) {
+    for (size_t i = 0; i < records.size(); ++i) {
+      if (labels.section[i] != section) continue;
+      const json& r = records[i];
+      if (!by_method.count(labels.row[i])) methods.push_back(labels.row[i]);
+      by_method[labels.row[i]].push_back(&r);
+      if (!reference && r.contains("reference") && r["reference"].is_object() &&
+          std::isfinite(Num(r["reference"], "value"))) {
         reference = &r["reference"];
-        break;
       }
     }
-    if (reference) {
-      md << fmt::format("Reference {} = {} ({}).\n\n",
-                        reference->value("quantity", std::string("J")),
-                        G((*reference)["value"].get<double>()),
-                        reference->value("source", std::string("no source given")));
-    }
-    md << "| method | cases | status | J | J fine | Jbar fine | terminal viol. | terminal viol. fine | "
-          "U viol. | path viol. | iterations | CPU s | time to target s |"
+    if (reference) md << ReferenceNote(*reference) << "\n\n";
+    md << "| method | cases | status | J | Jbar | J fine | Jbar fine | terminal viol. | "
+          "terminal viol. fine | U viol. | path viol. | resim. defect | iterations | CPU s | "
+          "time to target s |"
        << (reference ? " rel. error vs reference |" : "") << "\n";
-    md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|" << (reference ? "---|" : "")
-       << "\n";
+    md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+       << (reference ? "---|" : "") << "\n";
     for (const std::string& m : methods) {
       const auto& rs = by_method[m];
       std::map<std::string, int> statuses;
-      std::vector<double> J, Jf, Jfine, tv, tvf, cv, pv, it, cpu, ttt;
+      std::vector<double> J, Jbar, Jf, Jbarf, tv, tvf, cv, pv, defect, it, cpu, ttt, rel;
       int reached = 0;
       for (const json* r : rs) {
         statuses[Str(*r, "status")]++;
         J.push_back(Num(*r, "J"));
+        Jbar.push_back(Num(*r, "Jbar"));
         Jf.push_back(Num(*r, "J_fine"));
-        Jfine.push_back(Num(*r, "Jbar_fine"));
+        Jbarf.push_back(Num(*r, "Jbar_fine"));
         tv.push_back(Num(*r, "terminal_violation"));
         tvf.push_back(Num(*r, "terminal_violation_fine"));
         cv.push_back(Num(*r, "control_violation"));
         pv.push_back(Num(*r, "path_violation"));
+        defect.push_back(Num(*r, "resimulation_defect"));
         it.push_back(Num(*r, "iterations"));
         cpu.push_back(Num(*r, "cpu_seconds"));
         const double t = Num(*r, "time_to_target");
@@ -223,27 +303,31 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
           ttt.push_back(t);
           ++reached;
         }
+        if (reference) rel.push_back(ReferenceError(*r, *reference));
       }
       std::string st;
-      for (const auto& [s, n] : statuses) st += (st.empty() ? "" : ", ") + fmt::format("{} {}", n, s);
-      // Violations: the worst case of the row (NaN where a case has none, e.g. not applicable).
-      auto worst = [](const std::vector<double>& v) {
-        double w = std::numeric_limits<double>::quiet_NaN();
-        for (double x : v) {
-          if (!std::isnan(x)) w = std::isnan(w) ? x : std::max(w, x);
-        }
-        return w;
-      };
-      md << fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}/{}) |",
-                        m, rs.size(), st, Spread(J), Spread(Jf), Spread(Jfine), G(worst(tv)),
-                        G(worst(tvf)), G(worst(cv)), G(worst(pv)), G(Median(it)), G(Median(cpu)),
-                        G(Median(ttt)), reached, rs.size());
-      if (reference) {
-        const double value = (*reference)["value"].get<double>();
-        std::vector<double> rel;
-        for (double x : Jfine) rel.push_back(std::abs(x - value) / std::abs(value));
-        md << " " << Spread(rel) << " |";
-      }
+      for (const auto& [s, n] : statuses)
+        st += (st.empty() ? "" : ", ") + fmt::format("{} {}", n, s);
+      md << fmt::format(
+          "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}/{}) |",
+          m,
+          rs.size(),
+          st,
+          Spread(J),
+          Spread(Jbar),
+          Spread(Jf),
+          Spread(Jbarf),
+          G(Worst(tv)),
+          G(Worst(tvf)),
+          G(Worst(cv)),
+          G(Worst(pv)),
+          G(Worst(defect)),
+          G(Median(it)),
+          G(Median(cpu)),
+          G(Median(ttt)),
+          reached,
+          rs.size());
+      if (reference) md << " " << Spread(rel) << " |";
       md << "\n";
     }
     md << "\n";
@@ -252,12 +336,32 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
 }
 
 std::string RecordsCsv(const std::vector<json>& records) {
-  static const char* kColumns[] = {"problem", "seed", "solver", "transcription", "algorithm", "N",
-                                   "terminal", "integrator", "status", "solver_status", "J", "Jbar",
-                                   "terminal_violation", "control_violation", "path_violation",
-                                   "J_fine", "Jbar_fine", "terminal_violation_fine",
-                                   "resimulation_defect", "iterations", "cpu_seconds", "wall_seconds",
-                                   "best_J", "time_to_target"};
+  static const char* kColumns[] = {"problem",
+                                   "seed",
+                                   "solver",
+                                   "transcription",
+                                   "algorithm",
+                                   "N",
+                                   "terminal",
+                                   "integrator",
+                                   "status",
+                                   "solver_status",
+                                   "J",
+                                   "Jbar",
+                                   "terminal_violation",
+                                   "control_violation",
+                                   "path_violation",
+                                   "J_fine",
+                                   "Jbar_fine",
+                                   "terminal_violation_fine",
+                                   "resimulation_defect",
+                                   "iterations",
+                                   "cpu_seconds",
+                                   "wall_seconds",
+                                   "final_J",
+                                   "best_J",
+                                   "reached_target",
+                                   "time_to_target"};
   std::ostringstream csv;
   bool first = true;
   for (const char* c : kColumns) {

@@ -72,6 +72,10 @@ ProblemInfo CatmixProblemInfo() {
   p.reference_source =
       "COPS 3.0 (Dolan, More, Munson 2004), nh = 100, 3-point Gauss collocation: an optimum of "
       "that discrete NLP, not of the continuous problem";
+  // 3-point Gauss-Legendre collocation, which OCPBench has no transcription for (the test
+  // rebuilds it): no record matches it.
+  p.reference_scheme = "gauss-legendre-3";
+  p.reference_intervals = Catmix::kCopsIntervals;
   p.hamiltonian_note =
       "singular arc: eps int u^2 added to the cost (parameter hamiltonian_eps), u* = clip(-s/(2 "
       "eps), 0, 1)";

@@ -33,6 +33,8 @@ ProblemInfo GoddardProblemInfo() {
   p.reference_source =
       "COPS 3.0 (Dolan, More, Munson 2004) rocket, trapezoid nh = 400: h(T) = 1.01283, an "
       "optimum of that discrete NLP";
+  p.reference_scheme = "trapezoid";
+  p.reference_intervals = Goddard::kCopsIntervals;
   p.hamiltonian_applicable = false;
   p.hamiltonian_note =
       "not applicable: the method needs the penalty terminal form, and with C (m(T) - mf)^2 the "

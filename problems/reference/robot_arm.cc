@@ -31,6 +31,8 @@ ProblemInfo RobotArmProblemInfo() {
   p.reference_source =
       "COPS 3.0 (Dolan, More, Munson 2004) robot, trapezoid nh = 200: T = 9.14138, an optimum of "
       "that discrete NLP";
+  p.reference_scheme = "trapezoid";
+  p.reference_intervals = RobotArm::kCopsIntervals;
   p.hamiltonian_note =
       "free T by time scaling (sigma = dt/ds a control, eps Var(sigma) in J: exact), torques as "
       "v = sigma w in the cone |v_i| <= sigma, penalized in the Hamiltonian reformulation (rho "

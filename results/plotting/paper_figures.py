@@ -32,6 +32,7 @@ Writes, per record, into DIR (<prefix> = comm-path2d-<solver>-seed<seed>[-<tag>]
 import json
 import math
 import os
+import re
 import sys
 
 import matplotlib
@@ -39,6 +40,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from mpl_toolkits.mplot3d import Axes3D  # noqa: E402,F401  (registers the 3-D projection)
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from figure_io import save_figure  # noqa: E402
 
 PAPER_S, PAPER_D, PAPER_BASE = (20.0, 40.0), (10.0, 5.0), (5.0, 5.0)
 
@@ -96,7 +100,7 @@ def record_figures(rec, outdir, tag=""):
 
     def save(fig, name):
         path = os.path.join(outdir, "%s-%s.png" % (prefix, name))
-        fig.savefig(path, dpi=120, bbox_inches="tight")
+        save_figure(fig, path, dpi=120, bbox_inches="tight")
         plt.close(fig)
         files.append(path)
 
@@ -219,20 +223,29 @@ def record_figures(rec, outdir, tag=""):
 def figures_from_records(records, outdir):
     """Entry point for results/plot.py: the paper's figures for the comm-path2d records of the
     first seed, for the Hamiltonian descent and Ipopt on the Euler transcription (the pair that
-    solves the same discrete problem), one set per terminal form and penalty setting. Every
-    record would give hundreds of near-identical figures; the others' paths are in the records."""
-    paper = [r for r in records if r.get("problem") == "comm-path2d" and r.get("trajectory")]
+    solves the same discrete problem), one set per summary section (penalty setting) and terminal
+    form. Every record would give hundreds of near-identical figures; the others' paths are in the
+    records."""
+    paper = [r for r in records if r.get("problem") == "comm-path2d" and r.get("trajectory")
+             and r.get("kind", "solve") == "solve"]
     if not paper:
         return []
     first_seed = min(r.get("seed", 0) for r in paper)
     files = []
+    seen = set()
     for rec in paper:
         method = rec.get("solver", "") + ("-" + rec["transcription"] if rec.get("transcription") else "")
         if rec.get("seed", 0) != first_seed or method not in ("hamiltonian", "ipopt-euler"):
             continue
-        C = (rec.get("parameters") or {}).get("C", [0])
-        tag = "%s%s-C%g" % (rec["transcription"] + "-" if rec.get("transcription") else "",
-                            rec.get("terminal", ""), C[0] if C else 0)
+        # The setting as summary.md splits it (the parameters that vary, e.g. C): "C-10-50-10".
+        section = rec.get("section", "")
+        setting = section[section.find("(") + 1:-1] if section.endswith(")") else ""
+        setting = re.sub(r"(\d)\.0\b", r"\1", setting)
+        setting = re.sub(r"[^A-Za-z0-9.+]+", "-", setting).strip("-")
+        tag = "-".join(x for x in (rec.get("transcription"), rec.get("terminal", ""), setting) if x)
+        if (method, tag) in seen:  # two records, one name: a setting the section does not name
+            raise SystemExit("paper_figures.py: two %s records would write %s" % (method, tag))
+        seen.add((method, tag))
         files += record_figures(rec, os.path.join(outdir, "paper"), tag=tag)
     return files
 
