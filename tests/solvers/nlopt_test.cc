@@ -437,6 +437,36 @@ TEST(NloptSolver, EveryAlgorithmOnHermiteSimpsonCollocation) {
               });
 }
 
+// The default refusal limits at the sizes they were set from (NloptOptions; measured on this
+// problem, solvers/README-nlp.md). One evaluation (maxeval = 1) shows a size just inside a limit
+// runs; the path-loss channel keeps the problem cheap to build (the limits count sizes only).
+TEST(NloptSolver, DefaultLimitsOnThePapersGrids) {
+  const auto ocp = MakeProblem("comm-path2d", {"channel=0"}, 1);
+  const NloptSolver solver;
+  auto run = [&](const std::string& algorithm, int N, bool one_evaluation) {
+    SolveRequest request = ShootingRequest(ocp->tf(), N, TerminalMode::kPenalty);
+    request.algorithm = algorithm;
+    if (one_evaluation) request.options = {{"maxeval", "1"}};
+    return solver.Solve(*ocp, request);
+  };
+  // SLSQP: n = 3N; the paper's N = 400 (n = 1200) is refused, N = 166 (n = 498) runs.
+  SolveResult r = run("LD_SLSQP", 400, false);
+  EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(r.message.find("n = 1200 > slsqp_max_variables = 500"), std::string::npos) << r.message;
+  EXPECT_EQ(run("LD_SLSQP", 166, true).solver_status, "MAXEVAL_REACHED");
+  // MMA / CCSAQ: N ball rows.
+  for (const std::string alg : {"LD_MMA", "LD_CCSAQ"}) {
+    r = run(alg, 201, false);
+    EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << alg;
+    EXPECT_NE(r.message.find("201 > mma_max_inequalities = 200"), std::string::npos) << r.message;
+    EXPECT_EQ(run(alg, 200, true).solver_status, "MAXEVAL_REACHED") << alg;
+  }
+  // AUGLAG: m n = N * 3N > 2e7 from N = 2582.
+  r = run("AUGLAG", 2600, false);
+  EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(r.message.find("max_dense_jacobian"), std::string::npos) << r.message;
+}
+
 TEST(NloptSolver, RequestAlgorithmOverridesAndBadRequestsThrow) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   const NloptSolver solver;
