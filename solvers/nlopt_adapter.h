@@ -46,19 +46,26 @@ struct NloptOptions {
   double feasibility_tol = 1e-6;
 
   // ---- refusal limits: cases that would run for hours are refused with kNotApplicable ---------
-  /// Dense constraint Jacobian: refuse when m * n exceeds this (memory 8 m n bytes per copy,
-  /// and O(m n) work per evaluation at least). Measured: AUGLAG(LD_LBFGS) on the paper's problem,
-  /// single shooting N = 1600 (m n = 7.7e6): 23.6 s, 116 MB peak.
+  /// Dense constraint Jacobian: refuse when m * n exceeds this. NLopt's vector constraints take
+  /// a dense m x n gradient array, filled at every evaluation. Measured (solvers/README-nlp.md,
+  /// BM_NloptSingleShootingScaling): AUGLAG(LD_LBFGS) on the paper's problem, single shooting,
+  /// peak memory +77 MB at m n = 7.7e6 (N = 1600) and +151 MB at 1.7e7 (N = 2400), about 9 bytes
+  /// per entry; 8.3 and 16.4 ms CPU per evaluation; converging runs need 500-1700 evaluations.
+  /// At the limit, 2e7: ~175 MB and about 10-35 s CPU per run.
   double max_dense_jacobian = 2e7;
   /// LD_SLSQP: refuse when n exceeds this (its quasi-Newton matrix and least-squares
   /// subproblem, bounds included, are dense: O(n^2) memory, O(n^3) per iteration). Measured on
-  /// the paper's problem, single shooting (solvers/README-nlp.md): n = 150: 1.6 s, n = 300: 24 s,
-  /// n = 600: not done after 94 s CPU (time limit).
-  int slsqp_max_variables = 400;
+  /// the paper's problem, single shooting (solvers/README-nlp.md): CPU per evaluation 42 ms at
+  /// n = 300, 0.10 s at 399, 0.17 s at 501, 0.49 s at 600, 5.1 s at 1200 (peak +112 MB); runs
+  /// that converge need 120-250 evaluations. So n = 500 converges in under a minute, n = 600
+  /// takes minutes and the paper's grid (N = 400, n = 1200) would hit maxtime (10-20 min).
+  int slsqp_max_variables = 500;
   /// LD_MMA / LD_CCSAQ (also as AUGLAG_EQ's local algorithm with inequalities): refuse when the
-  /// number of inequality constraints exceeds this (the cost of an evaluation's dual subproblem
-  /// grows with m: measured 5.3 ms (MMA) and 2.1 ms (CCSAQ) per evaluation at m = 200, so the
-  /// default maxeval takes 40-110 s there).
+  /// number of inequality constraints exceeds this. Their dual subproblem grows with m: on the
+  /// paper's problem the first evaluations from u = 0 cost 0.25-1 s each at m >= 100 (measured:
+  /// 7 and 8 evaluations in 2 s at m = 100, 2-3 at m = 200..800), and the full default maxeval
+  /// took 23 s / 10 s at m = 100 and 106 s / 42 s at m = 200 (MMA / CCSAQ), never converging
+  /// (gap ~7e-4).
   int mma_max_inequalities = 200;
 
   /// Record a history row per objective evaluation.

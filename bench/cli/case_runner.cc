@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
+#include "bench/cli/initial_guess.h"
 #include "bench/cli/online_command.h"
 #include "bench/cli/version.h"
 #include "core/evaluator.h"
@@ -81,6 +83,7 @@ std::string CaseSpec::Key() const {
                                 ToString(evaluate_with));
   for (const std::string& s : set) key += "|set:" + s;
   for (const auto& [k, v] : options) key += "|opt:" + k + "=" + v;
+  if (!initial_guess.empty()) key += "|guess=" + initial_guess;
   if (kind != "solve") {
     key += "|kind=" + kind;
     for (const auto& [k, v] : online) key += "|online:" + k + "=" + v;
@@ -266,6 +269,8 @@ json RunCase(const CaseSpec& spec) {
   } else if (!spec.transcription.empty()) {
     throw std::invalid_argument("solver '" + spec.solver + "' takes no transcription");
   }
+  std::optional<ControlTrajectory> guess;
+  if (!spec.initial_guess.empty()) guess = ReadInitialGuess(spec.initial_guess);
   Parameters params;
   const std::unique_ptr<Ocp> ocp = MakeProblem(spec.problem, spec.set, spec.seed, &params);
   const int N = spec.intervals > 0 ? spec.intervals : pinfo.default_intervals;
@@ -279,6 +284,10 @@ json RunCase(const CaseSpec& spec) {
   request.algorithm = spec.algorithm;
   request.degree = spec.degree;
   request.options = spec.options;
+  if (guess) {
+    CheckInitialGuess(*guess, *ocp, spec.initial_guess);
+    request.initial_guess = guess;
+  }
 
   const std::unique_ptr<Solver> solver = sinfo.make();
   SolveResult result;
@@ -317,6 +326,7 @@ json RunCase(const CaseSpec& spec) {
   json oj = json::object();
   for (const auto& [k, v] : spec.options) oj[k] = v;
   rec["options"] = oj;
+  if (!spec.initial_guess.empty()) rec["initial_guess"] = spec.initial_guess;
   rec["key"] = spec.Key();
   rec["status"] = ToString(result.status);
   rec["solver_status"] = result.solver_status;

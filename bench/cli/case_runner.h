@@ -33,6 +33,9 @@ struct CaseSpec {
   std::map<std::string, std::string> options;  ///< solver options
   int repeats = 1;              ///< timing repeats; the record keeps the median CPU time
   bool keep_trajectory = true;  ///< store t, x, u in the record (for figures)
+  /// A previous `ocpbench solve --json` record whose controls start the solve (empty: the
+  /// solver's default start). Read and checked before solving (bench/cli/initial_guess.h).
+  std::string initial_guess;
   /// "solve" (one solve, the default) or "online" (re-planning with channel updates, paper
   /// Section IV: `options` are the solver options of every solve, `replan_options` override them
   /// for the re-plans, `online` holds the scenario settings; see bench/cli/online_command.h).

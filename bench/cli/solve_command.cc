@@ -71,6 +71,10 @@ void AddSolveCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--json", args->json_path, "write the JSON record to this file");
   cmd->add_flag("--no-trajectory", args->no_trajectory, "leave t, x, u out of the JSON");
+  cmd->add_option("--initial-guess",
+                  args->spec.initial_guess,
+                  "start from the controls (trajectory.u) of a previous `solve --json` record, "
+                  "sampled onto this grid");
   cmd->callback([args, n_option]() {
     CaseSpec spec = args->spec;
     if (n_option->count() > 0 && spec.intervals < 1) {

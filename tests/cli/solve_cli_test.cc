@@ -1,0 +1,260 @@
+// End-to-end `ocpbench solve` with the NLP solvers: the JSON record's contract fields, a refused
+// NLopt case, and --initial-guess (a previous record's controls as the starting point).
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "bench/cli/initial_guess.h"
+#include "problems/registry.h"
+#include "tests/cli/run_ocpbench.h"
+
+namespace ocpb {
+namespace {
+
+using nlohmann::json;
+using testing::ProgramRun;
+using testing::RunOcpbenchProgram;
+
+// The paper's problem on a coarse grid (dt = 1 s) with the path-loss channel (building the
+// predicted channel map would dominate each run): cheap, and nu = 3 (acceleration, rate).
+const std::vector<std::string> kPaper = {
+    "--problem", "comm-path2d", "--set", "channel=0", "--N", "40"};
+
+std::vector<std::string> Args(std::vector<std::string> head, const std::vector<std::string>& tail) {
+  head.insert(head.end(), tail.begin(), tail.end());
+  return head;
+}
+
+json Solve(const std::string& dir, const std::vector<std::string>& args, int expected_exit = 0) {
+  const ProgramRun run = RunOcpbenchProgram(Args(Args({"solve"}, kPaper), args), dir);
+  EXPECT_EQ(run.exit_code, expected_exit) << run.err << run.out;
+  return json::parse(testing::ReadText(dir + "/out.json"));
+}
+
+void ExpectContractFields(const json& r) {
+  for (const char* key : {"status",
+                          "solver_status",
+                          "message",
+                          "J",
+                          "Jbar",
+                          "terminal_violation",
+                          "iterations",
+                          "cpu_seconds",
+                          "final_state",
+                          "history",
+                          "trajectory"}) {
+    EXPECT_TRUE(r.contains(key)) << key;
+  }
+  EXPECT_EQ(r["status"], "converged") << r["message"];
+  EXPECT_TRUE(r["J"].is_number());
+  EXPECT_TRUE(r["Jbar"].is_number());
+  EXPECT_LE(r["Jbar"].get<double>(), r["J"].get<double>());
+  EXPECT_TRUE(r["terminal_violation"].is_number());
+  EXPECT_GT(r["iterations"].get<int>(), 0);
+  EXPECT_GT(r["cpu_seconds"].get<double>(), 0.0);
+  ASSERT_EQ(r["final_state"].size(), 5u);  // position (2), velocity (2), bits
+  ASSERT_FALSE(r["history"].empty());
+  for (const json& h : r["history"]) {
+    for (const char* key : {"iteration", "J", "theta", "armijo_j", "cpu_seconds"}) {
+      ASSERT_TRUE(h.contains(key)) << key << " in " << h.dump();
+    }
+    EXPECT_TRUE(h["theta"].is_null());  // an NLP solver has no theta
+    EXPECT_EQ(h["armijo_j"], -1);       // nor an Armijo exponent
+  }
+}
+
+TEST(SolveCli, IpoptJsonHasTheContractFields) {
+  const std::string dir = testing::FreshDirectory("solve-ipopt-json");
+  const json r =
+      Solve(dir, {"--solver", "ipopt", "--transcription", "euler", "--json", "out.json"});
+  ExpectContractFields(r);
+  EXPECT_EQ(r["solver_status"], "Solve_Succeeded");
+  EXPECT_EQ(r["iterations"].get<size_t>() + 1, r["history"].size());  // Ipopt logs iterate 0
+  // The Euler evaluator on the method's grid sees the NLP's own discrete problem.
+  EXPECT_NEAR(r["J"].get<double>(), r["objective"].get<double>(), 1e-9 * r["J"].get<double>());
+}
+
+TEST(SolveCli, NloptJsonHasTheContractFieldsAndRefusalsSayWhy) {
+  const std::string dir = testing::FreshDirectory("solve-nlopt-json");
+  const json r = Solve(dir,
+                       {"--solver",
+                        "nlopt",
+                        "--transcription",
+                        "single-shooting",
+                        "--algorithm",
+                        "AUGLAG",
+                        "--json",
+                        "out.json"});
+  ExpectContractFields(r);
+  EXPECT_EQ(r["iterations"].get<size_t>(), r["history"].size());  // one row per evaluation
+  // L-BFGS takes bounds only; the ball |u| <= umax gives constraint rows: refused (exit 0: a
+  // refusal is not a failure), nothing judged.
+  const json refused = Solve(dir,
+                             {"--solver",
+                              "nlopt",
+                              "--transcription",
+                              "single-shooting",
+                              "--algorithm",
+                              "LD_LBFGS",
+                              "--json",
+                              "out.json"});
+  EXPECT_EQ(refused["status"], "not_applicable");
+  EXPECT_EQ(refused["solver_status"], "not_run");
+  EXPECT_NE(refused["message"].get<std::string>().find("LD_LBFGS takes only bound constraints"),
+            std::string::npos)
+      << refused["message"];
+  EXPECT_TRUE(refused["J"].is_null());
+  EXPECT_TRUE(refused["history"].empty());
+  // A size limit: SLSQP on n = 3 N = 120 variables with slsqp_max_variables = 100.
+  const json too_big = Solve(dir,
+                             {"--solver",
+                              "nlopt",
+                              "--transcription",
+                              "single-shooting",
+                              "--option",
+                              "slsqp_max_variables=100",
+                              "--json",
+                              "out.json"});
+  EXPECT_EQ(too_big["status"], "not_applicable");
+  EXPECT_NE(too_big["message"].get<std::string>().find("n = 120 > slsqp_max_variables = 100"),
+            std::string::npos)
+      << too_big["message"];
+}
+
+// ---- --initial-guess ------------------------------------------------------------------------
+
+TEST(SolveCli, IpoptStartsFromAHamiltonianRecordAndConverges) {
+  const std::string dir = testing::FreshDirectory("solve-initial-guess");
+  const json ham = Solve(dir, {"--solver", "hamiltonian", "--json", "out.json"});
+  ASSERT_TRUE(ham["J"].is_number());
+  testing::WriteText(dir + "/ham.json", testing::ReadText(dir + "/out.json"));
+  // With max_iter = 0 Ipopt returns its starting point: the Hamiltonian controls exactly (the
+  // states are simulated from them), so the evaluator finds the Hamiltonian record's J.
+  const json start = Solve(dir,
+                           {"--solver",
+                            "ipopt",
+                            "--transcription",
+                            "euler",
+                            "--initial-guess",
+                            "ham.json",
+                            "--option",
+                            "max_iter=0",
+                            "--json",
+                            "out.json"});
+  EXPECT_EQ(start["initial_guess"], "ham.json");
+  EXPECT_NEAR(start["J"].get<double>(), ham["J"].get<double>(), 1e-9 * ham["J"].get<double>());
+  // NLopt's first evaluation is at its starting point too.
+  const json nlopt_start = Solve(dir,
+                                 {"--solver",
+                                  "nlopt",
+                                  "--transcription",
+                                  "single-shooting",
+                                  "--initial-guess",
+                                  "ham.json",
+                                  "--option",
+                                  "maxeval=1",
+                                  "--json",
+                                  "out.json"});
+  EXPECT_EQ(nlopt_start["solver_status"], "MAXEVAL_REACHED");
+  EXPECT_NEAR(nlopt_start["history"][0]["J"].get<double>(),
+              ham["J"].get<double>(),
+              1e-9 * ham["J"].get<double>());
+  // And from there Ipopt converges, to the optimum it reaches from its default start.
+  const json warm = Solve(dir,
+                          {"--solver",
+                           "ipopt",
+                           "--transcription",
+                           "euler",
+                           "--initial-guess",
+                           "ham.json",
+                           "--json",
+                           "out.json"});
+  EXPECT_EQ(warm["status"], "converged") << warm["message"];
+  const json cold =
+      Solve(dir, {"--solver", "ipopt", "--transcription", "euler", "--json", "out.json"});
+  EXPECT_NEAR(warm["J"].get<double>(), cold["J"].get<double>(), 1e-6 * cold["J"].get<double>());
+  EXPECT_LT(warm["J"].get<double>(), ham["J"].get<double>());
+}
+
+TEST(SolveCli, BadInitialGuessFilesExitWithCodeTwo) {
+  const std::string dir = testing::FreshDirectory("solve-bad-initial-guess");
+  // A record of another problem: double-integrator has one control, comm-path2d three.
+  ASSERT_EQ(RunOcpbenchProgram({"solve",
+                                "--problem",
+                                "double-integrator",
+                                "--solver",
+                                "hamiltonian",
+                                "--N",
+                                "10",
+                                "--json",
+                                "di.json"},
+                               dir)
+                .exit_code,
+            0);
+  ASSERT_EQ(RunOcpbenchProgram(Args(Args({"solve"}, kPaper),
+                                    {"--solver",
+                                     "hamiltonian",
+                                     "--option",
+                                     "max_iterations=1",
+                                     "--no-trajectory",
+                                     "--json",
+                                     "bare.json"}),
+                               dir)
+                .exit_code,
+            0);
+  testing::WriteText(dir + "/broken.json", "{\"trajectory\": {\"t\": [0, 1");
+  testing::WriteText(dir + "/short.json",
+                     R"({"trajectory": {"t": [0, 20, 40], "u": [[0], [0], [0]]}})");
+  testing::WriteText(dir + "/horizon.json",
+                     R"({"trajectory": {"t": [0, 10, 20], "u": [[0, 0], [0, 0], [0, 0]]}})");
+  const struct {
+    const char* file;
+    const char* expected;
+  } cases[] = {
+      {"missing.json", "--initial-guess missing.json: no such file"},
+      {"broken.json", "--initial-guess broken.json: not valid JSON"},
+      {"bare.json", "--initial-guess bare.json: no \"trajectory\" object"},
+      {"di.json", "the controls have dimension 1 but problem 'comm-path2d' has nu = 3"},
+      {"short.json", "trajectory.u[0] has 1 values, expected one per interval (2)"},
+      {"horizon.json",
+       "the trajectory spans [0, 20] but problem 'comm-path2d' has the horizon [0, 40]"},
+  };
+  for (const auto& c : cases) {
+    const ProgramRun run = RunOcpbenchProgram(
+        Args(Args({"solve"}, kPaper),
+             {"--solver", "ipopt", "--transcription", "euler", "--initial-guess", c.file}),
+        dir);
+    EXPECT_EQ(run.exit_code, 2) << c.file << ": " << run.err;
+    EXPECT_EQ(run.err.rfind("ocpbench: error: ", 0), 0u) << run.err;
+    EXPECT_NE(run.err.find(c.expected), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_TRUE(run.out.empty()) << "nothing may run: " << run.out;
+  }
+}
+
+// The reader itself: piecewise constant when the record says so (the record's controls
+// exactly), piecewise linear through the samples otherwise.
+TEST(InitialGuess, KeepsTheRecordsInterpolationRule) {
+  const std::string dir = testing::FreshDirectory("initial-guess-reader");
+  testing::WriteText(dir + "/pc.json",
+                     R"({"trajectory": {"t": [0, 1, 2], "u": [[1, 3]],
+                         "u_rule": "value at each interval's left end; piecewise constant"}})");
+  testing::WriteText(dir + "/pl.json",
+                     R"({"trajectory": {"t": [0, 1, 2], "u": [[1, 3]],
+                         "u_rule": "value at each interval's left end; piecewise linear"}})");
+  const ControlTrajectory pc = ReadInitialGuess(dir + "/pc.json");
+  const ControlTrajectory pl = ReadInitialGuess(dir + "/pl.json");
+  EXPECT_EQ(pc.nu(), 1);
+  EXPECT_EQ(pc(0.5)[0], 1.0);
+  EXPECT_EQ(pc(1.5)[0], 3.0);
+  EXPECT_DOUBLE_EQ(pl(0.5)[0], 2.0);
+  EXPECT_DOUBLE_EQ(pl(1.5)[0], 3.0);                         // the last sample held to tf
+  const auto ocp = MakeProblem("double-integrator", {}, 0);  // horizon [0, 1]
+  EXPECT_THROW(CheckInitialGuess(pc, *ocp, "pc.json"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ocpb
