@@ -9,12 +9,14 @@
 
 #include <fmt/format.h>
 
+#include "bench/cli/channel_sample.h"
 #include "bench/cli/initial_guess.h"
 #include "bench/cli/online_command.h"
 #include "bench/cli/version.h"
 #include "core/evaluator.h"
 #include "core/parameters.h"
 #include "core/timer.h"
+#include "problems/comm_path2d.h"
 #include "problems/registry.h"
 #include "solvers/registry.h"
 
@@ -376,6 +378,9 @@ json RunCase(const CaseSpec& spec) {
       traj["u_rule"] = "value at each interval's left end; piecewise " +
                        std::string(result.controls.InterpolationName());
       rec["trajectory"] = traj;
+      if (const auto* comm = dynamic_cast<const CommPath2d*>(ocp.get())) {
+        rec["s_map"] = ChannelSampleJson(comm->channel(), comm->options().workspace);
+      }
     }
   } else {
     for (const char* k : {"J",
@@ -394,7 +399,9 @@ json RunCase(const CaseSpec& spec) {
   if (pinfo.reference_value) {
     json ref{{"value", *pinfo.reference_value},
              {"quantity", pinfo.reference_quantity},
-             {"source", pinfo.reference_source}};
+             {"source", pinfo.reference_source},
+             {"scheme", pinfo.reference_scheme}};
+    if (pinfo.reference_scheme != "continuous") ref["N"] = pinfo.reference_intervals;
     rec["reference"] = ref;
   }
   json hist = json::array();
