@@ -94,7 +94,8 @@ const char* ToString(IndirectNewtonOptions::Costates costates);
 ///
 /// Accuracy: the trapezoidal scheme is second order, so states, costates and the discrete cost
 /// approach the continuous optimum as O(h^2) for smooth solutions (tested on the double
-/// integrator with p*(t) = (12, 12t - 6) and on LQ problems with Riccati costates).
+/// integrator with p*(t) = (-12, 12t - 6), from H = p^T f + L: p1' = 0, p2' = -p1, and on LQ
+/// problems with Riccati costates).
 ///
 /// Reformulation: like the Hamiltonian descent, the method solves
 /// Ocp::HamiltonianReformulation({path_penalty, regularization}) in place of the problem when the
@@ -107,7 +108,10 @@ const char* ToString(IndirectNewtonOptions::Costates costates);
 ///  - Ocp::HasHamiltonianMinimizer(), with H strictly convex in u on the free directions (else
 ///    the Jacobian does not exist and the solve ends in kNumericalFailure, saying so);
 ///  - num_path() == 0;
-///  - fixed final time (core has no free final time).
+///  - a fixed horizon: free final time enters only through time scaling, where the problem
+///    poses it on s in [0, 1] with the time dilation as a control and a clock state
+///    (problems/reference/scaled_min_time.h, scaled_free_time.h); the condition H(tf) = 0 of an
+///    explicitly free tf is not implemented.
 /// Both terminal forms: kPenalty (p(tf) = grad Phi) and kHard (psi = 0, nu unknown).
 ///
 /// Stopping (SolveResult::status / verbatim SolveResult::solver_status):
