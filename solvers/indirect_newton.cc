@@ -611,8 +611,7 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
   if (target.not_applicable) return *target.not_applicable;
   const Ocp& ocp = *target.ocp;
   // Validates the grid (throws std::invalid_argument) before any work.
-  PmpResidual check(ocp, request.grid, request.terminal);
-  (void)check;
+  PmpResidual::CheckApplicable(ocp, request.grid);
 
   SolveResult r;
   r.solver = kName;
@@ -659,18 +658,22 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
     }
     r.message += (r.message.empty() ? "" : "; ") + summary + ", costates " + ToString(o.costates);
     X = start.states;
+    const double start_cpu0 = CpuSeconds();
     if (o.costates == Options::Costates::kFit) {
       CostatesFromControls(ocp, request.grid, request.terminal, start.controls, X, o.costates, &P);
     } else {
       P = start.costates;
     }
+    r.solver_stats["start_cpu_seconds"] = CpuSeconds() - start_cpu0;
   } else {
     const ControlTrajectory guess =
         request.initial_guess ? *request.initial_guess : DefaultInitialGuess(ocp, request.grid);
     if (guess.nu() != ocp.nu()) {
       throw std::invalid_argument(std::string(kName) + ": the initial guess must have nu controls");
     }
+    const double start_cpu0 = CpuSeconds();
     StartFromControls(ocp, request.grid, request.terminal, guess, &X, &P, o.costates);
+    r.solver_stats["start_cpu_seconds"] = CpuSeconds() - start_cpu0;
   }
   RunNewton({ocp, request, o, watch}, X, P, nullptr, &r);
   return r;

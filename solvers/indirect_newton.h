@@ -132,8 +132,10 @@ const char* ToString(IndirectNewtonOptions::Costates costates);
 /// armijo_j = number of backtracks of the step that produced it (-1 for i = 0), cpu_seconds
 /// cumulative from the start of Solve (the warm start included). solver_stats (CPU seconds):
 /// "assembly_seconds" (residual and Jacobian evaluations), "factorization_seconds" (symbolic and
-/// numeric LU), "solve_seconds" (triangular solves), "newton_cpu_seconds", "warm_start_cpu_seconds"
-/// and "warm_start_iterations" (kHamiltonian only), "residual_inf", "unknowns",
+/// numeric LU), "solve_seconds" (triangular solves), "newton_cpu_seconds", "start_cpu_seconds"
+/// (Solve only: the start's states and costates from its controls, after any warm start),
+/// "warm_start_cpu_seconds" and "warm_start_iterations" (kHamiltonian only), "residual_inf",
+/// "unknowns",
 /// "jacobian_nonzeros", "residual_evaluations", "jacobian_evaluations", "reformulated".
 class IndirectNewton final : public Solver {
  public:

@@ -743,7 +743,8 @@ TEST(IndirectNewton, ResultIsComplete) {
   EXPECT_EQ(r.costates.cols(), 51);
   EXPECT_EQ(r.history.front().armijo_j, -1);
   EXPECT_EQ(r.objective, r.history.back().J);
-  for (const char* key : {"assembly_seconds", "factorization_seconds", "solve_seconds"}) {
+  for (const char* key :
+       {"assembly_seconds", "factorization_seconds", "solve_seconds", "start_cpu_seconds"}) {
     ASSERT_EQ(r.solver_stats.count(key), 1u) << key;
     EXPECT_GE(r.solver_stats.at(key), 0.0) << key;
   }
