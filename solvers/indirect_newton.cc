@@ -6,11 +6,15 @@
 #include <sstream>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
+#include <Eigen/Cholesky>
 #include <Eigen/KLUSupport>
+#include <Eigen/LU>
 #include <Eigen/QR>
 #include <Eigen/UmfPackSupport>
 
+#include "core/control_set.h"
 #include "core/evaluator.h"
 #include "core/timer.h"
 #include "solvers/pmp_residual.h"
@@ -22,7 +26,7 @@ namespace {
 constexpr const char* kName = "indirect-newton";
 constexpr const char* kValidKeys =
     "max_iterations, tolerance, sufficient_decrease, backtrack, min_step, linear_solver, "
-    "warm_start, path_penalty, regularization, hamiltonian.<key>";
+    "warm_start, costates, path_penalty, regularization, hamiltonian.<key>";
 constexpr const char* kWarmPrefix = "hamiltonian.";
 
 [[noreturn]] void BadOption(const std::string& key, const std::string& rule) {
@@ -112,6 +116,94 @@ Vec EstimateMultipliers(const Ocp& ocp, ConstVecRef xN, ConstVecRef pN) {
   Vec nu = psix.transpose().colPivHouseholderQr().solve(pN - grad);
   if (!nu.allFinite()) nu.setZero();
   return nu;
+}
+
+// The components of u strictly inside U (see IndirectNewton::CostatesFromControls).
+void FreeComponents(const ControlSet& set, ConstVecRef u, std::vector<int>* free) {
+  free->clear();
+  if (set.blocks().empty()) {
+    for (int i = 0; i < u.size(); ++i) free->push_back(i);
+    return;
+  }
+  constexpr double kMargin = 1e-6;
+  for (const ControlSet::Block& b : set.blocks()) {
+    if (b.kind == ControlSet::Kind::kBox) {
+      for (int i = 0; i < b.size; ++i) {
+        const double lo = b.lower[i], hi = b.upper[i], v = u[b.offset + i];
+        const double margin = kMargin * (std::isfinite(hi - lo) ? hi - lo : 1.0);
+        if (v > lo + margin && v < hi - margin) free->push_back(b.offset + i);
+      }
+    } else {
+      const auto ub = u.segment(b.offset, b.size);
+      const double r = b.center.size() > 0 ? (ub - b.center).norm() : ub.norm();
+      if (r < (1.0 - kMargin) * b.radius) {
+        for (int i = 0; i < b.size; ++i) free->push_back(b.offset + i);
+      }
+    }
+  }
+}
+
+// The kFit terminal costate of IndirectNewton::CostatesFromControls, given p_k = M_k q + c_k
+// and the adjoint's q0: least squares on the stacked rows sqrt(w_k) (H_uu)_F^-1 (H_u)_F(q) of
+// every node, plus the ridge rows delta (q - q0).
+Vec FitTerminalCostate(const Ocp& ocp,
+                       const TimeGrid& grid,
+                       const ControlTrajectory& controls,
+                       const Mat& X,
+                       const std::vector<Mat>& M,
+                       const std::vector<Vec>& c,
+                       const Vec& q0) {
+  const int nx = ocp.nx(), nu = ocp.nu(), N = grid.intervals();
+  std::vector<double> values;  // rows of [A | b], row-major
+  Vec f(nx), Lx(nx), Lu(nu), u(nu), p0(nx);
+  Mat fx(nx, nx), fu(nx, nu), hess(nx + nu, nx + nu);
+  double L = 0.0;
+  std::vector<int> free;
+  for (int k = 0; k <= N; ++k) {
+    const double t = grid.t(k);
+    controls.Evaluate(
+        t, k < N ? ControlTrajectory::Side::kRight : ControlTrajectory::Side::kLeft, u);
+    FreeComponents(ocp.control_set(), u, &free);
+    if (free.empty()) continue;
+    ocp.DynamicsJacobian(t, X.col(k), u, f, fx, fu);
+    ocp.RunningCostGradient(t, X.col(k), u, &L, Lx, Lu);
+    p0 = M[k] * q0 + c[k];
+    ocp.PointHessian(t, X.col(k), u, 1.0, p0, Vec(), hess);
+    const int m = static_cast<int>(free.size());
+    Mat Huu(m, m), G(m, nx);
+    Vec g(m);
+    for (int a = 0; a < m; ++a) {
+      for (int b = 0; b < m; ++b) Huu(a, b) = hess(nx + free[a], nx + free[b]);
+      // H_u,a(q) = Lu_a + fu_a^T (M_k q + c_k) = G_a q + g_a.
+      G.row(a) = fu.col(free[a]).transpose() * M[k];
+      g[a] = Lu[free[a]] + fu.col(free[a]).dot(c[k]);
+    }
+    const Eigen::LLT<Mat> llt(Huu);
+    if (llt.info() == Eigen::Success && Huu.allFinite()) {
+      G = llt.solve(G);
+      g = llt.solve(g);
+    }
+    const double hw = 0.5 * ((k > 0 ? grid.h(k - 1) : 0.0) + (k < N ? grid.h(k) : 0.0));
+    const double w = std::sqrt(hw);
+    for (int a = 0; a < m; ++a) {
+      for (int j = 0; j < nx; ++j) values.push_back(w * G(a, j));
+      values.push_back(-w * g[a]);
+    }
+  }
+  const int rows = static_cast<int>(values.size()) / (nx + 1);
+  if (rows == 0) return q0;
+  Mat A(rows + nx, nx);
+  Vec b(rows + nx);
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < nx; ++j) A(i, j) = values[static_cast<size_t>(i) * (nx + 1) + j];
+    b[i] = values[static_cast<size_t>(i) * (nx + 1) + nx];
+  }
+  const double delta = 1e-8 * A.topRows(rows).colwise().norm().maxCoeff();
+  A.bottomRows(nx) = delta * Mat::Identity(nx, nx);
+  b.tail(nx) = delta * q0;
+  if (!A.allFinite() || !b.allFinite() || !(delta > 0.0)) return q0;
+  const Vec q = A.householderQr().solve(b);
+  return q.allFinite() ? q : q0;
 }
 
 std::string FormatExact(double v) {
@@ -356,6 +448,10 @@ const char* ToString(IndirectNewtonOptions::WarmStart warm_start) {
   return warm_start == IndirectNewtonOptions::WarmStart::kHamiltonian ? "hamiltonian" : "none";
 }
 
+const char* ToString(IndirectNewtonOptions::Costates costates) {
+  return costates == IndirectNewtonOptions::Costates::kFit ? "fit" : "adjoint";
+}
+
 bool IndirectNewtonOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& why) {
     if (error) *error = why;
@@ -424,6 +520,14 @@ IndirectNewton::Options IndirectNewton::ParseOptions(
       } else {
         BadOption(key, "'" + value + "' is not one of none, hamiltonian");
       }
+    } else if (key == "costates") {
+      if (value == "fit") {
+        o.costates = Options::Costates::kFit;
+      } else if (value == "adjoint") {
+        o.costates = Options::Costates::kAdjoint;
+      } else {
+        BadOption(key, "'" + value + "' is not one of fit, adjoint");
+      }
     } else if (key == "path_penalty") {
       o.path_penalty = ParseDouble(key, value);
       if (!(*o.path_penalty > 0.0) || !std::isfinite(*o.path_penalty)) {
@@ -450,31 +554,54 @@ void IndirectNewton::StartFromControls(const Ocp& ocp,
                                        TerminalMode mode,
                                        const ControlTrajectory& controls,
                                        Mat* X,
-                                       Mat* P) {
-  const int nx = ocp.nx(), nu = ocp.nu(), N = grid.intervals();
+                                       Mat* P,
+                                       Options::Costates how) {
   *X = Evaluate(ocp, controls, grid, Integrator::kRk4).X;
-  P->resize(nx, N + 1);
-  double value = 0.0;
-  Vec grad(nx);
-  ocp.TerminalObjectiveGradient(X->col(N), mode, &value, grad);
-  P->col(N) = grad;
-  Vec f(nx), Lx(nx), Lu(nu), ua(nu), ub(nu), eta_b(nx), rhs(nx);
-  Mat fx(nx, nx), fu(nx, nu), M(nx, nx);
+  CostatesFromControls(ocp, grid, mode, controls, *X, how, P);
+}
+
+void IndirectNewton::CostatesFromControls(const Ocp& ocp,
+                                          const TimeGrid& grid,
+                                          TerminalMode mode,
+                                          const ControlTrajectory& controls,
+                                          const Mat& X,
+                                          Options::Costates how,
+                                          Mat* P) {
+  const int nx = ocp.nx(), nu = ocp.nu(), N = grid.intervals();
+  if (X.rows() != nx || X.cols() != N + 1 || controls.nu() != nu) {
+    throw std::invalid_argument(
+        std::string(kName) + ": the start's states must be nx x (N+1) and its controls nu-valued");
+  }
+  // Backward sweep of p_{k+1} - p_k + h/2 (H_x,k + H_x,k+1) = 0, H_x = L_x + f_x^T p, as
+  // p_k = M_k q + c_k: (I - h/2 fx_k^T) p_k = (I + h/2 fx_k+1^T) p_{k+1} + h/2 (Lx_k + Lx_k+1).
+  std::vector<Mat> M(N + 1);
+  std::vector<Vec> c(N + 1);
+  M[N] = Mat::Identity(nx, nx);
+  c[N] = Vec::Zero(nx);
+  Vec f(nx), Lx(nx), Lu(nu), ua(nu), ub(nu), rhs(nx);
+  Mat fx(nx, nx), fu(nx, nu), B(nx, nx);
   double L = 0.0;
   for (int k = N - 1; k >= 0; --k) {
-    const double h = grid.h(k);
+    const double hh = 0.5 * grid.h(k);
     controls.Evaluate(grid.t(k + 1), ControlTrajectory::Side::kLeft, ub);
     controls.Evaluate(grid.t(k), ControlTrajectory::Side::kRight, ua);
-    ocp.DynamicsJacobian(grid.t(k + 1), X->col(k + 1), ub, f, fx, fu);
-    ocp.RunningCostGradient(grid.t(k + 1), X->col(k + 1), ub, &L, Lx, Lu);
-    eta_b = Lx + fx.transpose() * P->col(k + 1);
-    ocp.DynamicsJacobian(grid.t(k), X->col(k), ua, f, fx, fu);
-    ocp.RunningCostGradient(grid.t(k), X->col(k), ua, &L, Lx, Lu);
-    // p_{k+1} - p_k + h/2 (H_x,k + H_x,k+1) = 0 with H_x,k = L_x,k + f_x,k^T p_k.
-    M = Mat::Identity(nx, nx) - 0.5 * h * fx.transpose();
-    rhs = P->col(k + 1) + 0.5 * h * (eta_b + Lx);
-    P->col(k) = M.partialPivLu().solve(rhs);
+    ocp.DynamicsJacobian(grid.t(k + 1), X.col(k + 1), ub, f, fx, fu);
+    ocp.RunningCostGradient(grid.t(k + 1), X.col(k + 1), ub, &L, Lx, Lu);
+    B = Mat::Identity(nx, nx) + hh * fx.transpose();
+    rhs = hh * Lx;
+    ocp.DynamicsJacobian(grid.t(k), X.col(k), ua, f, fx, fu);
+    ocp.RunningCostGradient(grid.t(k), X.col(k), ua, &L, Lx, Lu);
+    rhs += hh * Lx;
+    const Eigen::PartialPivLU<Mat> A((Mat::Identity(nx, nx) - hh * fx.transpose()).eval());
+    M[k] = A.solve(B * M[k + 1]);
+    c[k] = A.solve(B * c[k + 1] + rhs);
   }
+  Vec q(nx);
+  double value = 0.0;
+  ocp.TerminalObjectiveGradient(X.col(N), mode, &value, q);
+  if (how == Options::Costates::kFit) q = FitTerminalCostate(ocp, grid, controls, X, M, c, q);
+  P->resize(nx, N + 1);
+  for (int k = 0; k <= N; ++k) P->col(k) = M[k] * q + c[k];
 }
 
 SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& request) const {
@@ -484,8 +611,7 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
   if (target.not_applicable) return *target.not_applicable;
   const Ocp& ocp = *target.ocp;
   // Validates the grid (throws std::invalid_argument) before any work.
-  PmpResidual check(ocp, request.grid, request.terminal);
-  (void)check;
+  PmpResidual::CheckApplicable(ocp, request.grid);
 
   SolveResult r;
   r.solver = kName;
@@ -517,11 +643,12 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
     const int N = request.grid.intervals();
     if (start.states.rows() != ocp.nx() || start.states.cols() != N + 1 ||
         start.costates.rows() != ocp.nx() || start.costates.cols() != N + 1 ||
-        !start.states.allFinite() || !start.costates.allFinite()) {
+        !start.states.allFinite() || !start.costates.allFinite() ||
+        start.controls.nu() != ocp.nu()) {
       SolveResult failed = Result(SolveStatus::kError,
                                   "warm_start_failed",
                                   (target.note.empty() ? "" : target.note + "; ") + summary +
-                                      " gave no finite states/costates on the grid (" +
+                                      " gave no finite states/costates/controls on the grid (" +
                                       ToString(start.status) + ": " + start.message + ")");
       failed.solver_stats = r.solver_stats;
       failed.iterations = 0;
@@ -529,16 +656,24 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
       failed.wall_seconds = watch.wall();
       return failed;
     }
-    r.message += (r.message.empty() ? "" : "; ") + summary;
+    r.message += (r.message.empty() ? "" : "; ") + summary + ", costates " + ToString(o.costates);
     X = start.states;
-    P = start.costates;
+    const double start_cpu0 = CpuSeconds();
+    if (o.costates == Options::Costates::kFit) {
+      CostatesFromControls(ocp, request.grid, request.terminal, start.controls, X, o.costates, &P);
+    } else {
+      P = start.costates;
+    }
+    r.solver_stats["start_cpu_seconds"] = CpuSeconds() - start_cpu0;
   } else {
     const ControlTrajectory guess =
         request.initial_guess ? *request.initial_guess : DefaultInitialGuess(ocp, request.grid);
     if (guess.nu() != ocp.nu()) {
       throw std::invalid_argument(std::string(kName) + ": the initial guess must have nu controls");
     }
-    StartFromControls(ocp, request.grid, request.terminal, guess, &X, &P);
+    const double start_cpu0 = CpuSeconds();
+    StartFromControls(ocp, request.grid, request.terminal, guess, &X, &P, o.costates);
+    r.solver_stats["start_cpu_seconds"] = CpuSeconds() - start_cpu0;
   }
   RunNewton({ocp, request, o, watch}, X, P, nullptr, &r);
   return r;

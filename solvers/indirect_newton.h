@@ -21,12 +21,25 @@ struct IndirectNewtonOptions {
   /// Palamadai Natarajan 2010). Key "linear_solver": "umfpack" | "klu".
   enum class LinearSolver { kUmfpack, kKlu };
   /// Where Newton starts. Key "warm_start": "none" | "hamiltonian".
-  ///  - kNone: from the request's controls (states by RK4 simulation, costates by a backward
-  ///    trapezoidal sweep; IndirectNewton::StartFromControls);
+  ///  - kNone: from the request's controls (states by RK4 simulation; costates from those
+  ///    controls as `costates` says; IndirectNewton::StartFromControls);
   ///  - kHamiltonian: first runs the registered "hamiltonian" solver (penalty form, the
   ///    request's grid, integrator and initial guess, warm_start_options) and starts from its
-  ///    states and discrete-adjoint costates.
+  ///    states, with costates from its controls as `costates` says.
   enum class WarmStart { kNone, kHamiltonian };
+  /// How the start's costates are made from its controls u and states X. Key "costates":
+  /// "fit" | "adjoint".
+  ///  - kFit (default): the trapezoidal costate equation of u
+  ///  (IndirectNewton::CostatesFromControls)
+  ///    with the terminal costate chosen by least squares so that u is as stationary as it can be
+  ///    (H_u = 0 wherever u is strictly inside U), i.e. so that u*(x_k, p_k) reproduces u_k. The
+  ///    boundary condition p_N = grad Phi is left to Newton.
+  ///  - kAdjoint: the costates of u itself: the same equation from p_N = grad Phi(x_N) (kNone), or
+  ///    the descent's own discrete adjoint (kHamiltonian). These are what u's cost gradient uses,
+  ///    but their terminal value 2 w psi(x_N) amplifies the terminal error a first-order method
+  ///    leaves, so u*(x, p) can differ wildly from u (on comm-path2d after 200 descent iterations:
+  ///    R* = 0 and |u*| = umax at every node; solvers/README-indirect.md).
+  enum class Costates { kFit, kAdjoint };
 
   /// Newton steps at most (>= 0; 0 only evaluates the start).
   int max_iterations = 50;
@@ -45,6 +58,7 @@ struct IndirectNewtonOptions {
   /// solvers/README-indirect.md).
   LinearSolver linear_solver = LinearSolver::kKlu;
   WarmStart warm_start = WarmStart::kNone;
+  Costates costates = Costates::kFit;
   /// Options handed verbatim to the "hamiltonian" solver (it validates them); only allowed with
   /// warm_start = kHamiltonian. path_penalty and regularization below are passed on to it unless
   /// given here.
@@ -61,6 +75,7 @@ struct IndirectNewtonOptions {
 
 const char* ToString(IndirectNewtonOptions::LinearSolver solver);
 const char* ToString(IndirectNewtonOptions::WarmStart warm_start);
+const char* ToString(IndirectNewtonOptions::Costates costates);
 
 /// Solves the maximum principle's boundary-value problem, discretized by trapezoidal collocation
 /// on the request's grid (PmpResidual: unknowns x_k, p_k at the nodes, u_k = u*(t_k, x_k, p_k) from
@@ -79,7 +94,8 @@ const char* ToString(IndirectNewtonOptions::WarmStart warm_start);
 ///
 /// Accuracy: the trapezoidal scheme is second order, so states, costates and the discrete cost
 /// approach the continuous optimum as O(h^2) for smooth solutions (tested on the double
-/// integrator with p*(t) = (12, 12t - 6) and on LQ problems with Riccati costates).
+/// integrator with p*(t) = (-12, 12t - 6), from H = p^T f + L: p1' = 0, p2' = -p1, and on LQ
+/// problems with Riccati costates).
 ///
 /// Reformulation: like the Hamiltonian descent, the method solves
 /// Ocp::HamiltonianReformulation({path_penalty, regularization}) in place of the problem when the
@@ -92,7 +108,10 @@ const char* ToString(IndirectNewtonOptions::WarmStart warm_start);
 ///  - Ocp::HasHamiltonianMinimizer(), with H strictly convex in u on the free directions (else
 ///    the Jacobian does not exist and the solve ends in kNumericalFailure, saying so);
 ///  - num_path() == 0;
-///  - fixed final time (core has no free final time).
+///  - a fixed horizon: free final time enters only through time scaling, where the problem
+///    poses it on s in [0, 1] with the time dilation as a control and a clock state
+///    (problems/reference/scaled_min_time.h, scaled_free_time.h); the condition H(tf) = 0 of an
+///    explicitly free tf is not implemented.
 /// Both terminal forms: kPenalty (p(tf) = grad Phi) and kHard (psi = 0, nu unknown).
 ///
 /// Stopping (SolveResult::status / verbatim SolveResult::solver_status):
@@ -113,8 +132,10 @@ const char* ToString(IndirectNewtonOptions::WarmStart warm_start);
 /// armijo_j = number of backtracks of the step that produced it (-1 for i = 0), cpu_seconds
 /// cumulative from the start of Solve (the warm start included). solver_stats (CPU seconds):
 /// "assembly_seconds" (residual and Jacobian evaluations), "factorization_seconds" (symbolic and
-/// numeric LU), "solve_seconds" (triangular solves), "newton_cpu_seconds", "warm_start_cpu_seconds"
-/// and "warm_start_iterations" (kHamiltonian only), "residual_inf", "unknowns",
+/// numeric LU), "solve_seconds" (triangular solves), "newton_cpu_seconds", "start_cpu_seconds"
+/// (Solve only: the start's states and costates from its controls, after any warm start),
+/// "warm_start_cpu_seconds" and "warm_start_iterations" (kHamiltonian only), "residual_inf",
+/// "unknowns",
 /// "jacobian_nonzeros", "residual_evaluations", "jacobian_evaluations", "reformulated".
 class IndirectNewton final : public Solver {
  public:
@@ -125,23 +146,44 @@ class IndirectNewton final : public Solver {
   explicit IndirectNewton(const Options& options);
 
   /// Parses string options over `base` (keys: max_iterations, tolerance, sufficient_decrease,
-  /// backtrack, min_step, linear_solver, warm_start, path_penalty, regularization,
+  /// backtrack, min_step, linear_solver, warm_start, costates, path_penalty, regularization,
   /// hamiltonian.<key>). Throws
   /// std::invalid_argument naming the key and its rule (and listing the valid keys for an
   /// unknown one).
   static Options ParseOptions(const std::map<std::string, std::string>& options,
                               const Options& base = Options());
 
-  /// A start from controls: X by RK4 simulation of `controls` on `grid` (core Evaluate), P by the
-  /// trapezoidal rule applied backward to the linear costate equation p' = -H_x(t, x, u(t), p)
-  /// from p_N = grad Phi(x_N) (penalty form) or grad phi(x_N) (hard form), with u(t) taken from
-  /// the right at t_k and from the left at t_{k+1} on interval k.
+  /// A start from controls: X by RK4 simulation of `controls` on `grid` (core Evaluate), P by
+  /// CostatesFromControls(..., how).
   static void StartFromControls(const Ocp& ocp,
                                 const TimeGrid& grid,
                                 TerminalMode mode,
                                 const ControlTrajectory& controls,
                                 Mat* X,
-                                Mat* P);
+                                Mat* P,
+                                Options::Costates how = Options::Costates::kAdjoint);
+
+  /// Costates P (nx x N+1) for controls u(t) and states X (nx x N+1) on `grid`: the trapezoidal
+  /// rule applied to the linear costate equation p' = -H_x(t, x, u(t), p), with u(t) taken from
+  /// the right at t_k and from the left at t_{k+1} on interval k, so that p_k = M_k q + c_k is
+  /// affine in the terminal costate q = p_N. Then
+  ///  - kAdjoint: q0 = grad Phi(x_N) (penalty form) or grad phi(x_N) (hard form);
+  ///  - kFit: q minimizes
+  ///      sum_k w_k |(H_uu,k)_F^-1 (H_u,k)_F|^2 + delta^2 |q - q0|^2,
+  ///    H_u,k = L_u + f_u^T p_k(q) at (t_k, x_k, u_k), F the components of u_k strictly inside U
+  ///    (box components more than 1e-6 of their range from a bound; ball blocks with |u - c| <
+  ///    (1 - 1e-6) r), w_k the trapezoidal weights of the nodes. Each node's residual is the
+  ///    Newton step of u_k towards argmin H (H_uu at p_k(q0); unweighted where that block is not
+  ///    positive definite), so the sum measures |u*(x, p) - u| in the controls' own units. The
+  ///    ridge delta = 1e-8 max_j |column j| keeps q0 in the directions the controls do not
+  ///    determine (q = q0 when no component is free).
+  static void CostatesFromControls(const Ocp& ocp,
+                                   const TimeGrid& grid,
+                                   TerminalMode mode,
+                                   const ControlTrajectory& controls,
+                                   const Mat& X,
+                                   Options::Costates how,
+                                   Mat* P);
 
   std::string name() const override { return "indirect-newton"; }
   const Options& options() const { return options_; }

@@ -22,18 +22,7 @@ PmpResidual::PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode
       N_(grid.intervals()),
       size_(2 * ocp.nx() * (grid.intervals() + 1) + nnu_),
       derivative_(ocp) {
-  if (!ocp.HasHamiltonianMinimizer()) {
-    throw std::invalid_argument("problem '" + ocp.name() +
-                                "' has no closed-form Hamiltonian minimizer");
-  }
-  if (ocp.num_path() > 0) {
-    throw std::invalid_argument(
-        "problem '" + ocp.name() +
-        "' has path constraints, which the indirect method does not handle");
-  }
-  if (grid.size() < 2 || !SameTime(grid.t0(), ocp.t0()) || !SameTime(grid.tf(), ocp.tf())) {
-    throw std::invalid_argument("the grid must span the problem's horizon [t0, tf]");
-  }
+  CheckApplicable(ocp, grid);
   for (Node& n : nodes_) {
     n.u.resize(nu_);
     n.f.resize(nx_);
@@ -52,6 +41,21 @@ PmpResidual::PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode
     n.Ep.resize(nx_, nx_);
   }
   BuildStructure();
+}
+
+void PmpResidual::CheckApplicable(const Ocp& ocp, const TimeGrid& grid) {
+  if (!ocp.HasHamiltonianMinimizer()) {
+    throw std::invalid_argument("problem '" + ocp.name() +
+                                "' has no closed-form Hamiltonian minimizer");
+  }
+  if (ocp.num_path() > 0) {
+    throw std::invalid_argument(
+        "problem '" + ocp.name() +
+        "' has path constraints, which the indirect method does not handle");
+  }
+  if (grid.size() < 2 || !SameTime(grid.t0(), ocp.t0()) || !SameTime(grid.tf(), ocp.tf())) {
+    throw std::invalid_argument("the grid must span the problem's horizon [t0, tf]");
+  }
 }
 
 void PmpResidual::BuildStructure() {

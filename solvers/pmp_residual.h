@@ -63,6 +63,9 @@ class PmpResidual {
   /// the problem has no closed-form minimizer or has path constraints.
   PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode);
 
+  /// The constructor's checks alone (no structure is built), throwing the same errors.
+  static void CheckApplicable(const Ocp& ocp, const TimeGrid& grid);
+
   const Ocp& ocp() const { return ocp_; }
   const TimeGrid& grid() const { return grid_; }
   TerminalMode mode() const { return mode_; }
