@@ -219,6 +219,7 @@ void ValidateCase(const CaseSpec& spec) {
   // options, ...), without simulating a channel.
   const std::unique_ptr<Ocp> ocp = pinfo.make_for_checks ? pinfo.make_for_checks(params, spec.seed)
                                                          : pinfo.make(params, spec.seed);
+  if (!ocp) throw std::logic_error("problem '" + spec.problem + "': make returned no problem");
   const int N = spec.intervals > 0 ? spec.intervals : pinfo.default_intervals;
   const double need = EstimateCaseMemoryBytes(spec, ocp->nx(), ocp->nu(), N);
   const double budget = CaseMemoryBudgetBytes();

@@ -67,7 +67,10 @@ void ValidateCase(const CaseSpec& spec);
 ///            Jacobian and Hessian nonzero (16 bytes per stored entry, times 20 for copies and
 ///            the factorization's fill-in), with nnz = nodes w (w + (m + 1) nx): a Hessian block
 ///            per node and defect rows that couple m + 1 nodes.
-/// NLopt's dense algorithms refuse large problems themselves (NloptOptions' limits).
+/// NLopt's dense algorithms refuse large problems themselves (NloptOptions' limits); a channel's
+/// fixed memory is not counted. Measured peaks (max RSS, double integrator, Release) against the
+/// estimate: hamiltonian N = 1e6 657 MB (estimate 1.54 GB), ipopt + euler N = 1e5 355 MB
+/// (826 MB), ipopt + hermite-simpson N = 1e5 905 MB (2.04 GB): about 2.3 times generous.
 double EstimateCaseMemoryBytes(const CaseSpec& spec, int nx, int nu, int intervals);
 
 /// The memory one case may use: half the physical memory (sysconf), 4 GiB when unknown.
