@@ -3,21 +3,28 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 
 namespace ocpb {
 namespace {
 
 using Side = ControlTrajectory::Side;
 
-// Track the worst control-set and path-constraint violation at a point.
+// Track the worst control-set and path-constraint violation. Controls are checked wherever
+// the integrator uses them; path constraints only at grid nodes, with the node's state and
+// the control there (an RK4 stage mixes a node's state with a later time and control, which
+// is no point of the trajectory).
 struct ViolationTracker {
   const Ocp& ocp;
   double control = 0.0;
   double path = 0.0;
   Vec c;
   explicit ViolationTracker(const Ocp& o) : ocp(o), c(o.num_path()) {}
-  void Visit(double t, ConstVecRef x, ConstVecRef u) {
-    control = std::max(control, ocp.control_set().Violation(u));
+  void VisitControl(ConstVecRef u) { control = std::max(control, ocp.control_set().Violation(u)); }
+  void VisitNode(double t, ConstVecRef x, ConstVecRef u) {
+    VisitControl(u);
     if (ocp.num_path() > 0) {
       ocp.PathConstraints(t, x, u, c);
       if (!c.allFinite()) {
@@ -29,10 +36,43 @@ struct ViolationTracker {
   }
 };
 
+std::string Str(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+// The controls and the grid must fit the problem: a silent mismatch would judge the wrong thing
+// (Eigen would read past the controls, or the piecewise rules would extrapolate).
+void CheckInputs(const Ocp& ocp, const ControlTrajectory& controls, const TimeGrid& grid) {
+  if (controls.nu() != ocp.nu()) {
+    throw std::invalid_argument("Evaluate: the controls have " + std::to_string(controls.nu()) +
+                                " components, the problem " + ocp.name() +
+                                " has nu = " + std::to_string(ocp.nu()));
+  }
+  if (grid.size() < 2) throw std::invalid_argument("Evaluate: the grid has no interval");
+  const double tol = 1e-9 * std::max({1.0, std::abs(ocp.t0()), std::abs(ocp.tf())});
+  if (std::abs(grid.t0() - ocp.t0()) > tol || std::abs(grid.tf() - ocp.tf()) > tol) {
+    throw std::invalid_argument("Evaluate: the grid [" + Str(grid.t0()) + ", " + Str(grid.tf()) +
+                                "] does not span the horizon [" + Str(ocp.t0()) + ", " +
+                                Str(ocp.tf()) + "] of " + ocp.name());
+  }
+  const TimeGrid& cg = controls.grid();
+  if (cg.size() < 2 || cg.t0() > grid.t0() + tol || cg.tf() < grid.tf() - tol) {
+    throw std::invalid_argument(
+        "Evaluate: the controls are defined on [" + (cg.size() ? Str(cg.t0()) : "?") + ", " +
+        (cg.size() ? Str(cg.tf()) : "?") + "], which does not cover the grid [" + Str(grid.t0()) +
+        ", " + Str(grid.tf()) + "]");
+  }
+}
+
 }  // namespace
 
-Evaluation Evaluate(const Ocp& ocp, const ControlTrajectory& controls, const TimeGrid& grid,
+Evaluation Evaluate(const Ocp& ocp,
+                    const ControlTrajectory& controls,
+                    const TimeGrid& grid,
                     Integrator integrator) {
+  CheckInputs(ocp, controls, grid);
   const int nx = ocp.nx(), nu = ocp.nu(), N = grid.intervals();
   Evaluation ev;
   ev.grid = grid;
@@ -46,7 +86,7 @@ Evaluation Evaluate(const Ocp& ocp, const ControlTrajectory& controls, const Tim
   for (int k = 0; k < N; ++k) {
     const double t = grid.t(k), h = grid.h(k);
     controls.Evaluate(t, Side::kRight, u0);
-    tracker.Visit(t, x, u0);
+    tracker.VisitNode(t, x, u0);
     if (integrator == Integrator::kEuler) {
       ocp.Dynamics(t, x, u0, k1);
       running += h * ocp.RunningCost(t, x, u0);
@@ -65,22 +105,22 @@ Evaluation Evaluate(const Ocp& ocp, const ControlTrajectory& controls, const Tim
       z = x + h * k3;
       ocp.Dynamics(t + h, z, u1, k4);
       l += ocp.RunningCost(t + h, z, u1);
-      tracker.Visit(t + 0.5 * h, x, um);
+      tracker.VisitControl(um);
+      tracker.VisitControl(u1);
       running += (h / 6.0) * l;
       x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
     }
     ev.X.col(k + 1) = x;
   }
   controls.Evaluate(grid.tf(), Side::kLeft, u1);
-  tracker.Visit(grid.tf(), x, u1);
+  tracker.VisitNode(grid.tf(), x, u1);
 
   ev.running_cost = running;
   ev.terminal_cost = ocp.TerminalCost(x);
   ev.terminal_residual.resize(ocp.num_terminal());
   ocp.TerminalConstraints(x, ev.terminal_residual);
   ev.terminal_penalty = ocp.terminal_weights().dot(ev.terminal_residual.cwiseAbs2());
-  ev.terminal_violation =
-      ocp.num_terminal() > 0 ? ev.terminal_residual.cwiseAbs().maxCoeff() : 0.0;
+  ev.terminal_violation = ocp.num_terminal() > 0 ? ev.terminal_residual.cwiseAbs().maxCoeff() : 0.0;
   ev.Jbar = ev.running_cost + ev.terminal_cost;
   ev.J = ev.Jbar + ev.terminal_penalty;
   ev.control_violation = tracker.control;
@@ -89,8 +129,11 @@ Evaluation Evaluate(const Ocp& ocp, const ControlTrajectory& controls, const Tim
   return ev;
 }
 
-double ResimulationDefect(const Ocp& ocp, const ControlTrajectory& controls,
-                          const TimeGrid& state_grid, const Mat& X, int refine) {
+double ResimulationDefect(const Ocp& ocp,
+                          const ControlTrajectory& controls,
+                          const TimeGrid& state_grid,
+                          const Mat& X,
+                          int refine) {
   const TimeGrid fine = state_grid.Refined(refine);
   const Evaluation ev = Evaluate(ocp, controls, fine, Integrator::kRk4);
   if (!ev.finite || !X.allFinite()) return std::numeric_limits<double>::quiet_NaN();

@@ -17,26 +17,37 @@ struct Evaluation {
   double terminal_penalty = -1.0;    ///< sum w_i psi_i(x(tf))^2
   Vec terminal_residual;             ///< psi(x(tf))
   double terminal_violation = -1.0;  ///< max_i |psi_i(x(tf))|
-  double control_violation = -1.0;   ///< max over the controls the integrator used of the
-                                     ///< distance-like violation of U (ControlSet::Violation)
-  double path_violation = -1.0;      ///< max over grid nodes and i of max(c_i(t, x, u), 0)
-  Mat X;                             ///< states on the grid (nx x (N+1))
+  double control_violation = -1.0;   ///< max over the controls the integrator used (Euler:
+                                     ///< u(t_k+); RK4 also u(t_k + h/2) and u(t_{k+1}-)) of
+                                     ///< the distance-like violation of U (ControlSet::Violation)
+  double path_violation = -1.0;      ///< max over grid nodes t_k and i of
+                                     ///< max(c_i(t_k, x_k, u(t_k+)), 0) (at tf: u(tf-)); the
+                                     ///< constraints are judged where NLPs enforce them
+
+  Mat X;  ///< states on the grid (nx x (N+1))
   TimeGrid grid;
   Integrator integrator = Integrator::kRk4;
-  bool finite = false;               ///< false when the trajectory or the cost is NaN/inf
+  bool finite = false;  ///< false when the trajectory or the cost is NaN/inf
 };
 
 /// Simulates x' = f(t, x, u(t)), x(t0) = x0, on `grid` with `integrator`, where u(t) comes from
 /// `controls` with one-sided limits inside each step (see ControlTrajectory), and integrates L with
 /// the same scheme. For piecewise-constant controls on the same grid with kEuler this is exactly
-/// DiscreteOcp::Simulate.
-Evaluation Evaluate(const Ocp& ocp, const ControlTrajectory& controls, const TimeGrid& grid,
+/// DiscreteOcp::Simulate. Throws std::invalid_argument (one line) when the controls do not have
+/// the problem's nu components, when `grid` does not span the problem's horizon [t0, tf], or
+/// when the controls' own grid does not cover `grid`.
+Evaluation Evaluate(const Ocp& ocp,
+                    const ControlTrajectory& controls,
+                    const TimeGrid& grid,
                     Integrator integrator);
 
 /// The honest "does this control really do it" check for methods that carry their own states
 /// (collocation): re-simulates `controls` with RK4 on `state_grid` refined `refine` times and
 /// returns max_k |x_sim(t_k) - X.col(k)|_inf over the nodes of `state_grid`. NaN if not finite.
-double ResimulationDefect(const Ocp& ocp, const ControlTrajectory& controls,
-                          const TimeGrid& state_grid, const Mat& X, int refine = 10);
+double ResimulationDefect(const Ocp& ocp,
+                          const ControlTrajectory& controls,
+                          const TimeGrid& state_grid,
+                          const Mat& X,
+                          int refine = 10);
 
 }  // namespace ocpb

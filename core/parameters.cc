@@ -56,10 +56,19 @@ void Parameters::SetFromString(const std::string& assignment) {
                                 "': expected key=value or key=v1,v2");
   }
   const std::string key = assignment.substr(0, eq);
+  const std::string list = assignment.substr(eq + 1);
   std::vector<double> values;
-  std::stringstream ss(assignment.substr(eq + 1));
-  std::string item;
-  while (std::getline(ss, item, ',')) {
+  // Split on every ',' ourselves: std::getline would silently drop a trailing empty item
+  // ("tf=1," would read as "tf=1"), and a typo must not pass as a valid list.
+  size_t begin = 0;
+  for (int index = 1;; ++index) {
+    const size_t comma = list.find(',', begin);
+    const std::string item =
+        list.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
+    if (item.empty()) {
+      throw std::invalid_argument("malformed --set '" + assignment + "': value " +
+                                  std::to_string(index) + " is empty");
+    }
     size_t used = 0;
     double v = 0.0;
     try {
@@ -72,6 +81,8 @@ void Parameters::SetFromString(const std::string& assignment) {
                                   "' is not a number");
     }
     values.push_back(v);
+    if (comma == std::string::npos) break;
+    begin = comma + 1;
   }
   Set(key, values);
 }

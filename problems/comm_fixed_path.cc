@@ -165,7 +165,8 @@ ProblemInfo CommFixedPathProblemInfo() {
       {"W", {7.0, 9.0}, "waypoint of the path S -> W -> D (m), in [0, 50]^2", 0.0, 50.0});
   p.parameters.push_back(
       {"fillet", {2.0}, "radius of the arc rounding the corner at W (m); 0: sharp", 0.0, 100.0});
-  p.make = [](const Parameters& params, std::uint64_t seed) -> std::unique_ptr<Ocp> {
+  // make_for_checks builds the same problem over a path-loss stand-in for the channel.
+  auto build = [](const Parameters& params, std::shared_ptr<const ChannelQuality> channel) {
     CommFixedPath::Options o;
     o.bits = params.Scalar("c");
     o.tf = params.Scalar("tf");
@@ -176,7 +177,13 @@ ProblemInfo CommFixedPathProblemInfo() {
     auto path = std::make_shared<PlanarPath>(
         std::vector<Eigen::Vector2d>{params.Vector("S"), params.Vector("W"), params.Vector("D")},
         params.Scalar("fillet"));
-    return std::make_unique<CommFixedPath>(o, std::move(path), MakeCommChannel(params, seed));
+    return std::make_unique<CommFixedPath>(o, std::move(path), std::move(channel));
+  };
+  p.make = [build](const Parameters& params, std::uint64_t seed) -> std::unique_ptr<Ocp> {
+    return build(params, MakeCommChannel(params, seed));
+  };
+  p.make_for_checks = [build](const Parameters& params, std::uint64_t) -> std::unique_ptr<Ocp> {
+    return build(params, MakeCommChannelForChecks(params));
   };
   p.default_intervals = 400;
   p.uses_seed = true;

@@ -334,6 +334,27 @@ CommPowerModel CommPowerFromParameters(const Parameters& params) {
   return m;
 }
 
+namespace {
+
+// The options of the paper's channel (models 1 and 2), validated.
+PaperChannelOptions CommPaperChannelOptions(const Parameters& params, int model) {
+  PaperChannelOptions options;
+  options.truth.k_pl = params.Scalar("K_PL");
+  options.truth.n_pl = params.Scalar("n_PL");
+  options.truth.xi = params.Scalar("xi");
+  options.truth.eta = params.Scalar("eta");
+  options.truth.rho = params.Scalar("rho");
+  options.truth.base_station = params.Vector("base");
+  options.estimate = params.Integer("estimate") == 1;
+  options.predictor.units.noise_dbm = params.Scalar("N0_dBm");
+  options.build_map = model == 2;
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument("channel: " + error);
+  return options;
+}
+
+}  // namespace
+
 std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params,
                                                       std::uint64_t seed) {
   const Eigen::Vector2d base = params.Vector("base");
@@ -344,20 +365,16 @@ std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params,
   }
   // The paper's experiment: simulate the channel of these parameters (realization `seed`),
   // measure it at `samples` random grid points, estimate the parameters, predict s.
-  PaperChannelOptions options;
-  options.truth.k_pl = params.Scalar("K_PL");
-  options.truth.n_pl = params.Scalar("n_PL");
-  options.truth.xi = params.Scalar("xi");
-  options.truth.eta = params.Scalar("eta");
-  options.truth.rho = params.Scalar("rho");
-  options.truth.base_station = base;
-  options.estimate = params.Integer("estimate") == 1;
-  options.predictor.units.noise_dbm = params.Scalar("N0_dBm");
-  options.build_map = model == 2;
-  std::string error;
-  if (!options.IsValid(&error)) throw std::invalid_argument("channel: " + error);
+  const PaperChannelOptions options = CommPaperChannelOptions(params, model);
   const PaperChannel channel = MakePaperChannel(seed, params.Integer("samples"), options);
   return channel.Quality(model == 2 ? ChannelProvider::kMap : ChannelProvider::kExact);
+}
+
+std::shared_ptr<const ChannelQuality> MakeCommChannelForChecks(const Parameters& params) {
+  const int model = params.Integer("channel");
+  if (model != 0) CommPaperChannelOptions(params, model);
+  return std::make_shared<PathLossChannel>(
+      params.Vector("base"), params.Scalar("K_PL"), params.Scalar("n_PL"), params.Scalar("N0_dBm"));
 }
 
 CommPath2d::Options CommPath2dOptionsFromParameters(const Parameters& params) {
@@ -392,6 +409,10 @@ ProblemInfo CommPath2dProblemInfo() {
   p.make = [](const Parameters& params, std::uint64_t seed) -> std::unique_ptr<Ocp> {
     return std::make_unique<CommPath2d>(CommPath2dOptionsFromParameters(params),
                                         MakeCommChannel(params, seed));
+  };
+  p.make_for_checks = [](const Parameters& params, std::uint64_t) -> std::unique_ptr<Ocp> {
+    return std::make_unique<CommPath2d>(CommPath2dOptionsFromParameters(params),
+                                        MakeCommChannelForChecks(params));
   };
   p.default_intervals = 400;
   p.uses_seed = true;

@@ -256,6 +256,9 @@ CommPowerModel CommPowerFromParameters(const Parameters& params);
 /// The channel `params` asks for, with realization `seed` (ignored by the path-loss channel).
 /// Throws std::invalid_argument naming the field on invalid values.
 std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params, std::uint64_t seed);
+/// Runs the checks of MakeCommChannel without simulating anything and returns a path-loss
+/// stand-in with the same base station and constants (for ProblemInfo::make_for_checks).
+std::shared_ptr<const ChannelQuality> MakeCommChannelForChecks(const Parameters& params);
 /// CommPath2d::Options from the parameters of comm-path2d (its registry specs), without the
 /// channel (not validated here: the CommPath2d constructor does).
 CommPath2d::Options CommPath2dOptionsFromParameters(const Parameters& params);

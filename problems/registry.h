@@ -21,6 +21,12 @@ struct ProblemInfo {
   /// Builds the problem. `seed` picks any random ingredient (a channel realization); problems
   /// without randomness ignore it.
   std::function<std::unique_ptr<Ocp>(const Parameters& params, std::uint64_t seed)> make;
+  /// Optional: builds the problem with every check `make` runs, but without its expensive parts
+  /// (comm-path2d, comm-fixed-path: the channel's options are checked and a path-loss stand-in
+  /// replaces the simulated channel). `ocpbench run` validates a whole suite with it before
+  /// anything runs, and uses the result only for its checks and sizes. Empty when `make` is
+  /// cheap: validation then calls `make`.
+  std::function<std::unique_ptr<Ocp>(const Parameters& params, std::uint64_t seed)> make_for_checks;
   int default_intervals = 100;            ///< the grid a suite uses when it names none
   std::optional<double> reference_value;  ///< published optimum of the cost below, if known
   std::string reference_quantity = "J";   ///< "J" (hard terminal form) or "tf" etc.

@@ -30,11 +30,20 @@ class TranscribedNlp : public Nlp {
 
 /// What a transcription needs besides the problem.
 struct TranscriptionOptions {
-  TimeGrid grid;                                 ///< mesh on [t0, tf]
+  TimeGrid grid;  ///< mesh on [t0, tf] (>= 1 interval)
   TerminalMode terminal = TerminalMode::kPenalty;
-  std::optional<ControlTrajectory> initial_guess; ///< controls to start from (states by simulation)
-  int degree = 3;                                ///< LGR: collocation points per interval
-  NlpScaling scaling;                            ///< default: none (see nlp_scaling.h)
+  std::optional<ControlTrajectory> initial_guess;  ///< controls to start from (states by
+                                                   ///< simulation); nu >= 1, covering the grid
+  int degree = 3;      ///< LGR: collocation points per interval, 1..kMaxRadauPoints (60)
+  NlpScaling scaling;  ///< default: none (see nlp_scaling.h)
+
+  /// True when every field satisfies its rule above on its own (sizes are checked against a
+  /// problem by IsValidFor); otherwise false with a one-line reason in *error (may be null).
+  bool IsValid(std::string* error) const;
+  /// IsValid() and the options fit `ocp`: the grid spans [t0, tf] (to 1e-12 relative), the
+  /// initial guess has ocp.nu() components, the scaling's sizes are nx and nu
+  /// (NlpScaling::IsValidFor).
+  bool IsValidFor(const Ocp& ocp, std::string* error) const;
 };
 
 /// A scheme, by name ("euler", "trapezoid", "hermite-simpson", "lgr", "single-shooting").

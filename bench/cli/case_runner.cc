@@ -1,8 +1,12 @@
 #include "bench/cli/case_runner.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -18,6 +22,11 @@
 #include "core/timer.h"
 #include "problems/comm_path2d.h"
 #include "problems/registry.h"
+#include "solvers/hamiltonian_descent.h"
+#include "solvers/indirect_newton.h"
+#include "solvers/ipopt_adapter.h"
+#include "solvers/nlopt_adapter.h"
+#include "solvers/nlp_solve.h"
 #include "solvers/registry.h"
 
 namespace ocpb {
@@ -69,6 +78,44 @@ std::string OptionValueToString(const json& v, const std::string& where) {
   throw std::invalid_argument(where + ": must be a string, number or boolean");
 }
 
+std::string Bytes(double b) {
+  const char* units[] = {"bytes", "kB", "MB", "GB", "TB", "PB"};
+  int i = 0;
+  while (b >= 1000.0 && i < 5) {
+    b /= 1000.0;
+    ++i;
+  }
+  return fmt::format("{:.3g} {}", b, units[i]);
+}
+
+// The solver's own option parser, run without solving, so that an unknown key, a bad value or
+// an unknown NLopt algorithm fails before anything runs, with the solver's message.
+void CheckSolverOptions(const std::string& solver,
+                        const std::string& algorithm,
+                        const std::map<std::string, std::string>& options) {
+  if (!algorithm.empty() && solver != "nlopt") {
+    throw std::invalid_argument("algorithm: only the nlopt solver takes one (solver '" + solver +
+                                "')");
+  }
+  NlpScaling scaling;
+  if (solver == "hamiltonian") {
+    HamiltonianDescent::ParseOptions(options, HamiltonianDescent::Options());
+  } else if (solver == "indirect-newton") {
+    const IndirectNewton::Options o =
+        IndirectNewton::ParseOptions(options, IndirectNewton::Options());
+    HamiltonianDescent::ParseOptions(o.warm_start_options, HamiltonianDescent::Options());
+  } else if (solver == "ipopt") {
+    IpoptOptions::FromStrings(ExtractScalingOptions(options, &scaling), IpoptOptions());
+  } else if (solver == "nlopt") {
+    std::map<std::string, std::string> strings = ExtractScalingOptions(options, &scaling);
+    if (!algorithm.empty()) strings["algorithm"] = algorithm;
+    NloptOptions::FromStrings(strings, NloptOptions());
+  } else {
+    FindSolver(solver);  // unknown: the error lists the valid names
+    throw std::logic_error("CheckSolverOptions: no option parser for solver '" + solver + "'");
+  }
+}
+
 }  // namespace
 
 std::string CaseSpec::Key() const {
@@ -98,10 +145,6 @@ void CaseSpec::Validate() const {
   if (problem.empty()) throw std::invalid_argument("problem: required");
   if (solver.empty()) throw std::invalid_argument("solver: required");
   if (intervals < 0) throw std::invalid_argument("N: must be >= 1 (or omitted for the default)");
-  if (intervals > 2000000) {
-    throw std::invalid_argument("N: " + std::to_string(intervals) +
-                                " intervals is beyond this machine's memory budget (max 2000000)");
-  }
   if (degree < 1 || degree > 20) throw std::invalid_argument("degree: must be in 1..20");
   if (repeats < 1 || repeats > 1000) throw std::invalid_argument("repeats: must be in 1..1000");
   if (kind == "online") {
@@ -116,6 +159,115 @@ void CaseSpec::Validate() const {
 bool IsFailure(SolveStatus status) {
   return status == SolveStatus::kNumericalFailure || status == SolveStatus::kInfeasible ||
          status == SolveStatus::kError || status == SolveStatus::kInvalidInput;
+}
+
+bool IsFailure(const std::string& status) {
+  for (SolveStatus s : {SolveStatus::kNumericalFailure,
+                        SolveStatus::kInfeasible,
+                        SolveStatus::kError,
+                        SolveStatus::kInvalidInput}) {
+    if (status == ToString(s)) return true;
+  }
+  return false;
+}
+
+double EstimateCaseMemoryBytes(const CaseSpec& spec, int nx, int nu, int intervals) {
+  const double m = spec.transcription == "hermite-simpson" ? 2.0
+                   : spec.transcription == "lgr"           ? spec.degree
+                                                           : 1.0;
+  const double nodes = static_cast<double>(intervals) * m + 1.0;
+  const double w = nx + nu;
+  double bytes = 512.0 * w * nodes;
+  if (spec.solver == "ipopt" || spec.solver == "indirect-newton") {
+    bytes += 320.0 * nodes * w * (w + (m + 1.0) * nx);
+  }
+  return bytes;
+}
+
+double CaseMemoryBudgetBytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES);
+  const long page_size = ::sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page_size <= 0) return 4.0 * (1 << 30);
+  return 0.5 * static_cast<double>(pages) * static_cast<double>(page_size);
+}
+
+void ValidateCase(const CaseSpec& spec) {
+  spec.Validate();
+  if (spec.kind == "online") {
+    CheckSolverOptions(spec.solver, spec.algorithm, spec.options);
+    // ValidateOnlineCase (in Validate) checked the scenario; the re-plans run with the
+    // replan_options over the options.
+    std::map<std::string, std::string> replan = spec.options;
+    for (const auto& [k, v] : spec.replan_options) replan[k] = v;
+    try {
+      CheckSolverOptions(spec.solver, spec.algorithm, replan);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("replan_options: ") + e.what());
+    }
+    return;
+  }
+  const ProblemInfo& pinfo = FindProblem(spec.problem);
+  const SolverInfo& sinfo = FindSolver(spec.solver);
+  if (sinfo.uses_transcription) {
+    if (spec.transcription.empty()) {
+      throw std::invalid_argument("solver '" + spec.solver +
+                                  "' needs a transcription (--transcription)");
+    }
+    FindTranscription(spec.transcription);
+  } else if (!spec.transcription.empty()) {
+    throw std::invalid_argument("solver '" + spec.solver + "' takes no transcription");
+  }
+  CheckSolverOptions(spec.solver, spec.algorithm, spec.options);
+  Parameters params(pinfo.parameters);
+  for (const std::string& a : spec.set) params.SetFromString(a);
+  // The problem's own cross-field rules (t0 < tf, S and D in the workspace, the channel's
+  // options, ...), without simulating a channel.
+  const std::unique_ptr<Ocp> ocp = pinfo.make_for_checks ? pinfo.make_for_checks(params, spec.seed)
+                                                         : pinfo.make(params, spec.seed);
+  if (!ocp) throw std::logic_error("problem '" + spec.problem + "': make returned no problem");
+  const int N = spec.intervals > 0 ? spec.intervals : pinfo.default_intervals;
+  const double need = EstimateCaseMemoryBytes(spec, ocp->nx(), ocp->nu(), N);
+  const double budget = CaseMemoryBudgetBytes();
+  if (need > budget) {
+    throw std::invalid_argument(fmt::format(
+        "N: {} intervals need about {} by OCPBench's estimate (nx = {}, nu = {}, {}), beyond this "
+        "machine's memory budget of {} (half its physical memory)",
+        N,
+        Bytes(need),
+        ocp->nx(),
+        ocp->nu(),
+        spec.solver + (spec.transcription.empty() ? "" : " + " + spec.transcription),
+        Bytes(budget)));
+  }
+}
+
+json RunCaseRecordingFailures(const CaseSpec& spec,
+                              const std::function<json(const CaseSpec&)>& run) {
+  SolveStatus status = SolveStatus::kError;
+  std::string message;
+  try {
+    return run(spec);
+  } catch (const std::invalid_argument& e) {
+    // Invalid only once built or run (ValidateCase passed): recorded, the suite goes on.
+    status = SolveStatus::kInvalidInput;
+    message = e.what();
+  } catch (const std::exception& e) {
+    status = SolveStatus::kError;
+    message = e.what();
+  }
+  return json{{"problem", spec.problem},
+              {"seed", spec.seed},
+              {"solver", spec.solver},
+              {"transcription", spec.transcription},
+              {"algorithm", spec.algorithm},
+              {"N", spec.intervals},
+              {"terminal", ToString(spec.terminal)},
+              {"key", spec.Key()},
+              {"status", ToString(status)},
+              {"solver_status", status == SolveStatus::kError ? "exception" : ""},
+              {"message", message},
+              {"history", json::array()},
+              {"versions", VersionsJson()}};
 }
 
 CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
@@ -170,7 +322,7 @@ CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
   get_string("algorithm", &spec.algorithm);
   long long seed = 1, n = 0, degree = 3, repeats = 1;
   get_int("seed", 0, (1LL << 53), &seed);
-  get_int("N", 1, 2000000, &n);
+  get_int("N", 1, std::numeric_limits<int>::max(), &n);  // the memory check is ValidateCase's
   get_int("degree", 1, 20, &degree);
   get_int("repeats", 1, 1000, &repeats);
   spec.seed = static_cast<std::uint64_t>(seed);
@@ -257,20 +409,11 @@ json VersionsJson() {
 }
 
 json RunCase(const CaseSpec& spec) {
-  spec.Validate();
+  // Every check before any solving (or channel simulation): bad input fails fast and whole.
+  ValidateCase(spec);
   if (spec.kind == "online") return RunOnlineCase(spec);
-  // Resolve every name and parameter before solving: bad input fails fast and whole.
   const ProblemInfo& pinfo = FindProblem(spec.problem);
   const SolverInfo& sinfo = FindSolver(spec.solver);
-  if (sinfo.uses_transcription) {
-    if (spec.transcription.empty()) {
-      throw std::invalid_argument("solver '" + spec.solver +
-                                  "' needs a transcription (--transcription)");
-    }
-    FindTranscription(spec.transcription);
-  } else if (!spec.transcription.empty()) {
-    throw std::invalid_argument("solver '" + spec.solver + "' takes no transcription");
-  }
   std::optional<ControlTrajectory> guess;
   if (!spec.initial_guess.empty()) guess = ReadInitialGuess(spec.initial_guess);
   Parameters params;

@@ -88,6 +88,17 @@ PaperChannelOptions ToOptions(const CommonArgs& a) {
         "workspace: more than 16,000,000 grid points; use a coarser "
         "--resolution");
   }
+  const GridSpec& g = o.simulation.grid;
+  if (!g.Contains(o.truth.base_station)) {
+    throw std::invalid_argument(fmt::format(
+        "--base: ({}, {}) lies outside the workspace [{}, {}] x [{}, {}] (--width, --height)",
+        o.truth.base_station.x(),
+        o.truth.base_station.y(),
+        g.x_min,
+        g.x_max(),
+        g.y_min,
+        g.y_max()));
+  }
   o.simulation.multipath.model = MultipathModelFromString(a.multipath);
   o.simulation.multipath.rician_k = a.rician_k;
   if (!o.simulation.IsValid(&error)) throw std::invalid_argument(error);
@@ -209,6 +220,17 @@ void RunPredict(const CommonArgs& a, const PredictArgs& p) {
   if (!o.IsValid(&error)) throw std::invalid_argument(error);
   if (p.check_points < 0) throw std::invalid_argument("--check-points must be >= 0");
 
+  // Measurements from a file are read and checked before anything is simulated.
+  MeasurementSet from_file;
+  if (!p.measurements_csv.empty()) {
+    from_file = LoadMeasurementsCsv(p.measurements_csv);
+    const GridSpec& grid = o.simulation.grid;
+    CheckMeasurementsInside(from_file,
+                            Eigen::Vector2d(grid.x_min, grid.y_min),
+                            Eigen::Vector2d(grid.x_max(), grid.y_max()),
+                            p.measurements_csv);
+  }
+
   // Simulation, measurements, estimation and the exact predictor.
   PaperChannel c;
   if (p.measurements_csv.empty()) {
@@ -222,7 +244,7 @@ void RunPredict(const CommonArgs& a, const PredictArgs& p) {
     Stopwatch watch;
     c.truth = SimulateChannel(o.truth, o.simulation, a.seed);
     c.simulate_seconds = watch.wall();
-    c.measurements = LoadMeasurementsCsv(p.measurements_csv);
+    c.measurements = std::move(from_file);
     const Stopwatch est_watch;
     c.estimated =
         o.estimate ? EstimateChannelParameters(c.measurements, o.truth, o.estimation, &c.estimation)

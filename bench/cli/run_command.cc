@@ -31,27 +31,37 @@ struct RunArgs {
   bool overwrite = false;
 };
 
-// Reads a JSON Lines file. A last line cut short by a killed run is dropped (and reported);
-// any other malformed line is an error.
-std::vector<json> ReadRecords(const std::string& path, bool* dropped_partial) {
+// Reads a JSON Lines file of records (JSON objects). A last line cut short by a killed run is
+// dropped (*dropped_partial); any other malformed line is an error. *unterminated tells that the
+// file does not end with a newline (a whole last record whose '\n' was never written): the
+// next append would glue onto it, so the caller rewrites the file first.
+std::vector<json> ReadRecords(const std::string& path,
+                              bool* dropped_partial,
+                              bool* unterminated = nullptr) {
   std::vector<json> records;
   *dropped_partial = false;
-  std::ifstream in(path);
-  if (!in) return records;
-  std::string line;
+  if (unterminated) *unterminated = false;
+  if (!fs::exists(path)) return records;
+  const std::string text = ReadFile(path);
+  if (unterminated) *unterminated = !text.empty() && text.back() != '\n';
   std::vector<std::string> lines;
+  std::istringstream in(text);
+  std::string line;
   while (std::getline(in, line)) {
     if (!line.empty()) lines.push_back(line);
   }
   for (size_t i = 0; i < lines.size(); ++i) {
+    json record;
     try {
-      records.push_back(json::parse(lines[i]));
-    } catch (const json::parse_error&) {
-      if (i + 1 == lines.size()) {
-        *dropped_partial = true;
-      } else {
-        throw std::invalid_argument(fmt::format("{}: line {} is not a JSON record", path, i + 1));
-      }
+      record = json::parse(lines[i]);
+    } catch (const json::exception&) {  // parse_error, or out_of_range (1e999)
+    }
+    if (record.is_object()) {
+      records.push_back(std::move(record));
+    } else if (i + 1 == lines.size()) {
+      *dropped_partial = true;
+    } else {
+      throw std::invalid_argument(fmt::format("{}: line {} is not a JSON record", path, i + 1));
     }
   }
   return records;
@@ -99,9 +109,11 @@ void Run(const RunArgs& args) {
   const std::string dir = args.out.empty() ? "results/" + suite.name : args.out;
   int shard = 0, shards = 1;
   if (!args.shard.empty()) ParseShard(args.shard, &shard, &shards);
-  if (args.resume && args.overwrite) throw std::invalid_argument("--resume and --overwrite exclude each other");
+  if (args.resume && args.overwrite)
+    throw std::invalid_argument("--resume and --overwrite exclude each other");
   const std::string records_path =
-      shards == 1 ? dir + "/records.jsonl" : fmt::format("{}/records.shard-{}-of-{}.jsonl", dir, shard, shards);
+      shards == 1 ? dir + "/records.jsonl"
+                  : fmt::format("{}/records.shard-{}-of-{}.jsonl", dir, shard, shards);
 
   std::set<std::string> done;
   std::vector<json> records;
@@ -110,15 +122,17 @@ void Run(const RunArgs& args) {
       fs::rename(records_path, records_path + ".prev");
       std::cerr << "ocpbench: previous records kept as " << records_path << ".prev\n";
     } else if (!args.resume) {
-      throw std::invalid_argument(records_path + " exists: pass --resume to continue it or --overwrite to " +
+      throw std::invalid_argument(records_path +
+                                  " exists: pass --resume to continue it or --overwrite to " +
                                   "start over (the old file is kept as .prev)");
     } else {
-      bool dropped = false;
-      records = ReadRecords(records_path, &dropped);
+      bool dropped = false, unterminated = false;
+      records = ReadRecords(records_path, &dropped, &unterminated);
       if (dropped) {
-        std::cerr << "ocpbench: dropped a partial last record in " << records_path << "\n";
-        WriteFileAtomically(records_path, JoinLines(records));
+        std::cerr << "ocpbench: dropped a partial last record in " << records_path
+                  << " (its case runs again)\n";
       }
+      if (dropped || unterminated) WriteFileAtomically(records_path, JoinLines(records));
       for (const json& r : records) done.insert(r.value("key", ""));
     }
   }
@@ -133,44 +147,41 @@ void Run(const RunArgs& args) {
   const bool tty = ::isatty(STDERR_FILENO);
   if (!done.empty()) {
     std::cerr << fmt::format("ocpbench: resuming: {} of {} cases already recorded\n",
-                             total_in_shard - todo.size(), total_in_shard);
+                             total_in_shard - todo.size(),
+                             total_in_shard);
   }
   const auto start = std::chrono::steady_clock::now();
   int failed = 0;
   for (size_t i = 0; i < todo.size(); ++i) {
     const CaseSpec& spec = *todo[i];
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (tty) {
       const double eta = i > 0 ? elapsed / i * (todo.size() - i) : 0.0;
-      std::cerr << fmt::format("\r\033[Kcase {} of {}  elapsed {}  remaining ~{}  {} / {}{}", i + 1, todo.size(),
-                               Clock(elapsed), i > 0 ? Clock(eta) : "?", spec.problem, spec.solver,
+      std::cerr << fmt::format("\r\033[Kcase {} of {}  elapsed {}  remaining ~{}  {} / {}{}",
+                               i + 1,
+                               todo.size(),
+                               Clock(elapsed),
+                               i > 0 ? Clock(eta) : "?",
+                               spec.problem,
+                               spec.solver,
                                spec.transcription.empty() ? "" : " + " + spec.transcription)
                 << std::flush;
     }
-    json record;
-    try {
-      record = RunCase(spec);
-    } catch (const std::invalid_argument& e) {
-      // A case that is invalid only once built (e.g. a problem's own checks): recorded, suite goes on.
-      record = json{{"problem", spec.problem}, {"seed", spec.seed},  {"solver", spec.solver},
-                    {"transcription", spec.transcription},           {"algorithm", spec.algorithm},
-                    {"N", spec.intervals},  {"terminal", ToString(spec.terminal)},
-                    {"key", spec.Key()},    {"status", ToString(SolveStatus::kInvalidInput)},
-                    {"solver_status", ""},  {"message", e.what()}, {"history", json::array()},
-                    {"versions", VersionsJson()}};
-    }
-    const std::string status = record.value("status", "");
-    for (SolveStatus s : {SolveStatus::kNumericalFailure, SolveStatus::kInfeasible, SolveStatus::kError,
-                          SolveStatus::kInvalidInput}) {
-      if (status == ToString(s)) ++failed;
-    }
+    // One case never stops the suite: whatever it throws becomes its record.
+    json record = RunCaseRecordingFailures(spec);
+    if (IsFailure(record.value("status", ""))) ++failed;
     AppendLineDurably(records_path, record.dump());
     records.push_back(std::move(record));
   }
   if (tty) std::cerr << "\r\033[K";
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cerr << fmt::format("ocpbench: {} cases run in {}, {} failed; records in {}\n", todo.size(),
-                           Clock(elapsed), failed, records_path);
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cerr << fmt::format("ocpbench: {} cases run in {}, {} failed; records in {}\n",
+                           todo.size(),
+                           Clock(elapsed),
+                           failed,
+                           records_path);
   if (shards == 1) {
     WriteSummaries(dir, suite.name, records);
     std::cerr << "ocpbench: summary in " << dir << "/summary.md\n";
@@ -189,7 +200,8 @@ void Merge(const std::string& dir, const std::string& name_arg) {
       shard_files.push_back(e.path().string());
     }
   }
-  if (shard_files.empty()) throw std::invalid_argument("merge: no records.shard-*.jsonl files in " + dir);
+  if (shard_files.empty())
+    throw std::invalid_argument("merge: no records.shard-*.jsonl files in " + dir);
   std::sort(shard_files.begin(), shard_files.end());
   std::vector<json> merged;
   std::set<std::string> keys;
@@ -205,19 +217,23 @@ void Merge(const std::string& dir, const std::string& name_arg) {
   WriteFileAtomically(records_path, JoinLines(merged));
   const std::string name = name_arg.empty() ? fs::path(dir).filename().string() : name_arg;
   WriteSummaries(dir, name, merged);
-  std::cerr << fmt::format("ocpbench: merged {} records from {} shards into {}\n", merged.size(),
-                           shard_files.size(), records_path);
+  std::cerr << fmt::format("ocpbench: merged {} records from {} shards into {}\n",
+                           merged.size(),
+                           shard_files.size(),
+                           records_path);
 }
 
 }  // namespace
 
 void AddRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
-  CLI::App* run = app.add_subcommand("run", "Run a benchmark suite (JSON), appending one record per case");
+  CLI::App* run =
+      app.add_subcommand("run", "Run a benchmark suite (JSON), appending one record per case");
   run->add_option("suite", args->suite_path, "suite file (JSON)")->required();
   run->add_option("--out", args->out, "output directory (default results/<suite name>)");
   run->add_flag("--resume", args->resume, "skip cases already in the records file");
-  run->add_flag("--overwrite", args->overwrite, "start over; the old records file is kept as .prev");
+  run->add_flag(
+      "--overwrite", args->overwrite, "start over; the old records file is kept as .prev");
   run->add_option("--shard", args->shard, "run only cases i, i+n, i+2n, ... (i/n)");
   run->callback([args]() { Run(*args); });
 

@@ -98,11 +98,7 @@ void AddSolveCommand(CLI::App& app) {
     const nlohmann::json record = RunCase(spec);
     PrintReport(record);
     if (!args->json_path.empty()) WriteFileAtomically(args->json_path, record.dump(1) + "\n");
-    const std::string status = record["status"].get<std::string>();
-    for (SolveStatus s : {SolveStatus::kNumericalFailure, SolveStatus::kInfeasible, SolveStatus::kError,
-                          SolveStatus::kInvalidInput}) {
-      if (status == ToString(s)) ReportSomeFailed();
-    }
+    if (IsFailure(record["status"].get<std::string>())) ReportSomeFailed();
   });
 }
 

@@ -5,9 +5,6 @@
 #include <stdexcept>
 
 #include "bench/cli/io.h"
-#include "core/parameters.h"
-#include "problems/registry.h"
-#include "solvers/registry.h"
 
 namespace ocpb {
 
@@ -18,7 +15,8 @@ Suite ParseSuite(const json& j, const std::string& source) {
   static const std::set<std::string> kTop = {"name", "description", "groups"};
   for (const auto& [k, v] : j.items()) {
     if (!kTop.count(k)) {
-      throw std::invalid_argument(source + ": unknown key '" + k + "' (valid: description, groups, name)");
+      throw std::invalid_argument(source + ": unknown key '" + k +
+                                  "' (valid: description, groups, name)");
     }
   }
   Suite suite;
@@ -32,7 +30,8 @@ Suite ParseSuite(const json& j, const std::string& source) {
     }
   }
   if (j.contains("description")) {
-    if (!j["description"].is_string()) throw std::invalid_argument(source + ": description: must be a string");
+    if (!j["description"].is_string())
+      throw std::invalid_argument(source + ": description: must be a string");
     suite.description = j["description"].get<std::string>();
   }
   if (!j.contains("groups") || !j["groups"].is_array() || j["groups"].empty()) {
@@ -66,7 +65,8 @@ Suite ParseSuite(const json& j, const std::string& source) {
     for (size_t m = 0; m < group["methods"].size(); ++m) {
       const json& method = group["methods"][m];
       if (!method.is_object()) {
-        throw std::invalid_argument(where + ".methods[" + std::to_string(m) + "]: must be an object");
+        throw std::invalid_argument(where + ".methods[" + std::to_string(m) +
+                                    "]: must be an object");
       }
       for (const json& seed : seeds) {
         for (const json& n : grids) {
@@ -75,21 +75,11 @@ Suite ParseSuite(const json& j, const std::string& source) {
           if (!seed.is_null()) c["seed"] = seed;
           if (!n.is_null()) c["N"] = n;
           CaseSpec spec = ParseCaseSpec(c, where + ".methods[" + std::to_string(m) + "]");
-          // Names and parameters are checked now, so a typo fails the whole suite before
-          // anything runs.
+          // Everything that can be checked without solving is checked now (names, parameters,
+          // the problem's own rules, solver options, memory), so a typo fails the whole suite
+          // before anything runs.
           try {
-            Parameters params(FindProblem(spec.problem).parameters);
-            for (const std::string& a : spec.set) params.SetFromString(a);
-            const SolverInfo& s = FindSolver(spec.solver);
-            if (s.uses_transcription) {
-              if (spec.transcription.empty()) {
-                throw std::invalid_argument("solver '" + spec.solver + "' needs a transcription");
-              }
-              FindTranscription(spec.transcription);
-            } else if (!spec.transcription.empty()) {
-              throw std::invalid_argument("solver '" + spec.solver + "' takes no transcription");
-            }
-            spec.Validate();
+            ValidateCase(spec);
           } catch (const std::invalid_argument& e) {
             throw std::invalid_argument(where + ".methods[" + std::to_string(m) + "]: " + e.what());
           }
@@ -109,7 +99,8 @@ Suite LoadSuite(const std::string& path) {
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for a number beyond double (1e999): both are the file's.
     throw std::invalid_argument(path + ": not valid JSON (" + std::string(e.what()) + ")");
   }
   return ParseSuite(j, path);

@@ -20,8 +20,8 @@ namespace ocpb {
 ///                                {"solver": "ipopt", "transcription": "euler"} ] } ] }
 ///
 /// Cases are the product seeds x N x methods of every group, in file order. A method's fields
-/// override the group's. Every case is validated (names, parameters, options' types) before
-/// anything runs.
+/// override the group's. Every case is validated by ValidateCase (names, parameters, the
+/// problem's own rules, the solver's options, memory) before anything runs.
 struct Suite {
   std::string name;
   std::string description;

@@ -68,6 +68,10 @@ struct GridSpec {
   long num_points() const { return static_cast<long>(nx) * ny; }
   double x_max() const { return x_min + nx * resolution; }
   double y_max() const { return y_min + ny * resolution; }
+  /// True when q lies in the covered rectangle [x_min, x_max] x [y_min, y_max] (edges included).
+  bool Contains(const Eigen::Vector2d& q) const {
+    return q.x() >= x_min && q.x() <= x_max() && q.y() >= y_min && q.y() <= y_max();
+  }
   /// The cell containing q, clamped to the grid.
   void NearestCell(const Eigen::Vector2d& q, int* i, int* j) const;
   bool IsValid(std::string* error) const;

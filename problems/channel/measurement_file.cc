@@ -12,8 +12,10 @@ namespace {
 constexpr size_t kMaxRows = 1000000;
 
 std::string_view Trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
+    s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
   return s;
 }
 
@@ -57,7 +59,8 @@ MeasurementSet ParseMeasurementsCsv(std::string_view text, const std::string& so
       }
       const std::string_view field = rest.substr(0, comma);
       if (!ParseNumber(field, &v[i])) {
-        throw std::invalid_argument(where + "'" + std::string(Trim(field)) + "' is not a finite number");
+        throw std::invalid_argument(where + "'" + std::string(Trim(field)) +
+                                    "' is not a finite number");
       }
       rest.remove_prefix(comma == std::string_view::npos ? rest.size() : comma + 1);
     }
@@ -73,6 +76,21 @@ MeasurementSet ParseMeasurementsCsv(std::string_view text, const std::string& so
                                 std::to_string(set.positions.size()));
   }
   return set;
+}
+
+void CheckMeasurementsInside(const MeasurementSet& set,
+                             const Eigen::Vector2d& lo,
+                             const Eigen::Vector2d& hi,
+                             const std::string& source) {
+  for (size_t k = 0; k < set.positions.size(); ++k) {
+    const Eigen::Vector2d& q = set.positions[k];
+    if (q.x() >= lo.x() && q.x() <= hi.x() && q.y() >= lo.y() && q.y() <= hi.y()) continue;
+    std::ostringstream os;
+    os << source << ": measurement " << k + 1 << " at (" << q.x() << ", " << q.y()
+       << ") lies outside the workspace [" << lo.x() << ", " << hi.x() << "] x [" << lo.y() << ", "
+       << hi.y() << "]";
+    throw std::invalid_argument(os.str());
+  }
 }
 
 MeasurementSet LoadMeasurementsCsv(const std::string& path) {

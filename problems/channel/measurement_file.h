@@ -27,6 +27,14 @@ struct MeasurementSet {
 /// accepted here; the predictor documents how it treats them.
 MeasurementSet ParseMeasurementsCsv(std::string_view text, const std::string& source);
 
+/// Throws std::invalid_argument "SOURCE: measurement K at (x, y) lies outside the workspace
+/// [x_lo, x_hi] x [y_lo, y_hi]" for the first position outside the rectangle (edges included);
+/// K counts the data rows from 1.
+void CheckMeasurementsInside(const MeasurementSet& set,
+                             const Eigen::Vector2d& lo,
+                             const Eigen::Vector2d& hi,
+                             const std::string& source);
+
 /// Reads and parses a file; throws std::invalid_argument when it cannot be read.
 MeasurementSet LoadMeasurementsCsv(const std::string& path);
 

@@ -22,6 +22,8 @@ struct BadInput {
 // A valid case object to mutate.
 #define CASE_OK R"("problem": "double-integrator", "solver": "hamiltonian")"
 
+// One row per bad input (clang-format would put every argument on its own line).
+// clang-format off
 const BadInput kBadInputs[] = {
     {"unknown subcommand", {"frobnicate"}, nullptr, "unknown command 'frobnicate' (valid: list, solve, run"},
     {"list of nothing", {"list", "foo"}, nullptr, "foo not in {problems,solvers,transcriptions}"},
@@ -134,7 +136,93 @@ const BadInput kBadInputs[] = {
     {"resume and overwrite", {"run", "@SUITE", "--resume", "--overwrite"},
      R"({"name": "s", "groups": [{)" CASE_OK R"(, "methods": [{}]}]})", "--resume and --overwrite exclude"},
     {"merge of a missing directory", {"merge", "/nonexistent/dir"}, nullptr, "merge: no such directory"},
+    // Problem parameters and the problems' own rules (checked before any channel is simulated).
+    {"zero Rmax", {"solve", "--problem", "comm-path2d", "--solver", "hamiltonian", "--set", "Rmax=0"},
+     nullptr, "parameter 'Rmax' = 0 out of range: need > 0"},
+    {"negative Rmax", {"solve", "--problem", "comm-fixed-path", "--solver", "hamiltonian", "--set", "Rmax=-1"},
+     nullptr, "parameter 'Rmax' = -1 out of range: need > 0"},
+    {"negative bits", {"solve", "--problem", "comm-path2d", "--solver", "hamiltonian", "--set", "c=-150"},
+     nullptr, "parameter 'c' = -150 out of range: need >= 0"},
+    {"negative bits already sent",
+     {"solve", "--problem", "comm-path2d", "--solver", "hamiltonian", "--set", "x3_0=-1"}, nullptr,
+     "parameter 'x3_0' = -1 out of range: need >= 0"},
+    {"S outside the workspace",
+     {"solve", "--problem", "comm-path2d", "--solver", "hamiltonian", "--set", "S=60,10"}, nullptr,
+     "parameter 'S' = 60 out of range: need >= 0 and <= 50"},
+    {"D outside the workspace",
+     {"solve", "--problem", "comm-path2d", "--solver", "hamiltonian", "--set", "D=10,-5"}, nullptr,
+     "parameter 'D' = -5 out of range: need >= 0 and <= 50"},
+    {"base outside the workspace",
+     {"solve", "--problem", "comm-path2d", "--solver", "hamiltonian", "--set", "base=500,500"}, nullptr,
+     "parameter 'base' = 500 out of range: need >= 0 and <= 50"},
+    {"t0 at tf", {"solve", "--problem", "comm-path2d", "--solver", "hamiltonian", "--set", "t0=40"}, nullptr,
+     "comm-path2d: t0 must satisfy 0 <= t0 < tf"},
+    {"trailing comma in --set",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--set", "tf=1,"}, nullptr,
+     "malformed --set 'tf=1,': value 2 is empty"},
+    {"empty item in a vector --set",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--set", "x0=1,,0"}, nullptr,
+     "malformed --set 'x0=1,,0': value 2 is empty"},
+    // Solver options and algorithms.
+    {"unknown --option key",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--option", "bogus=1"}, nullptr,
+     "hamiltonian: unknown option 'bogus' (valid: "},
+    {"unknown ipopt --option key",
+     {"solve", "--problem", "double-integrator", "--solver", "ipopt", "--transcription", "euler",
+      "--option", "max_iterations=5"}, nullptr,
+     "unknown ipopt option 'max_iterations' (valid: "},
+    {"unknown algorithm",
+     {"solve", "--problem", "double-integrator", "--solver", "nlopt", "--transcription", "single-shooting",
+      "--algorithm", "NOPE"}, nullptr,
+     "nlopt option 'algorithm': 'NOPE' is not one of: "},
+    {"algorithm for the Hamiltonian solver",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--algorithm", "LD_MMA"}, nullptr,
+     "algorithm: only the nlopt solver takes one (solver 'hamiltonian')"},
+    // Channel commands: positions outside the simulated workspace.
+    {"channel base outside the workspace", {"channel", "simulate", "--base", "500", "500", "--width", "10"},
+     nullptr, "--base: (500, 500) lies outside the workspace [0, 10] x [0, 50] (--width, --height)"},
+    {"measurement outside the workspace",
+     {"channel", "predict", "--measurements", "@SUITE", "--width", "10", "--resolution", "0.5"},
+     "x_m,y_m,gain_db\n1,1,-60\n2,2,-62\n60,5,-70\n",
+     "measurement 3 at (60, 5) lies outside the workspace [0, 10] x [0, 50]"},
+    // Suites: everything is validated before anything runs.
+    {"infinite number in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "set": {"C": 1e999}, "methods": [{}]}]})",
+     "not valid JSON ([json.exception.out_of_range.406] number overflow parsing '1e999')"},
+    {"infinite N in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "N": 1e999, "methods": [{}]}]})",
+     "number overflow parsing '1e999'"},
+    {"unknown option key in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "methods": [{"options": {"bogus": 1}}]}]})",
+     "groups[0].methods[0]: hamiltonian: unknown option 'bogus' (valid: "},
+    {"bad option value in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "methods": [{"options": {"alpha": "fast"}}]}]})",
+     "groups[0].methods[0]: hamiltonian option 'alpha': 'fast' is not a number"},
+    {"unknown ipopt option in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{"problem": "double-integrator", "methods": [{"solver": "ipopt",
+          "transcription": "euler", "options": {"bogus": 1}}]}]})",
+     "groups[0].methods[0]: unknown ipopt option 'bogus'"},
+    {"unknown algorithm in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{"problem": "double-integrator", "methods": [{"solver": "nlopt",
+          "transcription": "single-shooting", "algorithm": "NOPE"}]}]})",
+     "groups[0].methods[0]: nlopt option 'algorithm': 'NOPE' is not one of: "},
+    {"t0 at tf in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{"problem": "comm-path2d", "set": {"t0": 50},
+          "methods": [{"solver": "hamiltonian"}]}]})",
+     "groups[0].methods[0]: comm-path2d: t0 must satisfy 0 <= t0 < tf"},
+    {"channel rule in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{"problem": "comm-path2d", "set": {"xi": 0},
+          "methods": [{"solver": "hamiltonian"}]}]})",
+     "groups[0].methods[0]: channel: xi must be finite and > 0 (dB)"},
+    {"sigma_min above sigma_max in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{"problem": "brachistochrone", "set": {"sigma_min": 2, "sigma_max": 1},
+          "methods": [{"solver": "hamiltonian"}]}]})",
+     "groups[0].methods[0]: brachistochrone: sigma_min must be < sigma_max"},
+    {"N beyond memory in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "N": 900000000, "methods": [{}]}]})",
+     "groups[0].methods[0]: N: 900000000 intervals need about"},
 };
+// clang-format on
 
 class CliBadInput : public ::testing::TestWithParam<BadInput> {};
 
@@ -156,11 +244,14 @@ TEST_P(CliBadInput, ExitsWithCode2AndOneClearLine) {
   EXPECT_EQ(run.err.rfind("ocpbench: error: ", 0), 0u) << run.err;
   // Nothing was written: the only file in the directory is the suite itself.
   int files = 0;
-  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) files += e.is_regular_file();
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    files += e.is_regular_file();
   EXPECT_EQ(files, bad.suite ? 1 : 0) << bad.name;
 }
 
-INSTANTIATE_TEST_SUITE_P(Table, CliBadInput, ::testing::ValuesIn(kBadInputs),
+INSTANTIATE_TEST_SUITE_P(Table,
+                         CliBadInput,
+                         ::testing::ValuesIn(kBadInputs),
                          [](const ::testing::TestParamInfo<BadInput>& info) {
                            std::string n = info.param.name;
                            for (char& c : n) {

@@ -37,6 +37,12 @@ TEST(Parameters, InvalidValuesAreRejectedWithOneLineMessages) {
             "malformed --set 'tf': expected key=value or key=v1,v2");
   EXPECT_EQ(ErrorOf([&] { p.SetFromString("tf=4x"); }),
             "malformed --set 'tf=4x': '4x' is not a number");
+  // Empty items are typos, not shorter lists (a trailing ',' used to be dropped silently).
+  EXPECT_EQ(ErrorOf([&] { p.SetFromString("tf=1,"); }),
+            "malformed --set 'tf=1,': value 2 is empty");
+  EXPECT_EQ(ErrorOf([&] { p.SetFromString("S=,1"); }), "malformed --set 'S=,1': value 1 is empty");
+  EXPECT_EQ(ErrorOf([&] { p.SetFromString("S=1,,2"); }),
+            "malformed --set 'S=1,,2': value 2 is empty");
   EXPECT_EQ(p.Scalar("tf"), 40.0);  // failed sets change nothing
 }
 
