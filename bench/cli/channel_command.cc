@@ -253,6 +253,8 @@ void RunPredict(const CommonArgs& a, const PredictArgs& p) {
                        {"estimator", ToString(o.estimation.method)},
                        {"bins_used", c.estimation.bin_lag.size()},
                        {"residual_variance", c.estimation.residual_variance},
+                       {"likelihood_evaluations", c.estimation.likelihood_evaluations},
+                       {"neg2_log_likelihood", c.estimation.neg2_log_likelihood},
                        {"xi2_at_bound", c.estimation.xi2_at_bound},
                        {"eta_at_bound", c.estimation.eta_at_bound},
                        {"rho2_floored", c.estimation.rho2_floored},

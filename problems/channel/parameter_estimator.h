@@ -56,13 +56,15 @@ EstimationMethod EstimationMethodFromCode(int code);
 /// max_lag) only give its starting point (eta = 1 m and a nugget fraction 0.2 if the binned
 /// fit fails).
 ///
-/// The default is maximum likelihood. Over 20 seeds (500 samples, paper's grid;
+/// Maximum likelihood estimates better: over 20 seeds (500 samples, paper's grid;
 /// BM_ChannelEstimatorAccuracy) its mean absolute errors are K_PL 1.94 dB, n_PL 0.127, xi 0.11
 /// dB, eta 0.40 m, rho 0.18 dB against the binned fit's 2.03, 0.142, 0.28, 0.65, 0.67 (eta
-/// biased -0.53 m and rho mostly at its floor there), for about 0.15 s instead of 1.3 ms at
-/// m = 500 (4-60 ms at the online loop's 100-400 measurements).
+/// biased -0.53 m and rho mostly at its floor there). It costs about 0.15 s instead of 1.3 ms
+/// at m = 500 and 5-75 ms instead of under 1 ms at the online loop's 100-400 measurements,
+/// which would double or triple an online re-planning cycle (30-50 ms); so the default stays
+/// the companion's binned fit and maximum likelihood is an option ("ml").
 struct EstimationOptions {
-  EstimationMethod method = EstimationMethod::kMaximumLikelihood;
+  EstimationMethod method = EstimationMethod::kBinnedLeastSquares;
   double bin_width = 0.2;    ///< m (> 0)
   int min_pairs = 40;        ///< pairs a bin needs to be used (>= 1)
   double max_lag = 15.0;     ///< largest pair distance used, m (> bin_width)
@@ -87,7 +89,7 @@ struct EstimationSummary {
   bool xi2_at_bound = false;           ///< xi^2 ended at 0 or xi2_max
   bool eta_at_bound = false;           ///< eta ended at eta_min or eta_max
   bool rho2_floored = false;           ///< rho^2 was raised to rho2_floor
-  EstimationMethod method = EstimationMethod::kMaximumLikelihood;  ///< the method used
+  EstimationMethod method = EstimationMethod::kBinnedLeastSquares;  ///< the method used
   /// Maximum likelihood only: -2 log L at the optimum (profiled; REML's for "reml") and the
   /// number of likelihood evaluations; whether the start came from the binned fit.
   double neg2_log_likelihood = NAN;

@@ -120,7 +120,7 @@ TEST(ParameterEstimator, MethodNamesAndTheLikelihoodSummary) {
     EXPECT_EQ(EstimationMethodFromCode(static_cast<int>(m)), m);
     EXPECT_GT(std::string(Describe(m)).size(), 20u);
   }
-  EXPECT_EQ(EstimationOptions().method, EstimationMethod::kMaximumLikelihood);
+  EXPECT_EQ(EstimationOptions().method, EstimationMethod::kBinnedLeastSquares);
   EXPECT_EQ(std::string(ToString(EstimationMethod::kMaximumLikelihood)), "ml");
   try {
     EstimationMethodFromString("least-squares");
@@ -139,6 +139,7 @@ TEST(ParameterEstimator, MethodNamesAndTheLikelihoodSummary) {
   const SimulatedChannel c = SimulateChannel(truth, options, 31);
   const MeasurementSet m = DrawRandomMeasurements(c, 150, 31);
   EstimationOptions o;
+  o.method = EstimationMethod::kMaximumLikelihood;
   o.bin_width = 1.0;
   o.min_pairs = 20;
   EstimationSummary first;
@@ -193,8 +194,10 @@ TEST(ParameterEstimator, RecoversPathLossExactlyWithoutShadowing) {
   EstimationOptions binned;
   binned.method = EstimationMethod::kBinnedLeastSquares;
   EXPECT_THROW(EstimateChannelParameters(few_points, known, binned), std::invalid_argument);
+  EstimationOptions ml;
+  ml.method = EstimationMethod::kMaximumLikelihood;
   EstimationSummary summary;
-  EXPECT_TRUE(EstimateChannelParameters(few_points, known, {}, &summary).IsValid(nullptr));
+  EXPECT_TRUE(EstimateChannelParameters(few_points, known, ml, &summary).IsValid(nullptr));
   EXPECT_FALSE(summary.started_from_binned);
   // With smooth (spatially correlated) deviations the path loss is still recovered closely.
   for (int i = 0; i < 50; ++i) m.values_db[i] += 2.0 * std::sin(0.25 * m.positions[i].x());

@@ -80,8 +80,8 @@ TEST(ChannelCli, PredictJsonContractAndFiles) {
   ASSERT_TRUE(j["rmse_db"].is_number());
   EXPECT_EQ(j["seed"], 3);
   EXPECT_EQ(j["samples"], 150);
-  // The estimator is recorded (maximum likelihood by default).
-  EXPECT_EQ(j["estimation"]["estimator"], "ml");
+  // The estimator is recorded (the companion's binned fit by default).
+  EXPECT_EQ(j["estimation"]["estimator"], "binned");
   // The same JSON is written next to the maps.
   EXPECT_EQ(json::parse(testing::ReadText(dir + "/maps/predict.json"))["rmse_db"], j["rmse_db"]);
 
@@ -109,21 +109,14 @@ TEST(ChannelCli, PredictJsonContractAndFiles) {
         << f;
   }
 
-  // The binned estimator on the same samples: another estimate, recorded as such; the true
-  // channel (same seed) is the same.
-  const std::string binned = dir + "/binned.json";
-  const ProgramRun b = RunOcpbenchProgram(Small({"--samples",
-                                                 "150",
-                                                 "--seed",
-                                                 "3",
-                                                 "--estimator",
-                                                 "binned",
-                                                 "--no-files",
-                                                 "--json",
-                                                 binned}));
+  // Maximum likelihood on the same samples: another estimate, recorded as such; the same grid.
+  const std::string ml = dir + "/ml.json";
+  const ProgramRun b = RunOcpbenchProgram(
+      Small({"--samples", "150", "--seed", "3", "--estimator", "ml", "--no-files", "--json", ml}));
   ASSERT_EQ(b.exit_code, 0) << b.err;
-  const json jb = json::parse(testing::ReadText(binned));
-  EXPECT_EQ(jb["estimation"]["estimator"], "binned");
+  const json jb = json::parse(testing::ReadText(ml));
+  EXPECT_EQ(jb["estimation"]["estimator"], "ml");
+  EXPECT_GT(jb["estimation"]["likelihood_evaluations"].get<int>(), 5);
   EXPECT_NE(jb["estimated"]["eta"], j["estimated"]["eta"]);
   EXPECT_EQ(jb["points"], j["points"]);
 }
@@ -137,7 +130,11 @@ TEST(ChannelCli, BadInputsExitTwoWithOneLine) {
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {Small({"--samples", "2"}), "--samples must be >= 3"},
       {Small({"--samples", "5000"}), "samples must be between"},
-      {Small({"--measurements", coincident}), "coincides with"},
+      // Coincident positions reach the predictor with the true parameters (--oracle) or with
+      // maximum likelihood; the binned fit already fails on 4 measurements (too few pairs).
+      {Small({"--measurements", coincident, "--oracle"}), "coincides with"},
+      {Small({"--measurements", coincident, "--estimator", "ml"}), "coincides with"},
+      {Small({"--measurements", coincident}), "distance bins"},
       {Small({"--measurements", few}), "at least 3"},
       {Small({"--measurements", dir + "/missing.csv"}), "missing.csv"},
       {Small({"--estimator", "median"}), "unknown estimator 'median' (valid: binned, ml, reml)"},

@@ -54,7 +54,7 @@ TEST(OnlineCli, JsonRecordHasTheContractFields) {
     EXPECT_EQ(r["seed"], 4);
     EXPECT_EQ(r["solver"], solver);
     // The scenario's settings, with the estimator and placement that were used.
-    EXPECT_EQ(r["online"]["estimator"], "ml");
+    EXPECT_EQ(r["online"]["estimator"], "binned");
     EXPECT_EQ(r["online"]["placement"], "random");
     if (solver == "ipopt") {
       EXPECT_EQ(r["transcription"], "euler");
