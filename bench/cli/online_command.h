@@ -10,7 +10,8 @@
 namespace ocpb {
 
 /// `ocpbench online --problem comm-path2d --solver hamiltonian|ipopt [--seed S] [--json FILE]
-/// [--period 10] [--initial-measurements 100] [--per-update 100] [--placement random|path|plan] [--estimator binned|ml|reml] ...`.
+/// [--period 10] [--initial-measurements 100] [--per-update 100] [--placement random|path|plan]
+/// [--estimator binned|ml|reml] ...`.
 void AddOnlineCommand(CLI::App& app);
 
 /// Throws std::invalid_argument ("online.KEY: rule") unless `spec` (kind "online") is a valid
