@@ -43,6 +43,7 @@ struct PredictArgs {
   int samples = 500;
   std::string measurements_csv;
   bool oracle = false;
+  std::string estimator = ToString(EstimationOptions().method);
   std::string map_quantity = "log-s";
   std::string variance = "local";
   double radius_eta = 3.5;
@@ -202,6 +203,7 @@ void RunSimulate(const CommonArgs& a) {
 void RunPredict(const CommonArgs& a, const PredictArgs& p) {
   PaperChannelOptions o = ToOptions(a);
   o.estimate = !p.oracle;
+  o.estimation.method = EstimationMethodFromString(p.estimator);
   o.build_map = false;
   o.map.quantity = MapQuantityFromString(p.map_quantity);
   if (p.variance == "local") {
@@ -269,11 +271,12 @@ void RunPredict(const CommonArgs& a, const PredictArgs& p) {
                     {"eta", c.estimated.eta},
                     {"rho", c.estimated.rho}};
   if (o.estimate) {
-    j["estimation"] = {{"method",
-                        "companion two-stage least squares (OLS path loss; weighted fit "
-                        "of the binned residual covariance; rho^2 = mean r^2 - xi^2)"},
+    j["estimation"] = {{"method", Describe(o.estimation.method)},
+                       {"estimator", ToString(o.estimation.method)},
                        {"bins_used", c.estimation.bin_lag.size()},
                        {"residual_variance", c.estimation.residual_variance},
+                       {"likelihood_evaluations", c.estimation.likelihood_evaluations},
+                       {"neg2_log_likelihood", c.estimation.neg2_log_likelihood},
                        {"xi2_at_bound", c.estimation.xi2_at_bound},
                        {"eta_at_bound", c.estimation.eta_at_bound},
                        {"rho2_floored", c.estimation.rho2_floored},
@@ -404,6 +407,11 @@ void AddChannelCommand(CLI::App& app) {
                       args->measurements_csv,
                       "use measurements from this CSV (x_m,y_m,gain_db) instead of --samples");
   predict->add_flag("--oracle", args->oracle, "predict with the true parameters (no estimation)");
+  predict
+      ->add_option("--estimator",
+                   args->estimator,
+                   "parameter estimator: binned (companion) | ml | reml (maximum likelihood)")
+      ->capture_default_str();
   predict->add_option("--map-quantity", args->map_quantity, "map interpolates: log-s | s")
       ->capture_default_str();
   predict

@@ -85,7 +85,8 @@ OnlineSetup Resolve(const CaseSpec& spec) {
                                               "workspace",
                                               "refresh",
                                               "region_margin",
-                                              "smap_resolution"};
+                                              "smap_resolution",
+                                              "estimator"};
   for (const auto& [k, v] : spec.online) {
     if (!kKeys.count(k)) {
       std::string valid;
@@ -169,6 +170,12 @@ OnlineSetup Resolve(const CaseSpec& spec) {
         "online.map_resolution: must be >= truth_resolution and give >= 4 cells per side");
   }
   c.region_margin = ParseNumber("region_margin", get("region_margin", "10"));
+  try {
+    c.estimation.method =
+        EstimationMethodFromString(get("estimator", ToString(c.estimation.method)));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("online.estimator: ") + e.what());
+  }
   const int refresh = ParseInteger("refresh", get("refresh", "1"));
   if (refresh != 0 && refresh != 1) throw std::invalid_argument("online.refresh: must be 0 or 1");
   c.refresh = refresh == 1;
@@ -208,7 +215,8 @@ OnlineSetup Resolve(const CaseSpec& spec) {
                     {"workspace", workspace},
                     {"refresh", c.refresh ? 1 : 0},
                     {"region_margin", c.region_margin},
-                    {"smap_resolution", s.smap_resolution}};
+                    {"smap_resolution", s.smap_resolution},
+                    {"estimator", ToString(c.estimation.method)}};
   return s;
 }
 
@@ -451,7 +459,12 @@ void AddOnlineCommand(CLI::App& app) {
            {"--period", "update_period", "seconds between channel updates (10)"},
            {"--initial-measurements", "initial_measurements", "measurements at t0 = 0 (100)"},
            {"--per-update", "measurements_per_update", "new measurements per update (100)"},
-           {"--placement", "placement", "random | path (random)"},
+           {"--placement",
+            "placement",
+            "random | path (driven since the last update) | plan (rest of the plan) (random)"},
+           {"--estimator",
+            "estimator",
+            "channel parameter estimator: binned | ml | reml (the channel library's default)"},
            {"--map-resolution", "map_resolution", "grid of the re-predicted s map, m (0.5)"},
            {"--truth-resolution", "truth_resolution", "grid of the simulated channel, m (0.1)"},
            {"--workspace", "workspace", "side of the simulated square workspace, m (50)"},

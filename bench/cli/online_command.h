@@ -10,14 +10,17 @@
 namespace ocpb {
 
 /// `ocpbench online --problem comm-path2d --solver hamiltonian|ipopt [--seed S] [--json FILE]
-/// [--period 10] [--initial-measurements 100] [--per-update 100] [--placement random|path] ...`.
+/// [--period 10] [--initial-measurements 100] [--per-update 100] [--placement random|path|plan]
+/// [--estimator binned|ml|reml] ...`.
 void AddOnlineCommand(CLI::App& app);
 
 /// Throws std::invalid_argument ("online.KEY: rule") unless `spec` (kind "online") is a valid
 /// online case: problem comm-path2d, known solver, valid scenario settings. Settings (strings in
 /// CaseSpec::online, all optional):
 ///   update_period (s, > 0, multiple of tf/N; 10), initial_measurements (>= 3; 100),
-///   measurements_per_update (>= 1; 100), placement (random | path; random),
+///   measurements_per_update (>= 1; 100), placement (random | path: driven since the last
+///   update | plan: the rest of the current plan, evenly spaced in time; random), estimator
+///   (binned | ml | reml; the channel library's default, EstimationOptions::method),
 ///   map_resolution (m, > 0; 0.5), truth_resolution (m, > 0; 0.1), workspace (side of the
 ///   simulated square, m, > 0; 50), refresh (0 | 1; 1), region_margin (m, >= 0; 10: re-predict
 ///   around the robot, D and its plan only; 0: everywhere), smap_resolution (m, > 0; 1: the grid of

@@ -19,6 +19,12 @@ std::string Pos(const Eigen::Vector2d& q) {
   return os.str();
 }
 
+std::string Num(double v) {  // shortest form (std::to_string prints 1e-9 as 0.000000)
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
 }  // namespace
 
 bool GpPredictorOptions::IsValid(std::string* error) const {
@@ -75,9 +81,9 @@ void GpChannelPredictor::Append(const MeasurementSet& more, bool* changed_existi
       if (!options_.merge_coincident) {
         const std::string what = twin < m0 ? "existing measurement " + std::to_string(twin)
                                            : "new measurement " + std::to_string(twin - m0);
-        throw std::invalid_argument(
-            "measurement " + std::to_string(n) + " at " + Pos(q) + " coincides with " + what +
-            " (closer than " + std::to_string(tol) + " m); remove repeats or set merge_coincident");
+        throw std::invalid_argument("measurement " + std::to_string(n) + " at " + Pos(q) +
+                                    " coincides with " + what + " (closer than " + Num(tol) +
+                                    " m); remove repeats or set merge_coincident");
       }
       values_[twin] = (values_[twin] * counts_[twin] + more.values_db[n]) / (counts_[twin] + 1);
       ++counts_[twin];

@@ -1,7 +1,9 @@
 #include "problems/channel/measurement_sampling.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
+#include <unordered_set>
 
 #include "problems/channel/random_stream.h"
 
@@ -41,19 +43,24 @@ MeasurementSet DrawRandomMeasurements(const SimulatedChannel& channel, int m, st
 }
 
 MeasurementSet MeasureAlongPath(const SimulatedChannel& channel,
-                                const std::vector<Eigen::Vector2d>& path) {
+                                const std::vector<Eigen::Vector2d>& path,
+                                int samples) {
+  if (samples < 0) throw std::invalid_argument("samples along a path must be >= 0");
   const GridSpec& g = channel.grid;
-  std::vector<bool> taken(static_cast<std::size_t>(g.num_points()), false);
+  const long n = static_cast<long>(path.size());
+  const long count = n == 0 ? 0 : (samples == 0 ? n : samples);
+  std::unordered_set<long> taken;
   MeasurementSet set;
-  for (std::size_t p = 0; p < path.size(); ++p) {
+  for (long s = 0; s < count; ++s) {
+    long p = s;
+    if (samples > 0) p = samples == 1 ? n - 1 : std::lround(double(s) * (n - 1) / (samples - 1));
     if (!path[p].allFinite()) {
       throw std::invalid_argument("path point " + std::to_string(p) + " is not finite");
     }
     int i, j;
     g.NearestCell(path[p], &i, &j);
-    const std::size_t k = static_cast<std::size_t>(j) * g.nx + i;
-    if (taken[k] || !Eligible(channel, i, j)) continue;
-    taken[k] = true;
+    const long k = static_cast<long>(j) * g.nx + i;
+    if (!Eligible(channel, i, j) || !taken.insert(k).second) continue;
     set.positions.push_back(g.Point(i, j));
     set.values_db.push_back(channel.gain_db(i, j));
   }

@@ -19,12 +19,18 @@ namespace ocpb {
 /// points.
 MeasurementSet DrawRandomMeasurements(const SimulatedChannel& channel, int m, std::uint64_t seed);
 
-/// Measurements along a path: for every path point the grid cell containing it (clamped to the
-/// grid); the measurement is that cell's gain_db at the cell's centre. A cell visited again is
-/// measured once (the first visit), since the simulated channel is one fixed value per cell;
-/// cells within the distance floor of the base station are skipped. Throws
-/// std::invalid_argument on a non-finite path point.
+/// Measurements along a path (the one way to measure along a path: the online placements use
+/// it too). `samples` = 0: every path point; `samples` > 0: the points at `samples` indices
+/// spaced evenly over the path, first to last (index round(s (n - 1) / (samples - 1)); the last
+/// point when samples = 1), so for a path sampled at equal time steps they are evenly spaced in
+/// time. Each chosen point is measured in the grid cell containing it (clamped to the grid):
+/// that cell's gain_db at the cell's centre. A cell met again is measured once (the first
+/// visit), since the simulated channel is one fixed value per cell; cells within the distance
+/// floor of the base station are skipped. So the result has at most `samples` (or path size)
+/// measurements, in path order. Throws std::invalid_argument on a non-finite chosen point or
+/// samples < 0.
 MeasurementSet MeasureAlongPath(const SimulatedChannel& channel,
-                                const std::vector<Eigen::Vector2d>& path);
+                                const std::vector<Eigen::Vector2d>& path,
+                                int samples = 0);
 
 }  // namespace ocpb

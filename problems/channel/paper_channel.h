@@ -69,7 +69,8 @@ struct PaperChannel {
 ///    (ChannelSimulator; shadowing and multipath streams of the seed);
 /// 2. draw `samples` measurements at distinct random grid points (DrawRandomMeasurements with
 ///    the same seed, its own stream);
-/// 3. estimate (K_PL, n_PL, xi, eta, rho) from them (EstimateChannelParameters), unless
+/// 3. estimate (K_PL, n_PL, xi, eta, rho) from them (EstimateChannelParameters with
+///    options.estimation; options.estimation.method: binned by default, or "ml"), unless
 ///    options.estimate is false;
 /// 4. build the exact GP predictor (GpChannelPredictor), s in options.predictor.units
 ///    (default watts);
@@ -80,7 +81,8 @@ struct PaperChannel {
 ///   PaperChannel c = MakePaperChannel(seed, 500);
 ///   std::shared_ptr<const ChannelQuality> s = c.Quality(ChannelProvider::kMap);
 ///   // record s->Describe() with the results
-/// Cost with the defaults: about 0.5-1 s (simulation 0.3 s, grid prediction 0.2 s).
+/// Cost with the defaults: about 0.5-1 s (simulation 0.3 s, grid prediction 0.2 s; maximum
+/// likelihood adds 0.15-0.3 s).
 /// Throws std::invalid_argument on invalid options or samples (< 3 or more than half the grid).
 PaperChannel MakePaperChannel(std::uint64_t seed,
                               int samples,

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "problems/channel/likelihood_estimator.h"
+
 namespace ocpb {
 
 bool EstimationOptions::IsValid(std::string* error) const {
@@ -78,36 +80,44 @@ double FitCost(const std::vector<double>& d,
   return cost;
 }
 
-}  // namespace
+// Step 1: the regressor, the values and the ordinary least-squares path loss.
+struct PathLossFit {
+  Eigen::VectorXd x, y, r;  // -10 log10 d, values, residuals y - H theta
+  double k_pl = 0.0, n_pl = 0.0;
+};
 
-ChannelParameters EstimateChannelParameters(const MeasurementSet& measurements,
-                                            const ChannelParameters& known,
-                                            const EstimationOptions& options,
-                                            EstimationSummary* summary) {
-  std::string error;
-  if (!options.IsValid(&error)) throw std::invalid_argument("estimation options: " + error);
-  if (!known.base_station.allFinite() || !(known.distance_floor > 0.0)) {
-    throw std::invalid_argument("estimation: base station must be finite and distance floor > 0");
-  }
-  ValidateMeasurements(measurements, known);
+PathLossFit OrdinaryLeastSquares(const MeasurementSet& measurements,
+                                 const ChannelParameters& known) {
   const int m = static_cast<int>(measurements.positions.size());
-
-  // 1. theta by least squares (centred normal equations: well conditioned).
-  Eigen::VectorXd x(m), y(m);
+  PathLossFit f;
+  f.x.resize(m);
+  f.y.resize(m);
   for (int i = 0; i < m; ++i) {
-    x[i] = -10.0 * std::log10(known.FlooredDistance(measurements.positions[i]));
-    y[i] = measurements.values_db[i];
+    f.x[i] = -10.0 * std::log10(known.FlooredDistance(measurements.positions[i]));
+    f.y[i] = measurements.values_db[i];
   }
-  const double xm = x.mean(), ym = y.mean();
-  const double sxx = (x.array() - xm).square().sum();
+  // Centred normal equations: well conditioned.
+  const double xm = f.x.mean(), ym = f.y.mean();
+  const double sxx = (f.x.array() - xm).square().sum();
   if (!(sxx > 1e-12 * m)) {
     throw std::invalid_argument(
         "estimation: all measurements are at the same distance from the base station, which "
         "does not determine n_PL");
   }
-  const double n_pl = ((x.array() - xm) * (y.array() - ym)).sum() / sxx;
-  const double k_pl = ym - n_pl * xm;
-  const Eigen::VectorXd r = y - (k_pl + n_pl * x.array()).matrix();
+  f.n_pl = ((f.x.array() - xm) * (f.y.array() - ym)).sum() / sxx;
+  f.k_pl = ym - f.n_pl * xm;
+  f.r = f.y - (f.k_pl + f.n_pl * f.x.array()).matrix();
+  return f;
+}
+
+// Steps 2-4 of the binned procedure.
+ChannelParameters Binned(const MeasurementSet& measurements,
+                         const ChannelParameters& known,
+                         const EstimationOptions& options,
+                         const PathLossFit& ols,
+                         EstimationSummary* summary) {
+  const int m = static_cast<int>(measurements.positions.size());
+  const Eigen::VectorXd& r = ols.r;
 
   // 2. Binned residual covariance.
   const int num_bins = static_cast<int>(std::ceil(options.max_lag / options.bin_width));
@@ -184,8 +194,8 @@ ChannelParameters EstimateChannelParameters(const MeasurementSet& measurements,
   const double rho2 = std::max(residual_variance - xi2, options.rho2_floor);
 
   ChannelParameters est = known;
-  est.k_pl = k_pl;
-  est.n_pl = n_pl;
+  est.k_pl = ols.k_pl;
+  est.n_pl = ols.n_pl;
   est.xi = std::sqrt(xi2);
   est.eta = eta;
   est.rho = std::sqrt(rho2);
@@ -206,6 +216,128 @@ ChannelParameters EstimateChannelParameters(const MeasurementSet& measurements,
         "predictor needs xi > 0");
   }
   return est;
+}
+
+// Maximum likelihood (ML or REML), started from the binned estimate when it exists.
+ChannelParameters Likelihood(const MeasurementSet& measurements,
+                             const ChannelParameters& known,
+                             const EstimationOptions& options,
+                             const PathLossFit& ols,
+                             EstimationSummary* summary) {
+  double eta0 = 1.0, nugget0 = 0.2;
+  if (options.likelihood_start.has_value()) {
+    const ChannelParameters& p = *options.likelihood_start;
+    eta0 = p.eta;
+    nugget0 = p.rho * p.rho / (p.xi * p.xi + p.rho * p.rho);
+  } else {
+    try {
+      const ChannelParameters start = Binned(measurements, known, options, ols, summary);
+      const double xi2 = start.xi * start.xi, rho2 = start.rho * start.rho;
+      eta0 = start.eta;
+      nugget0 = rho2 / (xi2 + rho2);
+      summary->started_from_binned = true;
+    } catch (const std::invalid_argument&) {
+      // Too few pairs per bin or no correlation in the binned residuals: the default start.
+    }
+  }
+  if (!(eta0 > 0.0) || !std::isfinite(eta0)) eta0 = 1.0;
+  if (!(nugget0 > 0.0 && nugget0 < 1.0)) nugget0 = 0.2;  // also NaN from xi = rho = 0
+  const int m = static_cast<int>(measurements.positions.size());
+  Eigen::MatrixXd distances(m, m);
+  for (int j = 0; j < m; ++j) {
+    for (int i = j; i < m; ++i) {
+      distances(i, j) = (measurements.positions[i] - measurements.positions[j]).norm();
+    }
+  }
+  LikelihoodFitOptions lo;
+  lo.restricted = options.method == EstimationMethod::kRestrictedMaximumLikelihood;
+  lo.eta_min = options.eta_min;
+  lo.eta_max = options.eta_max;
+  if (options.likelihood_start.has_value()) lo.initial_step = 0.15;
+  const LikelihoodFit fit = FitLikelihood(distances, ols.x, ols.y, eta0, nugget0, lo);
+  const double xi2 = (1.0 - fit.nugget) * fit.sigma2;
+  const double rho2 = std::max(fit.nugget * fit.sigma2, options.rho2_floor);
+  ChannelParameters est = known;
+  est.k_pl = fit.k_pl;
+  est.n_pl = fit.n_pl;
+  est.xi = std::sqrt(xi2);
+  est.eta = fit.eta;
+  est.rho = std::sqrt(rho2);
+  summary->residual_variance = ols.r.squaredNorm() / m;
+  summary->fit_cost = NAN;
+  summary->xi2_at_bound = false;
+  summary->eta_at_bound = fit.eta_at_bound;
+  summary->rho2_floored = fit.nugget * fit.sigma2 < options.rho2_floor;
+  summary->neg2_log_likelihood = fit.neg2_log_likelihood;
+  summary->likelihood_evaluations = fit.evaluations;
+  return est;
+}
+
+}  // namespace
+
+const char* ToString(EstimationMethod method) {
+  switch (method) {
+    case EstimationMethod::kBinnedLeastSquares:
+      return "binned";
+    case EstimationMethod::kMaximumLikelihood:
+      return "ml";
+    case EstimationMethod::kRestrictedMaximumLikelihood:
+      return "reml";
+  }
+  return "?";
+}
+
+const char* Describe(EstimationMethod method) {
+  switch (method) {
+    case EstimationMethod::kBinnedLeastSquares:
+      return "companion two-stage least squares (OLS path loss; weighted fit of the binned "
+             "residual covariance; rho^2 = mean r^2 - xi^2)";
+    case EstimationMethod::kMaximumLikelihood:
+      return "maximum likelihood (GLS path loss and variance profiled out; BOBYQA over log eta "
+             "and log nugget fraction, started from the binned estimate)";
+    case EstimationMethod::kRestrictedMaximumLikelihood:
+      return "restricted maximum likelihood (REML; GLS path loss and variance profiled out; "
+             "BOBYQA over log eta and log nugget fraction, started from the binned estimate)";
+  }
+  return "?";
+}
+
+EstimationMethod EstimationMethodFromString(const std::string& name) {
+  for (EstimationMethod m : {EstimationMethod::kBinnedLeastSquares,
+                             EstimationMethod::kMaximumLikelihood,
+                             EstimationMethod::kRestrictedMaximumLikelihood}) {
+    if (name == ToString(m)) return m;
+  }
+  throw std::invalid_argument("unknown estimator '" + name + "' (valid: binned, ml, reml)");
+}
+
+EstimationMethod EstimationMethodFromCode(int code) {
+  if (code < 0 || code > 2) {
+    throw std::invalid_argument("estimator code must be 0 (binned), 1 (ml) or 2 (reml), got " +
+                                std::to_string(code));
+  }
+  return static_cast<EstimationMethod>(code);
+}
+
+ChannelParameters EstimateChannelParameters(const MeasurementSet& measurements,
+                                            const ChannelParameters& known,
+                                            const EstimationOptions& options,
+                                            EstimationSummary* summary) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument("estimation options: " + error);
+  if (!known.base_station.allFinite() || !(known.distance_floor > 0.0)) {
+    throw std::invalid_argument("estimation: base station must be finite and distance floor > 0");
+  }
+  ValidateMeasurements(measurements, known);
+  EstimationSummary local;
+  EstimationSummary* s = summary != nullptr ? summary : &local;
+  *s = EstimationSummary();
+  s->method = options.method;
+  const PathLossFit ols = OrdinaryLeastSquares(measurements, known);
+  if (options.method == EstimationMethod::kBinnedLeastSquares) {
+    return Binned(measurements, known, options, ols, s);
+  }
+  return Likelihood(measurements, known, options, ols, s);
 }
 
 }  // namespace ocpb

@@ -71,29 +71,6 @@ MeasurementSet OnlineChannel::DrawRandom(int m, std::uint64_t seed, std::uint64_
   return out;
 }
 
-MeasurementSet OnlineChannel::AlongPath(const std::vector<Eigen::Vector2d>& path, int m) const {
-  if (m < 1) throw std::invalid_argument("measurements per update must be >= 1");
-  MeasurementSet out;
-  if (path.empty()) return out;
-  const GridSpec& g = truth_.grid;
-  const ChannelParameters& p = truth_.parameters;
-  std::unordered_set<long> taken;
-  const int n = static_cast<int>(path.size());
-  for (int s = 0; s < m; ++s) {
-    const int idx = m == 1 ? n - 1 : static_cast<int>(std::lround(double(s) * (n - 1) / (m - 1)));
-    const Eigen::Vector2d& q = path[idx];
-    if (!q.allFinite()) throw std::invalid_argument("path point is not finite");
-    int i = 0, j = 0;
-    g.NearestCell(q, &i, &j);
-    const long k = static_cast<long>(j) * g.nx + i;
-    if ((g.Point(i, j) - p.base_station).norm() < p.distance_floor) continue;
-    if (measured_cells_.count(k) || !taken.insert(k).second) continue;
-    out.positions.push_back(g.Point(i, j));
-    out.values_db.push_back(truth_.gain_db(i, j));
-  }
-  return out;
-}
-
 ChannelUpdateTimings OnlineChannel::Update(const MeasurementSet& more,
                                            const std::vector<Eigen::Vector2d>* focus) {
   if (more.positions.size() != more.values_db.size()) {
@@ -114,7 +91,9 @@ ChannelUpdateTimings OnlineChannel::Update(const MeasurementSet& more,
     const Stopwatch watch;
     if (options_.estimate) {
       try {
-        estimated_ = EstimateChannelParameters(measurements_, options_.truth, options_.estimation);
+        EstimationOptions o = options_.estimation;
+        if (predictor_ != nullptr) o.likelihood_start = estimated_;  // warm start (ML only)
+        estimated_ = EstimateChannelParameters(measurements_, options_.truth, o);
         t.estimation_failed = false;
       } catch (const std::invalid_argument&) {
         // Too few pairs or no spatial correlation in the residuals: keep the last estimate.

@@ -27,9 +27,11 @@ struct OnlineChannelOptions {
   /// true: (K_PL, n_PL, xi, eta, rho) re-estimated from all measurements at every update (the
   /// paper's procedure); false: the predictor uses `truth` (an oracle).
   bool estimate = true;
-  /// The companion's estimator with wider lag bins than its default (1 m, >= 20 pairs instead
-  /// of 0.2 m, >= 40): 100 measurements over 50 m x 50 m give about 20-60 pairs per 1 m bin
-  /// between 2 and 15 m and too few per 0.2 m bin to fit the shadowing at all.
+  /// The estimator (estimation.method, default the channel library's) with wider lag bins than
+  /// the companion's default (1 m, >= 20 pairs instead of 0.2 m, >= 40): 100 measurements over
+  /// 50 m x 50 m give about 20-60 pairs per 1 m bin between 2 and 15 m and too few per 0.2 m
+  /// bin to fit the shadowing at all (maximum likelihood uses the bins only for its first
+  /// start).
   EstimationOptions estimation = [] {
     EstimationOptions o;
     o.bin_width = 1.0;
@@ -92,17 +94,16 @@ class OnlineChannel {
   /// stream) (cells within the distance floor of the base station excluded). Throws
   /// std::invalid_argument when m < 1 or fewer than 2 m unmeasured eligible cells remain.
   MeasurementSet DrawRandom(int m, std::uint64_t seed, std::uint64_t stream) const;
-  /// Up to `m` measurements along a path: the cells containing `m` points spaced evenly by index
-  /// over `path` (first to last), each cell once and only if not yet measured.
-  MeasurementSet AlongPath(const std::vector<Eigen::Vector2d>& path, int m) const;
+  // Measurements along a path: MeasureAlongPath(truth(), path, m) (measurement_sampling.h);
+  // Update skips the cells already measured.
 
-  /// Records `more` (positions must be truth cell centres from DrawRandom/AlongPath; a cell
-  /// already measured is skipped), re-estimates the parameters from all measurements (if
-  /// options.estimate), rebuilds the GP predictor and re-predicts the map (unless
-  /// options.refresh is false and a map exists). Returns the CPU times. When re-estimation fails
-  /// after a first success, the previous estimate is kept (ChannelUpdateTimings::
-  /// estimation_failed). Throws std::invalid_argument when fewer than 3 measurements are known
-  /// or the first estimation fails.
+  /// Records `more` (positions must be truth cell centres from DrawRandom or MeasureAlongPath; a
+  /// cell already measured is skipped), re-estimates the parameters from all measurements (if
+  /// options.estimate; maximum likelihood starts from the previous estimate), rebuilds the GP
+  /// predictor and re-predicts the map (unless options.refresh is false and a map exists).
+  /// Returns the CPU times. When re-estimation fails after a first success, the previous
+  /// estimate is kept (ChannelUpdateTimings::estimation_failed). Throws std::invalid_argument
+  /// when fewer than 3 measurements are known or the first estimation fails.
   /// `focus` (optional, used when options.region_margin > 0): the points the map must cover.
   ChannelUpdateTimings Update(const MeasurementSet& more,
                               const std::vector<Eigen::Vector2d>* focus = nullptr);

@@ -9,18 +9,30 @@
 #include "core/control_trajectory.h"
 #include "core/evaluator.h"
 #include "core/timer.h"
+#include "problems/channel/measurement_sampling.h"
 #include "solvers/registry.h"
 
 namespace ocpb {
 
 const char* ToString(MeasurementPlacement placement) {
-  return placement == MeasurementPlacement::kRandom ? "random" : "path";
+  switch (placement) {
+    case MeasurementPlacement::kRandom:
+      return "random";
+    case MeasurementPlacement::kAlongPath:
+      return "path";
+    case MeasurementPlacement::kAlongPlan:
+      return "plan";
+  }
+  return "?";
 }
 
 MeasurementPlacement MeasurementPlacementFromString(const std::string& name) {
-  if (name == "random") return MeasurementPlacement::kRandom;
-  if (name == "path") return MeasurementPlacement::kAlongPath;
-  throw std::invalid_argument("placement: unknown '" + name + "' (valid: random, path)");
+  for (MeasurementPlacement p : {MeasurementPlacement::kRandom,
+                                 MeasurementPlacement::kAlongPath,
+                                 MeasurementPlacement::kAlongPlan}) {
+    if (name == ToString(p)) return p;
+  }
+  throw std::invalid_argument("placement: unknown '" + name + "' (valid: random, path, plan)");
 }
 
 bool OnlineReplanningOptions::IsValid(std::string* error) const {
@@ -130,10 +142,19 @@ OnlineResult RunOnlineReplanning(const CommPath2d::Options& problem,
           seed,
           c.measurement_stream);
     } else {
+      // Driven: the executed states since the last update. Planned: the last plan's states
+      // from now (its column steps_executed is the robot's state) to tf. Both are at equal time
+      // steps, so evenly spaced indices are evenly spaced times.
       std::vector<Eigen::Vector2d> path;
-      const int from = r.cycles.back().first_step;
-      for (int k = from; k <= k0; ++k) path.emplace_back(r.X(0, k), r.X(1, k));
-      more = channel->AlongPath(path, options.measurements_per_update);
+      const OnlineCycle& last = r.cycles.back();
+      if (options.placement == MeasurementPlacement::kAlongPath) {
+        for (int k = last.first_step; k <= k0; ++k) path.emplace_back(r.X(0, k), r.X(1, k));
+      } else {
+        for (int j = last.steps_executed; j < last.plan_states.cols(); ++j) {
+          path.emplace_back(last.plan_states(0, j), last.plan_states(1, j));
+        }
+      }
+      more = MeasureAlongPath(channel->truth(), path, options.measurements_per_update);
     }
     // The map must cover the robot, its destination and the rest of its current plan.
     std::vector<Eigen::Vector2d> focus;

@@ -16,11 +16,14 @@ namespace ocpb {
 
 /// Where the measurements of each update are taken.
 enum class MeasurementPlacement {
-  kRandom,     ///< uniformly at random in the workspace (unmeasured cells)
-  kAlongPath,  ///< along the path the robot drove since the last update
+  kRandom,     ///< "random": uniformly at random in the workspace (unmeasured cells)
+  kAlongPath,  ///< "path": along the path the robot drove since the last update
+  /// "plan": along the rest of the current plan (from the robot's position to tf), at points
+  /// evenly spaced in time: the channel where the robot is about to go.
+  kAlongPlan,
 };
 const char* ToString(MeasurementPlacement placement);
-/// "random" or "path"; throws std::invalid_argument otherwise.
+/// "random", "path" or "plan"; throws std::invalid_argument otherwise.
 MeasurementPlacement MeasurementPlacementFromString(const std::string& name);
 
 /// The scenario and the method. Defaults: the paper's Section IV (100 measurements at t0 = 0,
@@ -98,7 +101,9 @@ struct OnlineResult {
 ///     options) is solved on the grid of N intervals. This plan, executed to tf, is the
 ///     *offline* plan.
 ///  2. Every `update_period` s (t0 = k0 h, h = tf / N): `measurements_per_update` new
-///     measurements (random, or along the path driven since the last update), re-estimation and
+///     measurements (random; along the path driven since the last update; or along the rest of
+///     the current plan, evenly spaced in time: MeasureAlongPath on the planned states from
+///     t0 to tf, so cells already measured or repeated give fewer), re-estimation and
 ///     re-prediction with all measurements so far, then the cost-to-go problem J_{t0} (CommPath2d
 ///     with t0, start = x1(t0), v0 = x2(t0), x3_0 = x3(t0), same D, c, tf and penalties) is solved
 ///     on the remaining N - k0 intervals, warm-started from the rest of the previous controls,

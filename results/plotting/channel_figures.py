@@ -11,7 +11,9 @@ measurements.npy and predict.json (or only true_gain_db.npy and simulate.json af
   fig2_predicted_channel.png  the channel predicted from the samples (the paper's Fig. 2),
                               on the same colour scale as Fig. 1
   fig_channels.png            both side by side with one colour bar
-  fig_s_map.png               log10 s(q), the predicted E[1/CNR] in the cost's units
+  fig_s_map.png               log10 s(q), the predicted E[1/CNR] in the cost's units, at the
+                              grid points (s_map.npy: the grid prediction that the map's
+                              spline interpolates)
 
 Maps are float32 arrays of shape (ny, nx); element [j][i] sits at
 (x_min + (i + 0.5) h, y_min + (j + 0.5) h). Needs numpy and matplotlib only.
@@ -26,6 +28,33 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+
+def save_figure(fig, path, **kwargs):
+    """fig.savefig to a temporary name next to `path`, then os.replace: a reader never sees a
+    half-written file, and an interrupted run leaves the old figure in place."""
+    directory, name = os.path.split(path)
+    tmp = os.path.join(directory, ".{}.{}.tmp".format(name, os.getpid()))
+    fmt = os.path.splitext(name)[1].lstrip(".") or "png"
+    try:
+        fig.savefig(tmp, format=fmt, **kwargs)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
+def write_text(path, text):
+    """Writes a text file atomically (temporary name + os.replace)."""
+    directory, name = os.path.split(path)
+    tmp = os.path.join(directory, ".{}.{}.tmp".format(name, os.getpid()))
+    try:
+        with open(tmp, "w") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
 
 
 def load_run(directory):
@@ -87,7 +116,7 @@ def channel_figures(meta, arrays, out_dir):
     im = _channel_axes(ax, meta, true, vmin, vmax, f"Simulated channel (seed {meta['seed']})")
     fig.colorbar(im, ax=ax, label=label)
     path = os.path.join(out_dir, "fig1_simulated_channel.png")
-    fig.savefig(path, dpi=150, bbox_inches="tight")
+    save_figure(fig, path, dpi=150, bbox_inches="tight")
     plt.close(fig)
     written.append(path)
     if pred is None:
@@ -99,7 +128,7 @@ def channel_figures(meta, arrays, out_dir):
     im = _channel_axes(ax, meta, pred, vmin, vmax, title, samples)
     fig.colorbar(im, ax=ax, label=label)
     path = os.path.join(out_dir, "fig2_predicted_channel.png")
-    fig.savefig(path, dpi=150, bbox_inches="tight")
+    save_figure(fig, path, dpi=150, bbox_inches="tight")
     plt.close(fig)
     written.append(path)
 
@@ -109,7 +138,7 @@ def channel_figures(meta, arrays, out_dir):
                        samples)
     fig.colorbar(im, ax=list(axes), label=label, shrink=0.9)
     path = os.path.join(out_dir, "fig_channels.png")
-    fig.savefig(path, dpi=150)
+    save_figure(fig, path, dpi=150)
     plt.close(fig)
     written.append(path)
     return written
@@ -131,9 +160,12 @@ def s_map_figure(meta, arrays, out_dir):
     ax.plot(base[0], base[1], marker="^", color="lime", markersize=7, linestyle="none")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.set_title(f"Channel quality s(q), {meta.get('map_quantity', '')} map")
+    # s_map.npy is the grid prediction itself (the values the map's spline interpolates), not
+    # the spline.
+    ax.set_title(f"log10 s(q) predicted at the {meta['workspace']['nx']} x "
+                 f"{meta['workspace']['ny']} grid points ({meta['samples']} samples)")
     path = os.path.join(out_dir, "fig_s_map.png")
-    fig.savefig(path, dpi=150, bbox_inches="tight")
+    save_figure(fig, path, dpi=150, bbox_inches="tight")
     plt.close(fig)
     return [path]
 

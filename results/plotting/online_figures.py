@@ -27,6 +27,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from channel_figures import save_figure, write_text  # noqa: E402
 from paper_figures import PAPER_BASE, PAPER_D, PAPER_S, _markers, _point  # noqa: E402
 
 
@@ -87,7 +88,7 @@ def record_figures(rec, outdir):
         rec["solver"], rec["seed"]))
     fig.tight_layout()
     path = prefix + "-fig11-plans.png"
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, dpi=120)
     plt.close(fig)
     written.append(path)
 
@@ -104,7 +105,7 @@ def record_figures(rec, outdir):
         rec["solver"], rec["seed"], rec["energy_ratio"]))
     fig.tight_layout()
     path = prefix + "-fig12-offline-vs-online.png"
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, dpi=120)
     plt.close(fig)
     written.append(path)
     return written
@@ -128,7 +129,7 @@ def ratio_figure(records, outdir):
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
     path = os.path.join(outdir, "online-energy-ratio.png")
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, dpi=120)
     plt.close(fig)
     return [path]
 
@@ -196,8 +197,7 @@ def figures_from_records(records, outdir):
     written += ratio_figure(records, outdir)
     if records:
         path = os.path.join(outdir, "online-summary.md")
-        with open(path, "w") as f:
-            f.write(summary_table(records))
+        write_text(path, summary_table(records))
         written.append(path)
     return written
 

@@ -53,6 +53,9 @@ TEST(OnlineCli, JsonRecordHasTheContractFields) {
     EXPECT_EQ(r["kind"], "online");
     EXPECT_EQ(r["seed"], 4);
     EXPECT_EQ(r["solver"], solver);
+    // The scenario's settings, with the estimator and placement that were used.
+    EXPECT_EQ(r["online"]["estimator"], "binned");
+    EXPECT_EQ(r["online"]["placement"], "random");
     if (solver == "ipopt") {
       EXPECT_EQ(r["transcription"], "euler");
     }
@@ -91,6 +94,8 @@ TEST(OnlineCli, BadInputsExitTwoWithOneLine) {
       {Changed("--per-update", "0"), "measurements_per_update"},
       {Changed("--initial-measurements", "2"), "initial_measurements"},
       {With(Small("hamiltonian"), {"--placement", "everywhere"}), "placement"},
+      {With(Small("hamiltonian"), {"--estimator", "median"}),
+       "online.estimator: unknown estimator"},
       {With(Small("hamiltonian"), {"--set", "samples=50"}), "samples"},
       {With(Small("hamiltonian"), {"--replan-option", "bogus=1"}), "bogus"},
       {Changed("--per-update", "5000"), "measurements in all"},

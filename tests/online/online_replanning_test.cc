@@ -223,7 +223,55 @@ TEST(OnlineOptions, DefaultsAreValidAndThePapers) {
   EXPECT_FALSE(bad.IsValid(&error));
   EXPECT_NE(error.find("region_margin"), std::string::npos);
   EXPECT_EQ(MeasurementPlacementFromString("path"), MeasurementPlacement::kAlongPath);
+  EXPECT_EQ(MeasurementPlacementFromString("plan"), MeasurementPlacement::kAlongPlan);
+  for (MeasurementPlacement p : {MeasurementPlacement::kRandom,
+                                 MeasurementPlacement::kAlongPath,
+                                 MeasurementPlacement::kAlongPlan}) {
+    EXPECT_EQ(MeasurementPlacementFromString(ToString(p)), p);
+  }
   EXPECT_THROW(MeasurementPlacementFromString("nowhere"), std::invalid_argument);
+}
+
+TEST(OnlineReplanning, MeasurementsAlongThePlanLieOnTheRestOfThePlan) {
+  OnlineReplanningOptions r = SmallScenario("hamiltonian");
+  r.placement = MeasurementPlacement::kAlongPlan;
+  OnlineChannel* channel = nullptr;
+  const OnlineResult o = RunSmall(r, 2, SmallChannel(), &channel);
+  const MeasurementSet& m = channel->measurements();
+  const double cell = 0.25 * std::sqrt(0.5) + 1e-9;  // half the diagonal of a 0.25 m cell
+  int k = o.cycles[0].new_measurements;
+  EXPECT_EQ(k, 60);
+  for (size_t ci = 1; ci < o.cycles.size(); ++ci) {
+    const OnlineCycle& c = o.cycles[ci];
+    const OnlineCycle& last = o.cycles[ci - 1];
+    // The rest of the plan the robot was following: from its state now to tf.
+    const Mat rest = last.plan_states.rightCols(last.plan_states.cols() - last.steps_executed);
+    ASSERT_LT((rest.col(0) - o.X.col(c.first_step)).cwiseAbs().maxCoeff(), 1e-9);
+    // The first plan update measures mostly new cells; later ones fewer, since the previous
+    // update sampled the same plan (its cells are measured once).
+    EXPECT_GT(c.new_measurements, ci == 1 ? 20 : 0) << ci;
+    EXPECT_LE(c.new_measurements, 30);
+    double final = 1e9, ahead = 0.0;
+    for (int j = 0; j < c.new_measurements; ++j, ++k) {
+      double best = 1e9, driven = 1e9;
+      for (int s = 0; s < rest.cols(); ++s) {
+        best = std::min(best, (m.positions[k] - rest.col(s).head<2>()).norm());
+      }
+      EXPECT_LE(best, cell);  // within the cell containing a point of the plan
+      for (int s = 0; s <= c.first_step; ++s) {
+        driven = std::min(driven, (m.positions[k] - o.X.col(s).head<2>()).norm());
+      }
+      ahead = std::max(ahead, driven);
+      final = std::min(final, (m.positions[k] - rest.col(rest.cols() - 1).head<2>()).norm());
+    }
+    // Evenly spaced in time from now to tf: the last sample is the plan's end point (at the
+    // first plan update its cell is new; later plans may end in the same cell), and some
+    // measurements lie ahead of the driven path.
+    if (ci == 1) {
+      EXPECT_LE(final, cell);
+    }
+    EXPECT_GT(ahead, 1.0) << ci;
+  }
 }
 
 TEST(OnlineReplanning, RejectsBadOptions) {
