@@ -276,9 +276,19 @@ void CommPath2d::MinimizeAndCompareHamiltonian(double,
 std::vector<ParameterSpec> CommParameterSpecs() {
   const double inf = std::numeric_limits<double>::infinity();
   return {
-      {"S", {20.0, 40.0}, "start position (m), in the workspace [0, 50]^2", 0.0, 50.0},
-      {"D", {10.0, 5.0}, "destination (m), in the workspace [0, 50]^2", 0.0, 50.0},
-      {"base", {5.0, 5.0}, "base station position (m), in the workspace [0, 50]^2", 0.0, 50.0},
+      {"S", {20.0, 40.0}, "start position (m), in the workspace [0, workspace]^2", 0.0, 1e4},
+      {"D", {10.0, 5.0}, "destination (m), in the workspace [0, workspace]^2", 0.0, 1e4},
+      {"base",
+       {5.0, 5.0},
+       "base station position (m), in the workspace [0, workspace]^2",
+       0.0,
+       1e4},
+      {"workspace",
+       {50.0},
+       "side of the square workspace [0, workspace]^2 over which the channel is simulated (m)",
+       0.0,
+       1e4,
+       true},
       {"c", {150.0}, "bits/Hz to transmit, c = Q/B", 0.0, 1e6},
       {"tf", {40.0}, "time horizon (s)", 0.0, 1e5, true},
       {"umax", {0.5}, "acceleration bound |u| <= umax (m/s^2)", 0.0, 1e3, true},
@@ -317,10 +327,45 @@ std::vector<ParameterSpec> CommParameterSpecs() {
       {"rho",
        {1.64},
        "multipath standard deviation (dB) the predictor assumes with estimate=0 (the simulator "
-       "draws Rician fading, K = 14.56, whose dB standard deviation is 1.64)",
+       "draws Rician fading of K-factor rician_K; 14.56 has dB standard deviation 1.64)",
        0.0,
        30.0},
       {"N0_dBm", {-110.0}, "receiver noise power (dBm)", -300.0, 100.0},
+      {"grid_step",
+       {0.1},
+       "channel simulation grid step (m); channel=2 interpolates s between these points",
+       0.0,
+       100.0,
+       true},
+      {"rician_K",
+       {14.56},
+       "Rician K-factor (linear) of the simulated multipath; 14.56 gives the paper's rho = 1.64 dB",
+       0.0,
+       1e6,
+       true},
+      {"distance_floor",
+       {0.1},
+       "path-loss distance floor (m): log10 max(|q - q_b|, floor) (channel 0: the smooth "
+       "sqrt(|q - q_b|^2 + floor^2))",
+       0.0,
+       100.0,
+       true},
+      {"estimator",
+       {0.0},
+       "channel parameter estimator: 0 binned least squares (the companion's), 1 maximum "
+       "likelihood, 2 REML",
+       0.0,
+       2.0,
+       false,
+       true},
+      {"bin_width", {0.2}, "lag-bin width of the binned estimator (m)", 0.0, 100.0, true},
+      {"min_pairs",
+       {40.0},
+       "pairs a lag bin needs to be used by the binned estimator",
+       1.0,
+       1e9,
+       false,
+       true},
   };
 }
 
@@ -336,9 +381,35 @@ CommPowerModel CommPowerFromParameters(const Parameters& params) {
 
 namespace {
 
+// The largest simulation grid a parameter set may ask for: 4000 x 4000 points (each field of
+// the simulation and the prediction is 128 MB there).
+constexpr double kMaxChannelGridPoints = 1.6e7;
+
+// The base station inside the workspace, and a simulation grid of a sensible size.
+void CheckChannelGeometry(const Parameters& params) {
+  const double w = params.Scalar("workspace");
+  const Eigen::Vector2d base = params.Vector("base");
+  if (!(base.x() <= w && base.y() <= w)) {
+    throw std::invalid_argument("base must lie in the workspace [0, " + Str(w) + "]^2");
+  }
+  const double per_side = w / params.Scalar("grid_step");
+  if (!(per_side >= 4.0) || per_side * per_side > kMaxChannelGridPoints) {
+    throw std::invalid_argument("grid_step: workspace / grid_step = " + Str(per_side) +
+                                " points per side; need 4 to 4000");
+  }
+}
+
 // The options of the paper's channel (models 1 and 2), validated.
 PaperChannelOptions CommPaperChannelOptions(const Parameters& params, int model) {
+  CheckChannelGeometry(params);
+  const double w = params.Scalar("workspace");
   PaperChannelOptions options;
+  options.simulation.grid = GridSpec::Workspace(w, w, params.Scalar("grid_step"));
+  options.simulation.multipath.rician_k = params.Scalar("rician_K");
+  options.truth.distance_floor = params.Scalar("distance_floor");
+  options.estimation.method = EstimationMethodFromCode(params.Integer("estimator"));
+  options.estimation.bin_width = params.Scalar("bin_width");
+  options.estimation.min_pairs = params.Integer("min_pairs");
   options.truth.k_pl = params.Scalar("K_PL");
   options.truth.n_pl = params.Scalar("n_PL");
   options.truth.xi = params.Scalar("xi");
@@ -360,8 +431,12 @@ std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params,
   const Eigen::Vector2d base = params.Vector("base");
   const int model = params.Integer("channel");
   if (model == 0) {
-    return std::make_shared<PathLossChannel>(
-        base, params.Scalar("K_PL"), params.Scalar("n_PL"), params.Scalar("N0_dBm"));
+    CheckChannelGeometry(params);
+    return std::make_shared<PathLossChannel>(base,
+                                             params.Scalar("K_PL"),
+                                             params.Scalar("n_PL"),
+                                             params.Scalar("N0_dBm"),
+                                             params.Scalar("distance_floor"));
   }
   // The paper's experiment: simulate the channel of these parameters (realization `seed`),
   // measure it at `samples` random grid points, estimate the parameters, predict s.
@@ -372,9 +447,13 @@ std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params,
 
 std::shared_ptr<const ChannelQuality> MakeCommChannelForChecks(const Parameters& params) {
   const int model = params.Integer("channel");
+  CheckChannelGeometry(params);
   if (model != 0) CommPaperChannelOptions(params, model);
-  return std::make_shared<PathLossChannel>(
-      params.Vector("base"), params.Scalar("K_PL"), params.Scalar("n_PL"), params.Scalar("N0_dBm"));
+  return std::make_shared<PathLossChannel>(params.Vector("base"),
+                                           params.Scalar("K_PL"),
+                                           params.Scalar("n_PL"),
+                                           params.Scalar("N0_dBm"),
+                                           params.Scalar("distance_floor"));
 }
 
 CommPath2d::Options CommPath2dOptionsFromParameters(const Parameters& params) {
@@ -389,6 +468,7 @@ CommPath2d::Options CommPath2dOptionsFromParameters(const Parameters& params) {
   o.t0 = params.Scalar("t0");
   o.v0 = params.Vector("v0");
   o.bits_sent = params.Scalar("x3_0");
+  o.workspace = params.Scalar("workspace");
   o.power = CommPowerFromParameters(params);
   return o;
 }

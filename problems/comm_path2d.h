@@ -248,8 +248,10 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0> {
 /// C (3), k (6), eps, pb, channel (0: PathLossChannel, deterministic; 1: the paper's channel
 /// simulated with realization `seed`, measured at `samples` random points and predicted exactly by
 /// the Gaussian process; 2: the same prediction through its bicubic map, the default), samples,
-/// estimate (1: predictor parameters estimated from the samples; 0: the true ones), and the
-/// channel constants K_PL, n_PL, xi, eta, rho, N0_dBm.
+/// estimate (1: predictor parameters estimated from the samples; 0: the true ones), the
+/// channel constants K_PL, n_PL, xi, eta, rho, N0_dBm, and the experiment's settings: workspace
+/// (side of [0, W]^2; S, D and base must lie in it), grid_step (simulation grid), rician_K,
+/// distance_floor, estimator (0 binned, 1 ML, 2 REML), bin_width and min_pairs (binned fit).
 std::vector<ParameterSpec> CommParameterSpecs();
 /// The CommPowerModel and shared fields of `params`.
 CommPowerModel CommPowerFromParameters(const Parameters& params);

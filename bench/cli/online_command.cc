@@ -94,9 +94,9 @@ OnlineSetup Resolve(const CaseSpec& spec) {
       throw std::invalid_argument("online: unknown setting '" + k + "' (valid: " + valid + ")");
     }
   }
-  auto get = [&](const char* key, const char* fallback) {
+  auto get = [&](const char* key, const std::string& fallback) {
     const auto it = spec.online.find(key);
-    return it == spec.online.end() ? std::string(fallback) : it->second;
+    return it == spec.online.end() ? fallback : it->second;
   };
   OnlineSetup s;
   const ProblemInfo& pinfo = FindProblem(spec.problem);
@@ -146,8 +146,12 @@ OnlineSetup Resolve(const CaseSpec& spec) {
   std::string error;
   if (!r.IsValid(&error)) throw std::invalid_argument("online." + error);
 
-  const double workspace = ParseNumber("workspace", get("workspace", "50"));
-  const double truth_h = ParseNumber("truth_resolution", get("truth_resolution", "0.1"));
+  // The problem's channel parameters (--set workspace=..., grid_step=..., estimator=...) are the
+  // defaults of the scenario's own settings of the same meaning.
+  const double workspace =
+      ParseNumber("workspace", get("workspace", fmt::format("{}", s.params.Scalar("workspace"))));
+  const double truth_h = ParseNumber(
+      "truth_resolution", get("truth_resolution", fmt::format("{}", s.params.Scalar("grid_step"))));
   if (!(workspace > 0.0) || !(truth_h > 0.0) || workspace / truth_h > 5000.0 ||
       workspace / truth_h < 8.0) {
     throw std::invalid_argument(
@@ -161,9 +165,17 @@ OnlineSetup Resolve(const CaseSpec& spec) {
   c.truth.eta = s.params.Scalar("eta");
   c.truth.rho = s.params.Scalar("rho");
   c.truth.base_station = s.params.Vector("base");
+  c.truth.distance_floor = s.params.Scalar("distance_floor");
+  c.simulation.multipath.rician_k = s.params.Scalar("rician_K");
   c.predictor.units.noise_dbm = s.params.Scalar("N0_dBm");
   c.estimate = s.params.Integer("estimate") == 1;
   c.simulation.grid = GridSpec::Workspace(workspace, workspace, truth_h);
+  if (!c.simulation.grid.Contains(c.truth.base_station)) {
+    throw std::invalid_argument(fmt::format("base: ({}, {}) lies outside the workspace [0, {}]^2",
+                                            c.truth.base_station.x(),
+                                            c.truth.base_station.y(),
+                                            workspace));
+  }
   c.map_resolution = ParseNumber("map_resolution", get("map_resolution", "0.5"));
   if (!(c.map_resolution >= truth_h) || workspace / c.map_resolution < 4.0) {
     throw std::invalid_argument(
@@ -171,8 +183,8 @@ OnlineSetup Resolve(const CaseSpec& spec) {
   }
   c.region_margin = ParseNumber("region_margin", get("region_margin", "10"));
   try {
-    c.estimation.method =
-        EstimationMethodFromString(get("estimator", ToString(c.estimation.method)));
+    c.estimation.method = EstimationMethodFromString(
+        get("estimator", ToString(EstimationMethodFromCode(s.params.Integer("estimator")))));
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("online.estimator: ") + e.what());
   }

@@ -97,6 +97,8 @@ TEST(OnlineCli, BadInputsExitTwoWithOneLine) {
       {With(Small("hamiltonian"), {"--estimator", "median"}),
        "online.estimator: unknown estimator"},
       {With(Small("hamiltonian"), {"--set", "samples=50"}), "samples"},
+      {With(Small("hamiltonian"), {"--set", "base=45,45"}),
+       "base: (45, 45) lies outside the workspace [0, 25]^2"},
       {With(Small("hamiltonian"), {"--replan-option", "bogus=1"}), "bogus"},
       {Changed("--per-update", "5000"), "measurements in all"},
       {{"online", "--problem", "double-integrator", "--solver", "hamiltonian"}, "comm-path2d"},

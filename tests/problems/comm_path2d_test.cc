@@ -399,9 +399,12 @@ void ExpectRejected(const std::vector<std::string>& set, const std::string& fiel
 }
 
 TEST(CommPath2d, RejectsInvalidParametersNamingTheField) {
-  ExpectRejected({"channel=0", "S=60,10"}, "'S'");
+  ExpectRejected({"channel=0", "S=60,10"}, "S must lie in the workspace [0, 50]^2");
+  ExpectRejected({"channel=0", "workspace=30"}, "S must lie in the workspace [0, 30]^2");
   ExpectRejected({"channel=0", "D=10,-1"}, "'D'");
-  ExpectRejected({"channel=0", "base=51,5"}, "'base'");
+  ExpectRejected({"channel=0", "base=51,5"}, "base must lie in the workspace [0, 50]^2");
+  ExpectRejected({"channel=0", "grid_step=0"}, "'grid_step'");
+  ExpectRejected({"channel=0", "min_pairs=1.5"}, "'min_pairs'");
   ExpectRejected({"channel=0", "tf=0"}, "'tf'");
   ExpectRejected({"channel=0", "umax=0"}, "'umax'");
   ExpectRejected({"channel=0", "Rmax=-1"}, "'Rmax'");

@@ -1,0 +1,181 @@
+#!/usr/bin/python3
+"""Markdown tables from a Google Benchmark JSON file of `ocpbench_kernels`.
+
+    /usr/bin/python3 results/plotting/benchmark_tables.py results/benchmarks.json \
+        --out results/benchmarks.md
+
+One table per benchmark family (the name before the first '/'): arguments, wall and CPU time,
+and every user counter the kernel reported. For a family that runs over a size argument (N, m,
+...) the script also fits the growth exponent b of  CPU time ~ a size^b  by least squares on the
+logarithms, the number the issues ask for ("it must be linear": b close to 1). Aggregates
+(mean/median/stddev of --benchmark_repetitions) are reported as the median when present.
+The output is generated: re-run this script, never edit it by hand.
+"""
+import argparse
+import json
+import math
+import os
+import sys
+import tempfile
+
+# Arguments that are problem sizes (named with ->ArgName in the kernels); an unnamed argument is
+# an index (a problem, a variant) and gets no growth fit.
+SIZE_ARGUMENTS = ("N", "m", "n", "nodes", "points")
+UNIT_SECONDS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
+STANDARD_KEYS = {
+    "name", "family_index", "per_family_instance_index", "run_name", "run_type", "repetitions",
+    "repetition_index", "threads", "iterations", "real_time", "cpu_time", "time_unit",
+    "aggregate_name", "aggregate_unit", "label", "error_occurred", "error_message", "big_o",
+    "rms", "complexity_n",
+}
+
+
+def fmt(x):
+    if isinstance(x, str):
+        return x
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "-"
+    if x == 0:
+        return "0"
+    a = abs(x)
+    if a >= 1e5 or a < 1e-3:
+        return "%.3g" % x
+    return "%.4g" % x
+
+
+def parse_args_of(run_name):
+    """('BM_X', [('N', '400')]) from 'BM_X/N:400/real_time'."""
+    parts = run_name.split("/")
+    family, args = parts[0], []
+    for p in parts[1:]:
+        if ":" in p:
+            k, v = p.split(":", 1)
+            args.append((k, v))
+        elif p.replace(".", "", 1).isdigit():
+            args.append(("arg%d" % len(args), p))
+        else:
+            args.append((p, ""))
+    return family, args
+
+
+def select_runs(benchmarks):
+    """One row per benchmark instance: the median aggregate when repetitions ran, else the run."""
+    rows, medians = {}, {}
+    for b in benchmarks:
+        if b.get("run_type") == "aggregate":
+            if b.get("aggregate_name") == "median":
+                medians[b["run_name"]] = b
+            continue
+        if b.get("big_o") is not None or b["name"].endswith(("_BigO", "_RMS")):
+            continue
+        rows.setdefault(b.get("run_name", b["name"]), []).append(b)
+    out = []
+    for name in list(rows) + [n for n in medians if n not in rows]:
+        runs = rows.get(name, [])
+        chosen = dict(medians[name] if name in medians else runs[0])
+        chosen["run_name"] = name
+        out.append(chosen)
+    return out
+
+
+def growth_exponent(points):
+    """Least-squares slope of log(cpu) against log(size); None with fewer than 2 sizes."""
+    pts = [(math.log(n), math.log(t)) for n, t in points if n > 0 and t > 0]
+    if len(pts) < 2:
+        return None
+    mx = sum(p[0] for p in pts) / len(pts)
+    my = sum(p[1] for p in pts) / len(pts)
+    sxx = sum((p[0] - mx) ** 2 for p in pts)
+    if sxx == 0:
+        return None
+    return sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx
+
+
+def family_table(family, runs):
+    lines = ["## %s" % family, ""]
+    arg_names = []
+    counters = []
+    for r in runs:
+        for k, _ in parse_args_of(r["run_name"])[1]:
+            if k not in arg_names:
+                arg_names.append(k)
+        for k in r:
+            if k not in STANDARD_KEYS and k not in counters:
+                counters.append(k)
+    header = arg_names + ["wall", "CPU", "timed runs"] + counters + ["label"]
+    lines.append("| " + " | ".join(header) + " |")
+    lines.append("|" + "---|" * len(header))
+    sized = {}
+    for r in runs:
+        args = dict(parse_args_of(r["run_name"])[1])
+        unit = r.get("time_unit", "ns")
+        if r.get("error_occurred"):
+            cells = [args.get(a, "") for a in arg_names] + ["error: " + r.get("error_message", "")]
+            cells += [""] * (len(header) - len(cells))
+            lines.append("| " + " | ".join(cells) + " |")
+            continue
+        cells = [args.get(a, "") for a in arg_names]
+        cells += ["%s %s" % (fmt(r["real_time"]), unit), "%s %s" % (fmt(r["cpu_time"]), unit)]
+        cells.append(fmt(r.get("iterations")))
+        cells += [fmt(r.get(c)) for c in counters]
+        cells.append(r.get("label", ""))
+        lines.append("| " + " | ".join(cells) + " |")
+        # Growth over the one size argument, other arguments held fixed.
+        for a in arg_names:
+            v = args.get(a, "")
+            if a in SIZE_ARGUMENTS and v.replace(".", "", 1).isdigit():
+                rest = tuple((k, w) for k, w in sorted(args.items()) if k != a)
+                sized.setdefault((a, rest), []).append(
+                    (float(v), r["cpu_time"] * UNIT_SECONDS.get(unit, 1e-9)))
+                break
+    lines.append("")
+    for (a, rest), pts in sized.items():
+        b = growth_exponent(pts)
+        if b is None:
+            continue
+        sizes = sorted(int(p[0]) for p in pts)
+        where = ", ".join("%s=%s" % kv for kv in rest)
+        lines.append("CPU time ~ %s^%.2f over %s = %s%s (least squares on the logarithms)." % (
+            a, b, a, ", ".join(str(s) for s in sizes), " with " + where if where else ""))
+    lines.append("")
+    return lines
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("json_file")
+    p.add_argument("--out", required=True)
+    a = p.parse_args()
+    with open(a.json_file) as f:
+        data = json.load(f)
+    ctx = data.get("context", {})
+    runs = select_runs(data.get("benchmarks", []))
+    families = {}
+    for r in runs:
+        families.setdefault(parse_args_of(r["run_name"])[0], []).append(r)
+    lines = [
+        "# Benchmarks of `ocpbench_kernels`",
+        "",
+        "Generated by `results/plotting/benchmark_tables.py` from `%s`; do not edit." %
+        os.path.basename(a.json_file),
+        "Machine: %s CPUs at %s MHz, load average %s when the run started; run at %s, "
+        "library build %s." % (ctx.get("num_cpus", "?"), ctx.get("mhz_per_cpu", "?"),
+                               ", ".join(fmt(x) for x in ctx.get("load_avg", [])) or "?",
+                               ctx.get("date", "?"), ctx.get("library_build_type", "?")),
+        "Each kernel's source (`bench/kernels/`) says what it times and what its counters mean.",
+        "",
+    ]
+    for family in sorted(families):
+        lines += family_table(family, families[family])
+    text = "\n".join(lines).rstrip() + "\n"
+    out_dir = os.path.dirname(os.path.abspath(a.out))
+    fd, tmp = tempfile.mkstemp(dir=out_dir, prefix=".benchmarks.", suffix=".md")
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    os.replace(tmp, a.out)
+    print("wrote %s (%d benchmarks in %d families)" % (a.out, len(runs), len(families)))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
