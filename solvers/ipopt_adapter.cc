@@ -615,7 +615,7 @@ IpoptOptions IpoptOptions::FromStrings(const std::map<std::string, std::string>&
     } else {
       o.extra.erase(std::remove_if(o.extra.begin(),
                                    o.extra.end(),
-                                   [&](const IpoptOptionValue& e) { return e.name == key; }),
+                                   [&v](const IpoptOptionValue& e) { return e.name == v.name; }),
                     o.extra.end());
       o.extra.push_back(v);
     }
