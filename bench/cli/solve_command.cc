@@ -26,18 +26,26 @@ std::string Fmt(const nlohmann::json& v) {
 }
 
 void PrintReport(const nlohmann::json& r) {
-  std::cout << fmt::format("{} / {}{}: status {} ({})\n", r["problem"].get<std::string>(),
+  std::cout << fmt::format("{} / {}{}: status {} ({})\n",
+                           r["problem"].get<std::string>(),
                            r["solver"].get<std::string>(),
                            r["transcription"].get<std::string>().empty()
                                ? ""
                                : " + " + r["transcription"].get<std::string>(),
-                           r["status"].get<std::string>(), r["solver_status"].get<std::string>());
-  std::cout << fmt::format("  J = {}   Jbar = {}   terminal violation = {}\n", Fmt(r["J"]),
-                           Fmt(r["Jbar"]), Fmt(r["terminal_violation"]));
+                           r["status"].get<std::string>(),
+                           r["solver_status"].get<std::string>());
+  std::cout << fmt::format("  J = {}   Jbar = {}   terminal violation = {}\n",
+                           Fmt(r["J"]),
+                           Fmt(r["Jbar"]),
+                           Fmt(r["terminal_violation"]));
   std::cout << fmt::format("  fine RK4: J = {}   Jbar = {}   re-simulation defect = {}\n",
-                           Fmt(r["J_fine"]), Fmt(r["Jbar_fine"]), Fmt(r["resimulation_defect"]));
-  std::cout << fmt::format("  iterations = {}   CPU = {} s   N = {}\n", r["iterations"].dump(),
-                           Fmt(r["cpu_seconds"]), r["N"].dump());
+                           Fmt(r["J_fine"]),
+                           Fmt(r["Jbar_fine"]),
+                           Fmt(r["resimulation_defect"]));
+  std::cout << fmt::format("  iterations = {}   CPU = {} s   N = {}\n",
+                           r["iterations"].dump(),
+                           Fmt(r["cpu_seconds"]),
+                           r["N"].dump());
   if (!r["final_state"].empty()) std::cout << "  final state = " << r["final_state"].dump() << "\n";
   if (!r["message"].get<std::string>().empty()) {
     std::cout << "  message: " << r["message"].get<std::string>() << "\n";
@@ -49,9 +57,11 @@ void PrintReport(const nlohmann::json& r) {
 void AddSolveCommand(CLI::App& app) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* cmd = app.add_subcommand("solve", "Solve one problem with one method");
-  cmd->add_option("--problem", args->spec.problem, "problem name (ocpbench list problems)")->required();
+  cmd->add_option("--problem", args->spec.problem, "problem name (ocpbench list problems)")
+      ->required();
   cmd->add_option("--solver", args->spec.solver, "solver name (ocpbench list solvers)")->required();
-  cmd->add_option("--transcription", args->spec.transcription,
+  cmd->add_option("--transcription",
+                  args->spec.transcription,
                   "NLP solvers: transcription (ocpbench list transcriptions)");
   cmd->add_option("--algorithm", args->spec.algorithm, "NLopt algorithm (LD_SLSQP, LD_MMA, ...)");
   CLI::Option* n_option =
@@ -61,10 +71,12 @@ void AddSolveCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--integrator", args->integrator, "Hamiltonian descent integrator: euler | rk4")
       ->capture_default_str();
-  cmd->add_option("--evaluate-with", args->evaluate_with,
+  cmd->add_option("--evaluate-with",
+                  args->evaluate_with,
                   "common evaluator's integrator on the method's grid: euler | rk4")
       ->capture_default_str();
-  cmd->add_option("--set", args->spec.set, "problem parameter, key=value or key=v1,v2 (repeatable)");
+  cmd->add_option(
+      "--set", args->spec.set, "problem parameter, key=value or key=v1,v2 (repeatable)");
   cmd->add_option("--option", args->options, "solver option, key=value (repeatable)");
   cmd->add_option("--seed", args->spec.seed, "channel realization")->capture_default_str();
   cmd->add_option("--repeats", args->spec.repeats, "timing repeats (median CPU reported)")
@@ -80,11 +92,11 @@ void AddSolveCommand(CLI::App& app) {
     if (n_option->count() > 0 && spec.intervals < 1) {
       throw std::invalid_argument("N: must be >= 1 (or omitted for the problem's default)");
     }
-    spec.terminal = args->terminal == "hard"      ? TerminalMode::kHard
-                    : args->terminal == "penalty" ? TerminalMode::kPenalty
-                                                  : throw std::invalid_argument(
-                                                        "--terminal: unknown form '" + args->terminal +
-                                                        "' (valid: penalty, hard)");
+    spec.terminal = args->terminal == "hard" ? TerminalMode::kHard
+                    : args->terminal == "penalty"
+                        ? TerminalMode::kPenalty
+                        : throw std::invalid_argument("--terminal: unknown form '" +
+                                                      args->terminal + "' (valid: penalty, hard)");
     spec.integrator = ParseIntegrator(args->integrator);
     spec.evaluate_with = ParseIntegrator(args->evaluate_with);
     spec.keep_trajectory = !args->no_trajectory;

@@ -43,18 +43,26 @@ def fmt(x):
     return "%.4g" % x
 
 
+# Name parts Google Benchmark adds for its own settings, not the kernel's arguments.
+RUN_SETTINGS = ("iterations", "repeats", "min_time", "threads")
+RUN_FLAGS = ("process_time", "real_time", "manual_time")
+
+
 def parse_args_of(run_name):
-    """('BM_X', [('N', '400')]) from 'BM_X/N:400/real_time'."""
+    """('BM_X', [('variant', 'di_euler'), ('N', '400')]) from 'BM_X/di_euler/N:400/real_time'."""
     parts = run_name.split("/")
-    family, args = parts[0], []
+    family, args, variant = parts[0], [], []
     for p in parts[1:]:
         if ":" in p:
             k, v = p.split(":", 1)
-            args.append((k, v))
+            if k not in RUN_SETTINGS:
+                args.append((k, v))
         elif p.replace(".", "", 1).isdigit():
             args.append(("arg%d" % len(args), p))
-        else:
-            args.append((p, ""))
+        elif p not in RUN_FLAGS:
+            variant.append(p)
+    if variant:
+        args.insert(0, ("variant", "/".join(variant)))
     return family, args
 
 
@@ -172,6 +180,7 @@ def main():
     fd, tmp = tempfile.mkstemp(dir=out_dir, prefix=".benchmarks.", suffix=".md")
     with os.fdopen(fd, "w") as f:
         f.write(text)
+    os.chmod(tmp, 0o644)
     os.replace(tmp, a.out)
     print("wrote %s (%d benchmarks in %d families)" % (a.out, len(runs), len(families)))
     return 0
