@@ -34,8 +34,9 @@ struct Evaluation {
 /// `controls` with one-sided limits inside each step (see ControlTrajectory), and integrates L with
 /// the same scheme. For piecewise-constant controls on the same grid with kEuler this is exactly
 /// DiscreteOcp::Simulate. Throws std::invalid_argument (one line) when the controls do not have
-/// the problem's nu components, when `grid` does not span the problem's horizon [t0, tf], or
-/// when the controls' own grid does not cover `grid`.
+/// the problem's nu components, when `grid` does not span the problem's horizon [t0, tf] (for a
+/// free final time: [t0, T] with T within its bounds, Ocp::AdmitsFinalTime; the trajectory is
+/// then judged on [t0, T]), or when the controls' own grid does not cover `grid`.
 Evaluation Evaluate(const Ocp& ocp,
                     const ControlTrajectory& controls,
                     const TimeGrid& grid,

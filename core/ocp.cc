@@ -1,5 +1,6 @@
 #include "core/ocp.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -82,6 +83,23 @@ void Ocp::SetHorizon(double t0, double tf) {
   if (!(tf > t0)) throw std::invalid_argument("horizon: need tf > t0");
   t0_ = t0;
   tf_ = tf;
+}
+
+void Ocp::SetFreeFinalTime(double lower, double upper) {
+  if (!std::isfinite(lower) || !std::isfinite(upper)) {
+    throw std::invalid_argument("free final time: the bounds must be finite");
+  }
+  if (!(t0_ < lower && lower <= tf_ && tf_ <= upper)) {
+    throw std::invalid_argument("free final time: need t0 < lower <= tf <= upper");
+  }
+  free_final_time_ = FreeFinalTime{lower, upper};
+}
+
+bool Ocp::AdmitsFinalTime(double tf) const {
+  if (!std::isfinite(tf)) return false;
+  const double tol = 1e-9 * std::max({1.0, std::abs(t0_), std::abs(tf_)});
+  if (!free_final_time_) return std::abs(tf - tf_) <= tol;
+  return tf >= free_final_time_->lower - tol && tf <= free_final_time_->upper + tol;
 }
 
 void Ocp::SetInitialState(const Vec& x0) {

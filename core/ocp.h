@@ -17,6 +17,12 @@ enum class TerminalMode {
 };
 const char* ToString(TerminalMode mode);
 
+/// A free final time: tf is a decision variable in [lower, upper] (Ocp::free_final_time()).
+struct FreeFinalTime {
+  double lower = 0.0;
+  double upper = 0.0;
+};
+
 /// What a method that needs a reformulated problem (the Hamiltonian descent) may ask of
 /// Ocp::HamiltonianReformulation. An unset field means "the problem's own default", which the
 /// problem's header states.
@@ -35,6 +41,12 @@ struct HamiltonianReformulationOptions {
 ///               u(t) in U                       (a ControlSet),
 ///               c(t, x, u) <= 0                 (path constraints, state bounds among them),
 ///               psi(x(tf)) = 0                  (hard form only).
+///
+/// Free final time (Ocp::free_final_time(), off by default): tf is then minimized over too, in
+/// [lower, upper], and tf() is only its nominal value, where methods start (a request's grid
+/// spans [t0, tf()]; a result's state_grid spans [t0, its tf]). Such a problem is autonomous:
+/// f, L and c do not depend on t (SetFreeFinalTime's contract), and phi depends on x(tf) alone,
+/// so the optimality condition is H(tf) = 0. Minimum time is L = 1.
 ///
 /// The penalized cost J and the unpenalized cost Jbar = int L + phi come from the same
 /// definition; `terminal_weights()` holds the w_i. The Hamiltonian is H = p^T f + L.
@@ -59,6 +71,11 @@ class Ocp {
   const Vec& x0() const { return x0_; }
   const Vec& terminal_weights() const { return terminal_weights_; }
   const ControlSet& control_set() const { return control_set_; }
+  /// Set when the final time is free (see the class comment); empty for a fixed horizon.
+  const std::optional<FreeFinalTime>& free_final_time() const { return free_final_time_; }
+  /// Whether a trajectory may end at `tf`: tf == tf() to 1e-9 relative for a fixed horizon,
+  /// tf in [lower, upper] (to the same tolerance) for a free final time.
+  bool AdmitsFinalTime(double tf) const;
 
   // ---- values ------------------------------------------------------------------
   virtual void Dynamics(double t, ConstVecRef x, ConstVecRef u, VecRef f) const = 0;
@@ -170,6 +187,10 @@ class Ocp {
   void SetInitialState(const Vec& x0);
   void SetTerminalWeights(const Vec& w);
   void SetControlSet(const ControlSet& set);
+  /// Declares the final time free in [lower, upper]; call after SetHorizon. Needs finite
+  /// t0 < lower <= tf() <= upper. The caller promises an autonomous problem (f, L, c
+  /// independent of t); its tests should check it.
+  void SetFreeFinalTime(double lower, double upper);
 
  private:
   int nx_ = 0, nu_ = 0, npsi_ = 0, nc_ = 0;
@@ -177,6 +198,7 @@ class Ocp {
   Vec x0_;
   Vec terminal_weights_;
   ControlSet control_set_;
+  std::optional<FreeFinalTime> free_final_time_;
 };
 
 }  // namespace ocpb

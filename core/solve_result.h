@@ -33,25 +33,26 @@ bool IsSuccess(SolveStatus status);
 /// One row of a solver's iteration history. Fields a solver does not have stay NaN / -1.
 struct IterationRecord {
   int iteration = 0;
-  double J = -1.0;            ///< the solver's objective at this iterate
-  double theta = NAN;         ///< Hamiltonian descent: theta(u) = int H(u*) - H(u) dt
-  int armijo_j = -1;          ///< Hamiltonian descent: Armijo exponent accepted
-  double primal_inf = NAN;    ///< NLP solvers: constraint violation
-  double dual_inf = NAN;      ///< NLP solvers: dual infeasibility
-  double cpu_seconds = 0.0;   ///< cumulative CPU time since the solve started
+  double J = -1.0;           ///< the solver's objective at this iterate
+  double theta = NAN;        ///< Hamiltonian descent: theta(u) = int H(u*) - H(u) dt
+  int armijo_j = -1;         ///< Hamiltonian descent: Armijo exponent accepted
+  double primal_inf = NAN;   ///< NLP solvers: constraint violation
+  double dual_inf = NAN;     ///< NLP solvers: dual infeasibility
+  double cpu_seconds = 0.0;  ///< cumulative CPU time since the solve started
 };
 
 /// Everything a user needs from a solve. Numbers start at -1 ("not computed").
 struct SolveResult {
-  std::string solver;           ///< registry name ("hamiltonian", "ipopt", ...)
+  std::string solver;  ///< registry name ("hamiltonian", "ipopt", ...)
   SolveStatus status = SolveStatus::kError;
-  std::string solver_status;    ///< the backend's own status, verbatim
-  std::string message;          ///< human-readable detail
-  ControlTrajectory controls;   ///< the controls the evaluator judges
-  TimeGrid state_grid;          ///< grid of `states` / `costates`
-  Mat states;                   ///< the method's own states (nx x points), if it has them
-  Mat costates;                 ///< costates or multiplier-based estimates, if any
-  double objective = -1.0;      ///< the objective value the method reports about itself
+  std::string solver_status;   ///< the backend's own status, verbatim
+  std::string message;         ///< human-readable detail
+  ControlTrajectory controls;  ///< the controls the evaluator judges
+  TimeGrid state_grid;         ///< grid of `states` / `costates`; for a free final time it
+                               ///< spans [t0, the solution's tf]
+  Mat states;                  ///< the method's own states (nx x points), if it has them
+  Mat costates;                ///< costates or multiplier-based estimates, if any
+  double objective = -1.0;     ///< the objective value the method reports about itself
   int iterations = -1;
   std::vector<IterationRecord> history;
   double cpu_seconds = -1.0;

@@ -202,6 +202,7 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
   }
 
   // ---- applicability (status) -------------------------------------------------------------
+  if (auto refused = FreeFinalTimeNotApplicable(ocp, "hamiltonian")) return *refused;
   if (request.terminal != TerminalMode::kPenalty) {
     return NotApplicable(
         "the Hamiltonian descent handles terminal constraints only in penalty form "

@@ -230,9 +230,11 @@ Target Resolve(const Ocp& original, const IndirectNewtonOptions& o) {
   t.ocp = t.reformulated ? t.reformulated.get() : &original;
   if (t.reformulated) {
     t.note = "solved the problem's Hamiltonian reformulation '" + t.ocp->name() + "'";
-    if (t.ocp->nx() != original.nx() || t.ocp->nu() != original.nu()) {
+    if (t.ocp->nx() != original.nx() || t.ocp->nu() != original.nu() ||
+        t.ocp->free_final_time().has_value() != original.free_final_time().has_value()) {
       throw std::logic_error("problem '" + original.name() +
-                             "': its Hamiltonian reformulation changed nx or nu");
+                             "': its Hamiltonian reformulation changed nx, nu or the free final "
+                             "time");
     }
   }
   const std::string prefix = t.note.empty() ? "" : t.note + "; ";
@@ -300,8 +302,14 @@ void RunNewton(const NewtonRun& run, const Mat& X0, const Mat& P0, const Vec* nu
     return ok;
   };
   auto failure_status = [&]() {
-    return pmp.failure() == PmpResidual::Failure::kSingularMinimizer ? "singular_minimizer"
-                                                                     : "nonfinite_residual";
+    switch (pmp.failure()) {
+      case PmpResidual::Failure::kSingularMinimizer:
+        return "singular_minimizer";
+      case PmpResidual::Failure::kBadFinalTime:
+        return "bad_final_time";
+      default:
+        return "nonfinite_residual";
+    }
   };
   std::unique_ptr<SparseLu> lu = MakeLu(o.linear_solver);
   const char* lu_name = ToString(o.linear_solver);
@@ -413,13 +421,15 @@ void RunNewton(const NewtonRun& run, const Mat& X0, const Mat& P0, const Vec* nu
     }
   }
 
+  const double final_time = pmp.FinalTime(z);
   Mat X, P;
   pmp.Unpack(z, &X, &P, nullptr);
+  const TimeGrid solution_grid = pmp.GridOf(z);
   r->status = status;
   r->solver_status = solver_status;
   r->message = r->message.empty() ? message : r->message + "; Newton: " + message;
-  r->controls = ControlTrajectory::PiecewiseLinear(grid, pmp.Controls(z));
-  r->state_grid = grid;
+  r->controls = ControlTrajectory::PiecewiseLinear(solution_grid, pmp.Controls(z));
+  r->state_grid = solution_grid;
   r->states = std::move(X);
   r->costates = std::move(P);
   r->objective = J;
@@ -432,6 +442,7 @@ void RunNewton(const NewtonRun& run, const Mat& X0, const Mat& P0, const Vec* nu
   s["solve_seconds"] = solve;
   s["newton_cpu_seconds"] = CpuSeconds() - newton_cpu0;
   s["residual_inf"] = r->history.back().primal_inf;
+  if (pmp.free_final_time()) s["final_time"] = final_time;
   s["unknowns"] = n;
   s["jacobian_nonzeros"] = static_cast<double>(pmp.jacobian().nonZeros());
   s["residual_evaluations"] = residual_evaluations;

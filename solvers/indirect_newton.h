@@ -108,10 +108,13 @@ const char* ToString(IndirectNewtonOptions::Costates costates);
 ///  - Ocp::HasHamiltonianMinimizer(), with H strictly convex in u on the free directions (else
 ///    the Jacobian does not exist and the solve ends in kNumericalFailure, saying so);
 ///  - num_path() == 0;
-///  - a fixed horizon: free final time enters only through time scaling, where the problem
-///    poses it on s in [0, 1] with the time dilation as a control and a clock state
-///    (problems/reference/scaled_min_time.h, scaled_free_time.h); the condition H(tf) = 0 of an
-///    explicitly free tf is not implemented.
+///  - a fixed horizon, or a free final time (Ocp::free_final_time()): T is then one more
+///    unknown with the condition H(T) = 0 (PmpResidual), the start's T is the request grid's tf
+///    (the problem's nominal tf from `ocpbench`), and the grid's nodes keep their relative
+///    positions. T stays within the problem's bounds (a trial step outside them is a failed
+///    Armijo test), so an optimum on a bound, where H(T) != 0, ends in "line_search_failed".
+///    (The time-scaled problems, problems/reference/scaled_min_time.h and scaled_free_time.h,
+///    pose free time on a fixed horizon instead, for every method.)
 /// Both terminal forms: kPenalty (p(tf) = grad Phi) and kHard (psi = 0, nu unknown).
 ///
 /// Stopping (SolveResult::status / verbatim SolveResult::solver_status):
@@ -122,11 +125,13 @@ const char* ToString(IndirectNewtonOptions::Costates costates);
 ///  - NaN/inf in F or its Jacobian, or in the step -> kNumericalFailure "nonfinite_residual" /
 ///                                                                    "nonfinite_step"
 ///  - H_uu singular on the free directions        -> kNumericalFailure "singular_minimizer"
+///  - (a trial step to a final time outside its bounds is a failed Armijo test)
 ///  - the warm start produced no states/costates  -> kError            "warm_start_failed"
 /// A trial point whose residual is not finite counts as a failed Armijo test.
 ///
-/// Result: controls = u*(t_k, x_k, p_k) at the nodes, piecewise linear on request.grid (what the
-/// trapezoidal scheme means); state_grid = request.grid; states X and costates P (nx x N+1) of the
+/// Result: controls = u*(t_k, x_k, p_k) at the nodes, piecewise linear on state_grid (what the
+/// trapezoidal scheme means); state_grid = request.grid, stretched to [t0, T] for a free final
+/// time (solver_stats "final_time" = T); states X and costates P (nx x N+1) of the
 /// last iterate; objective = its trapezoidal discrete cost (PmpResidual); iterations = Newton steps
 /// taken. history[i] is iterate i (0 = the start): J = discrete cost, primal_inf = ||F||_inf,
 /// armijo_j = number of backtracks of the step that produced it (-1 for i = 0), cpu_seconds

@@ -61,6 +61,7 @@ SolveResult SolveTranscribed(const std::string& solver_name,
                              const SolveRequest& request,
                              const NlpScaling& scaling,
                              const std::function<NlpSolution(const TranscribedNlp& nlp)>& backend) {
+  if (auto refused = FreeFinalTimeNotApplicable(ocp, solver_name)) return *refused;
   const Stopwatch watch;
   const std::unique_ptr<TranscribedNlp> nlp = TranscribeRequest(ocp, request, scaling);
   NlpSolution sol = backend(*nlp);

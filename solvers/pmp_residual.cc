@@ -15,14 +15,20 @@ PmpResidual::PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode
     : ocp_(ocp),
       grid_(grid),
       mode_(mode),
+      free_time_(ocp.free_final_time().has_value()),
       nx_(ocp.nx()),
       nu_(ocp.nu()),
       npsi_(ocp.num_terminal()),
       nnu_(mode == TerminalMode::kHard ? ocp.num_terminal() : 0),
       N_(grid.intervals()),
-      size_(2 * ocp.nx() * (grid.intervals() + 1) + nnu_),
+      size_(2 * ocp.nx() * (grid.intervals() + 1) + nnu_ + (free_time_ ? 1 : 0)),
       derivative_(ocp) {
   CheckApplicable(ocp, grid);
+  if (free_time_) {
+    s_.resize(N_ + 1);
+    for (int k = 0; k <= N_; ++k) s_[k] = (grid.t(k) - grid.t0()) / (grid.tf() - grid.t0());
+    s_[N_] = 1.0;
+  }
   for (Node& n : nodes_) {
     n.u.resize(nu_);
     n.f.resize(nx_);
@@ -53,8 +59,11 @@ void PmpResidual::CheckApplicable(const Ocp& ocp, const TimeGrid& grid) {
         "problem '" + ocp.name() +
         "' has path constraints, which the indirect method does not handle");
   }
-  if (grid.size() < 2 || !SameTime(grid.t0(), ocp.t0()) || !SameTime(grid.tf(), ocp.tf())) {
-    throw std::invalid_argument("the grid must span the problem's horizon [t0, tf]");
+  if (grid.size() < 2 || !SameTime(grid.t0(), ocp.t0()) || !ocp.AdmitsFinalTime(grid.tf())) {
+    throw std::invalid_argument(
+        ocp.free_final_time()
+            ? "the grid must span [t0, T] with T within the problem's final-time bounds"
+            : "the grid must span the problem's horizon [t0, tf]");
   }
 }
 
@@ -81,6 +90,14 @@ void PmpResidual::BuildStructure() {
   for (int i = 0; i < nnu_; ++i) {
     for (int j = 0; j < nx; ++j) t.emplace_back(rt + nx + i, Col(N_) + j, 0.0);
   }
+  time_offset_ = static_cast<int>(t.size());
+  if (free_time_) {
+    const int last = size_ - 1;
+    for (int k = 0; k < N_; ++k) {
+      for (int r = 0; r < 2 * nx; ++r) t.emplace_back(Row(k) + r, last, 0.0);
+    }
+    for (int c = 0; c < 2 * nx; ++c) t.emplace_back(last, Col(N_) + c, 0.0);
+  }
   jacobian_.resize(size_, size_);
   jacobian_.setFromTriplets(t.begin(), t.end());
   jacobian_.makeCompressed();
@@ -94,7 +111,7 @@ void PmpResidual::BuildStructure() {
   }
 }
 
-Vec PmpResidual::Pack(const Mat& X, const Mat& P, const Vec& nu) const {
+Vec PmpResidual::Pack(const Mat& X, const Mat& P, const Vec& nu, double T) const {
   if (X.rows() != nx_ || X.cols() != N_ + 1 || P.rows() != nx_ || P.cols() != N_ + 1 ||
       nu.size() != nnu_) {
     throw std::invalid_argument("PmpResidual::Pack: X and P must be nx x (N+1), nu of size " +
@@ -105,7 +122,8 @@ Vec PmpResidual::Pack(const Mat& X, const Mat& P, const Vec& nu) const {
     z.segment(Col(k), nx_) = X.col(k);
     z.segment(Col(k) + nx_, nx_) = P.col(k);
   }
-  z.tail(nnu_) = nu;
+  z.segment(Col(N_ + 1), nnu_) = nu;
+  if (free_time_) z[size_ - 1] = T;
   return z;
 }
 
@@ -116,21 +134,40 @@ void PmpResidual::Unpack(ConstVecRef z, Mat* X, Mat* P, Vec* nu) const {
     if (X) X->col(k) = z.segment(Col(k), nx_);
     if (P) P->col(k) = z.segment(Col(k) + nx_, nx_);
   }
-  if (nu) *nu = z.tail(nnu_);
+  if (nu) *nu = z.segment(Col(N_ + 1), nnu_);
+}
+
+double PmpResidual::FinalTime(ConstVecRef z) const {
+  return free_time_ ? z[size_ - 1] : grid_.tf();
+}
+
+double PmpResidual::NodeTime(int k, double T) const {
+  return free_time_ ? grid_.t0() + (T - grid_.t0()) * s_[k] : grid_.t(k);
+}
+
+TimeGrid PmpResidual::GridOf(ConstVecRef z) const {
+  if (!free_time_) return grid_;
+  const double T = FinalTime(z);
+  std::vector<double> points(N_ + 1);
+  for (int k = 0; k <= N_; ++k) points[k] = NodeTime(k, T);
+  points[N_] = T;
+  return TimeGrid::FromPoints(std::move(points));
 }
 
 Mat PmpResidual::Controls(ConstVecRef z) const {
   Mat U(nu_, N_ + 1);
   Vec u(nu_);
+  const double T = FinalTime(z);
   for (int k = 0; k <= N_; ++k) {
-    ocp_.MinimizeHamiltonian(grid_.t(k), z.segment(Col(k), nx_), z.segment(Col(k) + nx_, nx_), u);
+    ocp_.MinimizeHamiltonian(
+        NodeTime(k, T), z.segment(Col(k), nx_), z.segment(Col(k) + nx_, nx_), u);
     U.col(k) = u;
   }
   return U;
 }
 
-bool PmpResidual::EvaluateNode(int k, ConstVecRef x, ConstVecRef p, bool with_jacobian, Node* n) {
-  const double t = grid_.t(k);
+bool PmpResidual::EvaluateNode(
+    int k, double t, ConstVecRef x, ConstVecRef p, bool with_jacobian, Node* n) {
   ocp_.MinimizeHamiltonian(t, x, p, n->u);
   ocp_.DynamicsJacobian(t, x, n->u, n->f, n->fx, n->fu);
   ocp_.RunningCostGradient(t, x, n->u, &n->L, n->Lx, n->Lu);
@@ -176,7 +213,15 @@ bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jaco
     for (int i = 0; i < nx; ++i) put(i, 1.0);
   }
   double J = 0.0;
-  if (!EvaluateNode(0, z.segment(0, nx), z.segment(nx, nx), with_jacobian, &nodes_[0])) {
+  const double T = FinalTime(z);
+  if (free_time_ && !(T > grid_.t0() && ocp_.AdmitsFinalTime(T))) {
+    failure_ = Failure::kBadFinalTime;
+    failure_node_ = N_ + 1;
+    return false;
+  }
+  const double duration = T - grid_.t0();
+  if (!EvaluateNode(
+          0, NodeTime(0, T), z.segment(0, nx), z.segment(nx, nx), with_jacobian, &nodes_[0])) {
     return false;
   }
   for (int k = 0; k < N_; ++k) {
@@ -184,8 +229,8 @@ bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jaco
     Node& b = nodes_[(k + 1) % 2];
     const auto xa = z.segment(Col(k), nx), pa = z.segment(Col(k) + nx, nx);
     const auto xb = z.segment(Col(k + 1), nx), pb = z.segment(Col(k + 1) + nx, nx);
-    if (!EvaluateNode(k + 1, xb, pb, with_jacobian, &b)) return false;
-    const double h = grid_.h(k), hh = 0.5 * h;
+    if (!EvaluateNode(k + 1, NodeTime(k + 1, T), xb, pb, with_jacobian, &b)) return false;
+    const double h = free_time_ ? duration * (s_[k + 1] - s_[k]) : grid_.h(k), hh = 0.5 * h;
     F.segment(Row(k), nx) = xb - xa - hh * (a.f + b.f);
     F.segment(Row(k) + nx, nx) = pb - pa + hh * (a.Hx + b.Hx);
     J += hh * (a.L + b.L);
@@ -204,6 +249,15 @@ bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jaco
         put(c + nx + j, hh * a.Ep(i, j) - eye);
         put(c + 2 * nx + j, hh * b.Ex(i, j));
         put(c + 3 * nx + j, hh * b.Ep(i, j) + eye);
+      }
+    }
+    if (free_time_) {
+      // d/dT of h_k/2 (...) with h_k = (T - t0) ds_k; f, H_x do not depend on t (autonomous).
+      const double hds = 0.5 * (s_[k + 1] - s_[k]);
+      const int e = time_offset_ + 2 * nx * k;
+      for (int i = 0; i < nx; ++i) {
+        put(e + i, -hds * (a.f[i] + b.f[i]));
+        put(e + nx + i, hds * (a.Hx[i] + b.Hx[i]));
       }
     }
   }
@@ -232,7 +286,7 @@ bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jaco
       }
     }
   } else {
-    const auto nu = z.tail(nnu_);
+    const auto nu = z.segment(Col(N_ + 1), nnu_);
     ocp_.TerminalCostGradient(xN, &terminal, grad);
     ocp_.TerminalConstraintsJacobian(xN, psi, psix);
     F.segment(rt, nx) = pN - grad - psix.transpose() * nu;
@@ -261,6 +315,20 @@ bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jaco
       for (int j = 0; j < nx; ++j) put(Tpsi + i * nx + j, psix(i, j));
     }
   }
+  if (free_time_) {
+    // H(t_N) = p_N^T f_N + L_N at u_N = u*(t_N, x_N, p_N): the node N scratch of the loop.
+    const Node& n = nodes_[N_ % 2];
+    F[size_ - 1] = pN.dot(n.f) + n.L;
+    if (with_jacobian) {
+      const int e = time_offset_ + 2 * nx * N_;
+      const Vec dx = n.Hx + n.Ux.transpose() * n.Hu;
+      const Vec dp = n.f + n.Up.transpose() * n.Hu;
+      for (int j = 0; j < nx; ++j) {
+        put(e + j, dx[j]);
+        put(e + nx + j, dp[j]);
+      }
+    }
+  }
   if (cost) *cost = J;
   if (!F.allFinite() || !std::isfinite(J)) {
     failure_ = Failure::kNonFinite;
@@ -278,6 +346,8 @@ std::string PmpResidual::FailureMessage() const {
       return "";
     case Failure::kNonFinite:
       return "NaN/inf in the residual or its derivatives at " + where;
+    case Failure::kBadFinalTime:
+      return "the free final time is not finite, not after t0, or outside its bounds";
     case Failure::kSingularMinimizer:
       return "the Hamiltonian's reduced Hessian in u is singular at " + where +
              " (u* is not differentiable there: H not strictly convex in u?)";

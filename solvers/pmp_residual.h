@@ -21,6 +21,7 @@ namespace ocpb {
 ///   x' = f(t, x, u*),  p' = -H_x(t, x, u*, p),  x(t0) = x0,
 ///   penalty form:  p(tf) = grad Phi(x(tf)),     Phi = phi + sum_i w_i psi_i^2,
 ///   hard form:     p(tf) = grad phi(x(tf)) + psi_x(x(tf))^T nu,  psi(x(tf)) = 0,
+///   free final time (Ocp::free_final_time()):  also H(tf) = 0, with tf an unknown,
 ///
 /// (Bryson and Ho, "Applied Optimal Control", 1975, Sec. 2.7 and 3.3). On the grid t_0 < ... < t_N
 /// with u_k = u*(t_k, x_k, p_k), the trapezoidal rule (second order; the scheme of COPS' trapezoid
@@ -30,12 +31,28 @@ namespace ocpb {
 ///   rows [0, nx):                   x_0 - x0
 ///   interval k, state rows:         x_{k+1} - x_k - h_k/2 (f_k + f_{k+1})
 ///   interval k, costate rows:       p_{k+1} - p_k + h_k/2 (H_x,k + H_x,k+1)
-///   terminal costate rows (nx):     p_N - grad Phi(x_N)          or  p_N - grad phi(x_N) - psi_x^T
-///   nu hard form only (npsi rows):                                       psi(x_N)
+///   terminal costate rows (nx):     p_N - grad Phi(x_N)   (hard: p_N - grad phi(x_N) - psi_x^T nu)
+///   hard form only (npsi rows):     psi(x_N)
+///   free final time only (1 row):   H(t_N, x_N, u_N, p_N)
 ///
-/// Unknowns z = (x_0, p_0, x_1, p_1, ..., x_N, p_N[, nu]): 2 nx (N+1) (+ npsi in the hard form),
-/// as many as equations. The Jacobian is assembled from the problem's exact derivatives with the
-/// chain rule through u*: for g(x, p) = f(t, x, u*(x, p)) and eta(x, p) = H_x(t, x, u*(x, p), p),
+/// Unknowns z = (x_0, p_0, x_1, p_1, ..., x_N, p_N[, nu][, T]): 2 nx (N+1) (+ npsi in the hard
+/// form, + 1 for a free final time), as many as equations.
+///
+/// Free final time: the request's grid fixes the nodes' relative positions s_k = (t_k - t0) /
+/// (tf - t0) on [0, 1] (tf the problem's nominal final time); the unknown T moves them, t_k =
+/// t0 + (T - t0) s_k and h_k = (T - t0)(s_{k+1} - s_k). The problem is autonomous (Ocp's contract
+/// for a free final time), so the T column of the Jacobian is
+///   d(state rows of k)/dT = -(s_{k+1} - s_k)/2 (f_k + f_{k+1}),
+///   d(costate rows of k)/dT = (s_{k+1} - s_k)/2 (H_x,k + H_x,k+1),
+/// and the row H(t_N) = 0 (the transversality condition for a free tf with phi independent of tf;
+/// Bryson and Ho, Sec. 2.7) has d/dx_N = H_x + U_x^T H_u and d/dp_N = f + U_p^T H_u (H_u = 0 at an
+/// interior u*; on the active set the envelope theorem makes the U terms vanish as well; they are
+/// kept for exactness). H(t_N) = 0 is imposed at the grid's last node, as the condition states;
+/// along the exact solution H is constant, along the discrete one it varies by O(h^2). A T
+/// outside the problem's bounds (or <= t0) is a failed evaluation (Failure::kBadFinalTime): the
+/// iterates of a method that treats it as a failed line-search trial stay admissible. The Jacobian
+/// is assembled from the problem's exact derivatives with the chain rule through u*: for g(x, p) =
+/// f(t, x, u*(x, p)) and eta(x, p) = H_x(t, x, u*(x, p), p),
 ///   dg/dx = f_x + f_u U_x,        dg/dp = f_u U_p,
 ///   deta/dx = H_xx + H_xu U_x,    deta/dp = f_x^T + H_xu U_p,
 /// with (U_x, U_p) from MinimizerDerivative (a generalized Jacobian where u* is clipped: the
@@ -57,9 +74,11 @@ class PmpResidual {
     kNone,
     kNonFinite,          ///< NaN/inf in u*, f, H_x, the derivatives or the residual
     kSingularMinimizer,  ///< the reduced KKT matrix of MinimizerDerivative is singular
+    kBadFinalTime,       ///< a free final time outside its bounds, <= t0, or not finite
   };
 
-  /// Throws std::invalid_argument when the grid does not span [t0, tf] (to 1e-9 relative) or
+  /// Throws std::invalid_argument when the grid does not span [t0, tf] (to 1e-9 relative; for a
+  /// free final time [t0, T] with T within its bounds, the start's final time) or
   /// the problem has no closed-form minimizer or has path constraints.
   PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode);
 
@@ -73,11 +92,19 @@ class PmpResidual {
   int size() const { return size_; }
   /// Number of multipliers nu (npsi in the hard form, else 0).
   int num_multipliers() const { return nnu_; }
+  /// True when the final time is an unknown (the problem's free_final_time()).
+  bool free_final_time() const { return free_time_; }
 
-  /// z from states X (nx x N+1), costates P (nx x N+1) and multipliers nu (num_multipliers()).
-  Vec Pack(const Mat& X, const Mat& P, const Vec& nu) const;
+  /// z from states X (nx x N+1), costates P (nx x N+1), multipliers nu (num_multipliers()) and,
+  /// for a free final time, the final time T (ignored otherwise).
+  Vec Pack(const Mat& X, const Mat& P, const Vec& nu, double T) const;
+  Vec Pack(const Mat& X, const Mat& P, const Vec& nu) const { return Pack(X, P, nu, grid_.tf()); }
   /// The inverse of Pack. Any output may be null.
   void Unpack(ConstVecRef z, Mat* X, Mat* P, Vec* nu) const;
+  /// The final time of z: its last entry for a free final time, else the grid's tf.
+  double FinalTime(ConstVecRef z) const;
+  /// The grid of z: the request's grid, stretched to [t0, FinalTime(z)] for a free final time.
+  TimeGrid GridOf(ConstVecRef z) const;
 
   /// Evaluates F(z) into F (size()) and the discrete cost into *cost (may be null). With
   /// `with_jacobian`, also the Jacobian's values into jacobian(). Returns false on failure;
@@ -88,7 +115,7 @@ class PmpResidual {
   /// The Jacobian of the last Evaluate(..., with_jacobian = true): column-major, compressed, with
   /// the fixed structure described above.
   const Eigen::SparseMatrix<double>& jacobian() const { return jacobian_; }
-  /// u*(t_k, x_k, p_k) at every node (nu x N+1).
+  /// u*(t_k, x_k, p_k) at every node of GridOf(z) (nu x N+1).
   Mat Controls(ConstVecRef z) const;
 
   Failure failure() const { return failure_; }
@@ -103,7 +130,8 @@ class PmpResidual {
     Mat fx, fu, hess, Ux, Up, Gx, Gp, Ex, Ep;
     double L = 0.0;
   };
-  bool EvaluateNode(int k, ConstVecRef x, ConstVecRef p, bool with_jacobian, Node* node);
+  bool EvaluateNode(int k, double t, ConstVecRef x, ConstVecRef p, bool with_jacobian, Node* node);
+  double NodeTime(int k, double T) const;
   void BuildStructure();
   int Row(int k) const { return nx_ + 2 * nx_ * k; }  // first row of interval k
   int Col(int k) const { return 2 * nx_ * k; }        // first column of node k
@@ -111,7 +139,9 @@ class PmpResidual {
   const Ocp& ocp_;
   TimeGrid grid_;
   TerminalMode mode_;
+  bool free_time_;
   int nx_, nu_, npsi_, nnu_, N_, size_;
+  std::vector<double> s_;  // free final time: the nodes' relative positions on [0, 1]
   MinimizerDerivative derivative_;
   Node nodes_[2];  // nodes k and k+1 of the interval being assembled (by parity)
   Eigen::SparseMatrix<double> jacobian_;
@@ -120,6 +150,7 @@ class PmpResidual {
   std::vector<int> value_index_;
   int interval_entries_ = 0;  // 8 nx^2
   int terminal_offset_ = 0;   // first terminal entry
+  int time_offset_ = 0;       // free final time: first entry of the T column, then the H row
   Failure failure_ = Failure::kNone;
   int failure_node_ = -1;
 };

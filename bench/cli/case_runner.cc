@@ -489,9 +489,14 @@ json RunCase(const CaseSpec& spec) {
   // A method that did not run has nothing to judge (its "controls" would be the start).
   const bool has_controls =
       result.controls.nu() == ocp->nu() && result.status != SolveStatus::kNotApplicable;
+  // A free final time is judged on the solution's own horizon [t0, T] (its state_grid: the
+  // request's grid, stretched); a fixed horizon on the request's grid.
+  const bool free_time = ocp->free_final_time().has_value() && result.state_grid.size() == N + 1;
+  const TimeGrid& judged = free_time ? result.state_grid : grid;
+  rec["final_time"] = has_controls ? Number(judged.tf()) : json(nullptr);
   if (has_controls) {
-    const Evaluation ev = Evaluate(*ocp, result.controls, grid, spec.evaluate_with);
-    const Evaluation fine = Evaluate(*ocp, result.controls, grid.Refined(10), Integrator::kRk4);
+    const Evaluation ev = Evaluate(*ocp, result.controls, judged, spec.evaluate_with);
+    const Evaluation fine = Evaluate(*ocp, result.controls, judged.Refined(10), Integrator::kRk4);
     rec["J"] = Number(ev.J);
     rec["Jbar"] = Number(ev.Jbar);
     rec["terminal_violation"] = Number(ev.terminal_violation);
@@ -515,9 +520,9 @@ json RunCase(const CaseSpec& spec) {
     }
     if (spec.keep_trajectory) {
       json traj;
-      traj["t"] = grid.points();
+      traj["t"] = judged.points();
       traj["x"] = MatrixRows(ev.X);
-      traj["u"] = MatrixRows(result.controls.SampleIntervals(grid));
+      traj["u"] = MatrixRows(result.controls.SampleIntervals(judged));
       traj["u_rule"] = "value at each interval's left end; piecewise " +
                        std::string(result.controls.InterpolationName());
       rec["trajectory"] = traj;

@@ -42,10 +42,11 @@ void PrintReport(const nlohmann::json& r) {
                            Fmt(r["J_fine"]),
                            Fmt(r["Jbar_fine"]),
                            Fmt(r["resimulation_defect"]));
-  std::cout << fmt::format("  iterations = {}   CPU = {} s   N = {}\n",
+  std::cout << fmt::format("  iterations = {}   CPU = {} s   N = {}   final time = {}\n",
                            r["iterations"].dump(),
                            Fmt(r["cpu_seconds"]),
-                           r["N"].dump());
+                           r["N"].dump(),
+                           Fmt(r["final_time"]));
   if (!r["final_state"].empty()) std::cout << "  final state = " << r["final_state"].dump() << "\n";
   if (!r["message"].get<std::string>().empty()) {
     std::cout << "  message: " << r["message"].get<std::string>() << "\n";

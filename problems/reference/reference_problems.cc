@@ -3,6 +3,8 @@
 #include "problems/reference/brachistochrone.h"
 #include "problems/reference/bryson_denham.h"
 #include "problems/reference/catmix.h"
+#include "problems/reference/free_time_brachistochrone.h"
+#include "problems/reference/free_time_double_integrator.h"
 #include "problems/reference/goddard.h"
 #include "problems/reference/hager.h"
 #include "problems/reference/lqr.h"
@@ -26,6 +28,8 @@ void AppendReferenceProblems(std::vector<ProblemInfo>* list) {
   list->push_back(SteeringProblemInfo());
   list->push_back(GoddardProblemInfo());
   list->push_back(RobotArmProblemInfo());
+  list->push_back(FreeTimeDoubleIntegratorProblemInfo());
+  list->push_back(FreeTimeBrachistochroneProblemInfo());
 }
 
 }  // namespace ocpb

@@ -8,8 +8,9 @@
 namespace ocpb {
 
 /// Appends, in this order, "bryson-denham", "lqr", "hager", "vanderpol", "rayleigh", "catmix",
-/// "brachistochrone", "zermelo" and "steering" (problems/reference/*.h state each formulation,
-/// reference value and source).
+/// "brachistochrone", "zermelo", "steering", "goddard", "robot-arm", and the free-final-time
+/// problems "double-integrator-free-time" and "brachistochrone-free-time"
+/// (problems/reference/*.h state each formulation, reference value and source).
 void AppendReferenceProblems(std::vector<ProblemInfo>* list);
 
 }  // namespace ocpb

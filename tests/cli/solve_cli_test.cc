@@ -1,6 +1,7 @@
 // End-to-end `ocpbench solve` with the NLP solvers: the JSON record's contract fields, a refused
 // NLopt case, and --initial-guess (a previous record's controls as the starting point).
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,34 @@ TEST(SolveCli, IpoptJsonHasTheContractFields) {
   EXPECT_EQ(r["iterations"].get<size_t>() + 1, r["history"].size());  // Ipopt logs iterate 0
   // The Euler evaluator on the method's grid sees the NLP's own discrete problem.
   EXPECT_NEAR(r["J"].get<double>(), r["objective"].get<double>(), 1e-9 * r["J"].get<double>());
+}
+
+// A free final time: the record's final_time is the solution's T, and J_fine judges the controls
+// on [0, T]; a method that keeps the horizon fixed writes a not_applicable record (exit 0).
+TEST(SolveCli, FreeFinalTimeRecordsTheSolutionsFinalTime) {
+  const std::string dir = testing::FreshDirectory("solve-free-time");
+  const std::vector<std::string> problem = {
+      "solve", "--problem", "double-integrator-free-time", "--terminal", "hard", "--N", "100"};
+  ProgramRun run =
+      RunOcpbenchProgram(Args(problem, {"--solver", "indirect-newton", "--json", "out.json"}), dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  json r = json::parse(testing::ReadText(dir + "/out.json"));
+  EXPECT_EQ(r["status"], "converged");
+  const double T = r["final_time"].get<double>();
+  EXPECT_NEAR(T, std::pow(18.0, 0.25), 2e-4);
+  EXPECT_DOUBLE_EQ(r["solver_stats"]["final_time"].get<double>(), T);
+  EXPECT_NEAR(r["Jbar_fine"].get<double>(), r["reference"]["value"].get<double>(), 3e-4);
+  EXPECT_LE(r["terminal_violation_fine"].get<double>(), 2e-4);
+  EXPECT_NE(run.out.find("final time = 2.0598"), std::string::npos) << run.out;
+
+  run = RunOcpbenchProgram(
+      Args(problem, {"--solver", "ipopt", "--transcription", "trapezoid", "--json", "out.json"}),
+      dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  r = json::parse(testing::ReadText(dir + "/out.json"));
+  EXPECT_EQ(r["status"], "not_applicable");
+  EXPECT_TRUE(r["final_time"].is_null());
+  EXPECT_NE(r["message"].get<std::string>().find("free final time"), std::string::npos);
 }
 
 TEST(SolveCli, NloptJsonHasTheContractFieldsAndRefusalsSayWhy) {

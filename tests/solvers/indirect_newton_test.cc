@@ -18,6 +18,7 @@
 #include "solvers/pmp_residual.h"
 #include "solvers/registry.h"
 #include "tests/core/test_problems.h"
+#include "tests/solvers/indirect_test_support.h"
 
 namespace ocpb {
 namespace {
@@ -159,17 +160,6 @@ class LocalRedundantDi final : public AutoDiffOcp<LocalRedundantDi, 2, 1, 3, 0> 
 
 // ---- helpers -----------------------------------------------------------------------------------
 
-SolveRequest Request(const Ocp& ocp,
-                     int N,
-                     TerminalMode mode = TerminalMode::kPenalty,
-                     std::map<std::string, std::string> options = {}) {
-  SolveRequest r;
-  r.grid = TimeGrid::Uniform(ocp.t0(), ocp.tf(), N);
-  r.terminal = mode;
-  r.options = std::move(options);
-  return r;
-}
-
 std::unique_ptr<Ocp> Comm(std::vector<std::string> set = {}) {
   set.insert(set.begin(), "channel=0");  // deterministic path-loss channel
   return MakeProblem("comm-path2d", set, 1);
@@ -182,23 +172,6 @@ double CostateError(const SolveResult& r, const std::function<Vec(double)>& exac
     e = std::max(e, (r.costates.col(k) - exact(r.state_grid.t(k))).lpNorm<Eigen::Infinity>());
   }
   return e;
-}
-
-// Quadratic convergence at the end of a solve: over the last kTailSteps Newton steps, every step
-// from |F_k| <= 1e-2 to |F_{k+1}| above the roundoff floor must satisfy
-// |F_{k+1}| <= bound |F_k|^2. Returns the number of steps tested: the callers assert it is at
-// least the number they observed, so the check cannot pass vacuously.
-constexpr int kTailSteps = 3;
-int ExpectQuadraticTail(const SolveResult& r, double bound, double floor = 1e-12) {
-  int checked = 0;
-  const size_t first = r.history.size() > kTailSteps ? r.history.size() - kTailSteps : 1;
-  for (size_t k = std::max<size_t>(first, 1); k < r.history.size(); ++k) {
-    const double a = r.history[k - 1].primal_inf, b = r.history[k].primal_inf;
-    if (a > 1e-2 || b <= floor) continue;  // only near the solution, above roundoff
-    EXPECT_LE(b / (a * a), bound) << "iterate " << k << ": |F| " << a << " -> " << b;
-    ++checked;
-  }
-  return checked;
 }
 
 // Newton on a residual that is affine in z (linear dynamics, quadratic cost, u* linear in p)
@@ -217,13 +190,6 @@ void ExpectExactLastStep(const SolveResult& r, double from, double roundoff = 1e
   const double a = r.history[r.history.size() - 2].primal_inf, b = r.history.back().primal_inf;
   EXPECT_GE(a, from) << "the last step started at |F| = " << a;
   EXPECT_LE(b, roundoff);
-}
-
-void ExpectConverged(const SolveResult& r) {
-  ASSERT_EQ(r.status, SolveStatus::kConverged) << r.solver_status << ": " << r.message;
-  EXPECT_EQ(r.solver_status, "converged");
-  EXPECT_LE(r.history.back().primal_inf, 1e-10);
-  EXPECT_EQ(static_cast<int>(r.history.size()), r.iterations + 1);
 }
 
 // ---- options -----------------------------------------------------------------------------------
@@ -409,42 +375,6 @@ TEST(MinimizerDerivative, SingularReducedHessianIsReported) {
 }
 
 // ---- the residual's sparse Jacobian against finite differences ---------------------------------
-
-void ExpectJacobianMatchesFiniteDifferences(const Ocp& ocp, TerminalMode mode, const Vec& z0) {
-  PmpResidual pmp(ocp, TimeGrid::Uniform(ocp.t0(), ocp.tf(), 5), mode);
-  ASSERT_EQ(z0.size(), pmp.size());
-  Vec F(pmp.size());
-  ASSERT_TRUE(pmp.Evaluate(z0, F, nullptr, true)) << pmp.FailureMessage();
-  const Mat analytic = Mat(pmp.jacobian());
-  auto residual = [&](const Vec& z) {
-    Vec out(pmp.size());
-    EXPECT_TRUE(pmp.Evaluate(z, out, nullptr, false));
-    return out;
-  };
-  const Mat fd = CentralJacobian(residual, z0);
-  const double err = (analytic - fd).lpNorm<Eigen::Infinity>();
-  EXPECT_LE(err, 1e-6 * std::max(1.0, fd.lpNorm<Eigen::Infinity>())) << "max |J - J_fd| = " << err;
-  // Every finite-difference nonzero lies in the declared structure (the dense copy of the sparse
-  // matrix has an explicit entry wherever the structure has one).
-  Eigen::SparseMatrix<double> pattern = pmp.jacobian();
-  for (int k = 0; k < pattern.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(pattern, k); it; ++it) it.valueRef() = 1.0;
-  }
-  const Mat structure = Mat(pattern);
-  for (int i = 0; i < fd.rows(); ++i) {
-    for (int j = 0; j < fd.cols(); ++j) {
-      if (std::abs(fd(i, j)) > 1e-8) {
-        EXPECT_EQ(structure(i, j), 1.0) << i << ", " << j;
-      }
-    }
-  }
-}
-
-Vec SomePoint(int size, double scale, double shift) {
-  Vec z(size);
-  for (int i = 0; i < size; ++i) z[i] = scale * std::sin(1.3 * i + shift);
-  return z;
-}
 
 TEST(PmpResidual, JacobianMatchesFiniteDifferencesPenaltyAndHard) {
   const LocalPendulum pendulum;  // unbounded: smooth everywhere

@@ -1,0 +1,55 @@
+#include "problems/reference/free_time_double_integrator.h"
+
+#include <memory>
+
+namespace ocpb {
+
+std::vector<ParameterSpec> FreeTimeDoubleIntegrator::ParameterSpecs() {
+  return {
+      {"C", {1000.0}, "terminal penalty weight (penalty form)", 0.0, 1e300, true},
+      {"tf",
+       {1.0},
+       "nominal final time: where methods start (within [tf_min, tf_max])",
+       0.0,
+       1e6,
+       true},
+      {"tf_min", {0.1}, "lower bound of the free final time", 0.0, 1e6, true},
+      {"tf_max", {100.0}, "upper bound of the free final time", 0.0, 1e6, true},
+  };
+}
+
+FreeTimeDoubleIntegrator::FreeTimeDoubleIntegrator(const Parameters& params) {
+  SetDimensions(2, 1, 2, 0);
+  SetHorizon(0.0, params.Scalar("tf"));
+  SetFreeFinalTime(params.Scalar("tf_min"), params.Scalar("tf_max"));
+  SetInitialState(Eigen::Vector2d(-1.0, 0.0));
+  SetTerminalWeights(Vec::Constant(2, params.Scalar("C")));
+}
+
+void FreeTimeDoubleIntegrator::MinimizeHamiltonian(double,
+                                                   ConstVecRef,
+                                                   ConstVecRef p,
+                                                   VecRef u) const {
+  u[0] = -p[1];
+}
+
+ProblemInfo FreeTimeDoubleIntegratorProblemInfo() {
+  ProblemInfo p;
+  p.name = "double-integrator-free-time";
+  p.description = "double integrator, (-1, 0) to rest at 0, int (1 + u^2/2) over a free final time";
+  p.parameters = FreeTimeDoubleIntegrator::ParameterSpecs();
+  p.make = [](const Parameters& params, std::uint64_t) -> std::unique_ptr<Ocp> {
+    return std::make_unique<FreeTimeDoubleIntegrator>(params);
+  };
+  p.default_intervals = 100;
+  p.reference_value = FreeTimeDoubleIntegrator::OptimalCost();
+  p.reference_source =
+      "analytic: J(T) = T + 6/T^3, T* = 18^(1/4) = 2.0597671, J* = 4 T*/3 (maximum principle, "
+      "H(T) = 0)";
+  p.hamiltonian_applicable = false;
+  p.hamiltonian_note =
+      "free final time: only indirect-newton takes it (H(T) = 0); the descent keeps tf fixed";
+  return p;
+}
+
+}  // namespace ocpb
