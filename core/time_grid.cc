@@ -40,6 +40,19 @@ int TimeGrid::Locate(double t) const {
   return std::clamp(k, 0, intervals() - 1);
 }
 
+TimeGrid TimeGrid::StretchedTo(double tf) const {
+  if (!std::isfinite(tf) || !(tf > t0())) {
+    throw std::invalid_argument("time grid: a stretched grid needs a finite tf > t0");
+  }
+  const double r = (tf - t0()) / (this->tf() - t0());
+  std::vector<double> pts = points_;
+  for (double& p : pts) p = t0() + r * (p - t0());
+  pts.back() = tf;
+  TimeGrid g = FromPoints(std::move(pts));
+  g.uniform_ = uniform_;
+  return g;
+}
+
 TimeGrid TimeGrid::Refined(int factor) const {
   if (factor < 1) throw std::invalid_argument("time grid: refinement factor must be >= 1");
   std::vector<double> pts;

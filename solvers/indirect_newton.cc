@@ -456,7 +456,15 @@ const char* ToString(IndirectNewtonOptions::LinearSolver solver) {
 }
 
 const char* ToString(IndirectNewtonOptions::WarmStart warm_start) {
-  return warm_start == IndirectNewtonOptions::WarmStart::kHamiltonian ? "hamiltonian" : "none";
+  switch (warm_start) {
+    case IndirectNewtonOptions::WarmStart::kHamiltonian:
+      return "hamiltonian";
+    case IndirectNewtonOptions::WarmStart::kIpopt:
+      return "ipopt";
+    case IndirectNewtonOptions::WarmStart::kNone:
+      break;
+  }
+  return "none";
 }
 
 const char* ToString(IndirectNewtonOptions::Costates costates) {
@@ -528,8 +536,10 @@ IndirectNewton::Options IndirectNewton::ParseOptions(
         o.warm_start = Options::WarmStart::kNone;
       } else if (value == "hamiltonian") {
         o.warm_start = Options::WarmStart::kHamiltonian;
+      } else if (value == "ipopt") {
+        o.warm_start = Options::WarmStart::kIpopt;
       } else {
-        BadOption(key, "'" + value + "' is not one of none, hamiltonian");
+        BadOption(key, "'" + value + "' is not one of none, hamiltonian, ipopt");
       }
     } else if (key == "costates") {
       if (value == "fit") {
@@ -629,17 +639,27 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
   r.message = target.note;
   r.solver_stats["reformulated"] = target.reformulated ? 1.0 : 0.0;
   Mat X, P;
-  if (o.warm_start == Options::WarmStart::kHamiltonian) {
-    const SolverInfo& info = FindSolver("hamiltonian");
+  SolveRequest newton_request = request;  // its grid: the start's (stretched to its T)
+  if (o.warm_start != Options::WarmStart::kNone) {
+    const bool descent = o.warm_start == Options::WarmStart::kHamiltonian;
+    const std::string warm_name = descent ? "hamiltonian" : "ipopt";
+    const SolverInfo& info = FindSolver(warm_name);
     SolveRequest warm = request;
-    warm.terminal = TerminalMode::kPenalty;
-    warm.options = o.warm_start_options;
-    // The descent reformulates the problem itself; give it the same reformulation.
-    if (o.path_penalty && !warm.options.count("path_penalty")) {
-      warm.options["path_penalty"] = FormatExact(*o.path_penalty);
-    }
-    if (o.regularization && !warm.options.count("regularization")) {
-      warm.options["regularization"] = FormatExact(*o.regularization);
+    if (descent) {
+      warm.terminal = TerminalMode::kPenalty;
+      warm.options = o.warm_start_options;
+      // The descent reformulates the problem itself; give it the same reformulation.
+      if (o.path_penalty && !warm.options.count("path_penalty")) {
+        warm.options["path_penalty"] = FormatExact(*o.path_penalty);
+      }
+      if (o.regularization && !warm.options.count("regularization")) {
+        warm.options["regularization"] = FormatExact(*o.regularization);
+      }
+    } else {
+      // Ipopt's defaults on the trapezoid transcription of the same grid and terminal form:
+      // the NLP whose KKT conditions are closest to this trapezoidal BVP.
+      warm.transcription = "trapezoid";
+      warm.options.clear();
     }
     const double cpu0 = CpuSeconds();
     const Stopwatch warm_watch;
@@ -648,11 +668,12 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
     r.solver_stats["warm_start_wall_seconds"] = warm_watch.wall();
     r.solver_stats["warm_start_iterations"] = start.iterations;
     r.solver_stats["warm_start_objective"] = start.objective;
-    const std::string summary = "warm start: hamiltonian " + start.solver_status + " after " +
+    const std::string summary = "warm start: " + warm_name + " " + start.solver_status + " after " +
                                 std::to_string(start.iterations) +
                                 " iterations, J = " + Format(start.objective);
     const int N = request.grid.intervals();
     if (start.states.rows() != ocp.nx() || start.states.cols() != N + 1 ||
+        start.state_grid.size() != N + 1 || !ocp.AdmitsFinalTime(start.state_grid.tf()) ||
         start.costates.rows() != ocp.nx() || start.costates.cols() != N + 1 ||
         !start.states.allFinite() || !start.costates.allFinite() ||
         start.controls.nu() != ocp.nu()) {
@@ -667,11 +688,14 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
       failed.wall_seconds = watch.wall();
       return failed;
     }
-    r.message += (r.message.empty() ? "" : "; ") + summary + ", costates " + ToString(o.costates);
+    r.message +=
+        (r.message.empty() ? "" : "; ") + summary + ", costates " + ToString(o.EffectiveCostates());
     X = start.states;
+    newton_request.grid = start.state_grid;
     const double start_cpu0 = CpuSeconds();
-    if (o.costates == Options::Costates::kFit) {
-      CostatesFromControls(ocp, request.grid, request.terminal, start.controls, X, o.costates, &P);
+    if (o.EffectiveCostates() == Options::Costates::kFit) {
+      CostatesFromControls(
+          ocp, start.state_grid, request.terminal, start.controls, X, Options::Costates::kFit, &P);
     } else {
       P = start.costates;
     }
@@ -683,10 +707,10 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
       throw std::invalid_argument(std::string(kName) + ": the initial guess must have nu controls");
     }
     const double start_cpu0 = CpuSeconds();
-    StartFromControls(ocp, request.grid, request.terminal, guess, &X, &P, o.costates);
+    StartFromControls(ocp, request.grid, request.terminal, guess, &X, &P, o.EffectiveCostates());
     r.solver_stats["start_cpu_seconds"] = CpuSeconds() - start_cpu0;
   }
-  RunNewton({ocp, request, o, watch}, X, P, nullptr, &r);
+  RunNewton({ocp, newton_request, o, watch}, X, P, nullptr, &r);
   return r;
 }
 

@@ -20,22 +20,30 @@ struct IndirectNewtonOptions {
   /// SuiteSparse 5: UMFPACK (multifrontal, Davis 2004) or KLU (left-looking with BTF, Davis and
   /// Palamadai Natarajan 2010). Key "linear_solver": "umfpack" | "klu".
   enum class LinearSolver { kUmfpack, kKlu };
-  /// Where Newton starts. Key "warm_start": "none" | "hamiltonian".
+  /// Where Newton starts. Key "warm_start": "none" | "hamiltonian" | "ipopt".
   ///  - kNone: from the request's controls (states by RK4 simulation; costates from those
   ///    controls as `costates` says; IndirectNewton::StartFromControls);
   ///  - kHamiltonian: first runs the registered "hamiltonian" solver (penalty form, the
   ///    request's grid, integrator and initial guess, warm_start_options) and starts from its
-  ///    states, with costates from its controls as `costates` says.
-  enum class WarmStart { kNone, kHamiltonian };
+  ///    states, with costates from its controls as `costates` says;
+  ///  - kIpopt: first runs "ipopt" with its defaults on the trapezoid transcription of the
+  ///    request's grid, terminal form and initial guess, and starts from its states (on its
+  ///    state_grid: for a free final time stretched to Ipopt's T), with costates as `costates`
+  ///    says (kAdjoint: Ipopt's multiplier costates).
+  enum class WarmStart { kNone, kHamiltonian, kIpopt };
   /// How the start's costates are made from its controls u and states X. Key "costates":
-  /// "fit" | "adjoint".
-  ///  - kFit (default): the trapezoidal costate equation of u
+  /// "fit" | "adjoint"; unset: kAdjoint with warm_start = kIpopt (a KKT point's multipliers are
+  /// its costates; the fit cannot see controls on the boundary of U, such as the disc of
+  /// brachistochrone-free-time, and gives zero costates there), kFit otherwise
+  /// (EffectiveCostates()).
+  ///  - kFit: the trapezoidal costate equation of u
   ///  (IndirectNewton::CostatesFromControls)
   ///    with the terminal costate chosen by least squares so that u is as stationary as it can be
   ///    (H_u = 0 wherever u is strictly inside U), i.e. so that u*(x_k, p_k) reproduces u_k. The
   ///    boundary condition p_N = grad Phi is left to Newton.
-  ///  - kAdjoint: the costates of u itself: the same equation from p_N = grad Phi(x_N) (kNone), or
-  ///    the descent's own discrete adjoint (kHamiltonian). These are what u's cost gradient uses,
+  ///  - kAdjoint: the costates of u itself: the same equation from p_N = grad Phi(x_N) (kNone),
+  ///    the descent's own discrete adjoint (kHamiltonian), or Ipopt's costates from its
+  ///    multipliers (kIpopt). These are what u's cost gradient uses,
   ///    but their terminal value 2 w psi(x_N) amplifies the terminal error a first-order method
   ///    leaves, so u*(x, p) can differ wildly from u (on comm-path2d after 200 descent iterations:
   ///    R* = 0 and |u*| = umax at every node; solvers/README-indirect.md).
@@ -58,7 +66,12 @@ struct IndirectNewtonOptions {
   /// solvers/README-indirect.md).
   LinearSolver linear_solver = LinearSolver::kKlu;
   WarmStart warm_start = WarmStart::kNone;
-  Costates costates = Costates::kFit;
+  std::optional<Costates> costates;
+  /// `costates`, or its default for `warm_start` when unset.
+  Costates EffectiveCostates() const {
+    return costates ? *costates
+                    : (warm_start == WarmStart::kIpopt ? Costates::kAdjoint : Costates::kFit);
+  }
   /// Options handed verbatim to the "hamiltonian" solver (it validates them); only allowed with
   /// warm_start = kHamiltonian. path_penalty and regularization below are passed on to it unless
   /// given here.
@@ -139,7 +152,7 @@ const char* ToString(IndirectNewtonOptions::Costates costates);
 /// "assembly_seconds" (residual and Jacobian evaluations), "factorization_seconds" (symbolic and
 /// numeric LU), "solve_seconds" (triangular solves), "newton_cpu_seconds", "start_cpu_seconds"
 /// (Solve only: the start's states and costates from its controls, after any warm start),
-/// "warm_start_cpu_seconds" and "warm_start_iterations" (kHamiltonian only), "residual_inf",
+/// "warm_start_cpu_seconds" and "warm_start_iterations" (warm starts only), "residual_inf",
 /// "unknowns",
 /// "jacobian_nonzeros", "residual_evaluations", "jacobian_evaluations", "reformulated".
 class IndirectNewton final : public Solver {

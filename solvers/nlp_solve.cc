@@ -61,7 +61,12 @@ SolveResult SolveTranscribed(const std::string& solver_name,
                              const SolveRequest& request,
                              const NlpScaling& scaling,
                              const std::function<NlpSolution(const TranscribedNlp& nlp)>& backend) {
-  if (auto refused = FreeFinalTimeNotApplicable(ocp, solver_name)) return *refused;
+  // Single shooting keeps the horizon fixed; the collocation transcriptions make T a variable.
+  if (request.transcription == "single-shooting") {
+    if (auto refused = FreeFinalTimeNotApplicable(ocp, solver_name + " + single-shooting")) {
+      return *refused;
+    }
+  }
   const Stopwatch watch;
   const std::unique_ptr<TranscribedNlp> nlp = TranscribeRequest(ocp, request, scaling);
   NlpSolution sol = backend(*nlp);
@@ -73,7 +78,7 @@ SolveResult SolveTranscribed(const std::string& solver_name,
   result.message = sol.message;
   if (sol.z.size() != nlp->num_variables()) sol.z = nlp->StartingPoint();
   result.controls = nlp->Controls(sol.z);
-  result.state_grid = nlp->state_grid();
+  result.state_grid = nlp->StateGrid(sol.z);
   result.states = nlp->States(sol.z);
   if (sol.lambda.size() == nlp->num_constraints() && sol.lambda.allFinite()) {
     result.costates = nlp->Costates(sol.z, sol.lambda);
@@ -90,6 +95,7 @@ SolveResult SolveTranscribed(const std::string& solver_name,
   result.solver_stats["nlp_constraints"] = nlp->num_constraints();
   result.solver_stats["nlp_jacobian_nonzeros"] = static_cast<double>(nlp->jacobian_rows().size());
   result.solver_stats["nlp_violation"] = NlpViolation(*nlp, sol.z);
+  if (nlp->HasFinalTimeVariable()) result.solver_stats["final_time"] = nlp->FinalTime(sol.z);
   if (!sol.has_iterate) result.message += " (no iterate: controls are the starting point)";
   result.cpu_seconds = watch.cpu();
   result.wall_seconds = watch.wall();

@@ -146,12 +146,7 @@ double PmpResidual::NodeTime(int k, double T) const {
 }
 
 TimeGrid PmpResidual::GridOf(ConstVecRef z) const {
-  if (!free_time_) return grid_;
-  const double T = FinalTime(z);
-  std::vector<double> points(N_ + 1);
-  for (int k = 0; k <= N_; ++k) points[k] = NodeTime(k, T);
-  points[N_] = T;
-  return TimeGrid::FromPoints(std::move(points));
+  return free_time_ ? grid_.StretchedTo(FinalTime(z)) : grid_;
 }
 
 Mat PmpResidual::Controls(ConstVecRef z) const {

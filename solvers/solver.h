@@ -39,8 +39,8 @@ class Solver {
 
 /// For a method that treats the horizon as fixed: when `ocp` has a free final time, the result
 /// it returns instead of solving (SolveStatus::kNotApplicable, solver_status "not_applicable",
-/// saying that indirect-newton solves it and that the time-scaled problems pose free time for the
-/// other methods); nullopt for a fixed horizon.
+/// saying which methods solve it and that the time-scaled problems pose free time for every
+/// method); nullopt for a fixed horizon.
 std::optional<SolveResult> FreeFinalTimeNotApplicable(const Ocp& ocp, const std::string& solver);
 
 /// The default starting controls: Ocp::NominalControl() projected onto U, constant on `grid`.

@@ -80,12 +80,15 @@ CollocationNlp::CollocationNlp(const Ocp& ocp,
   std::vector<double> times;
   for (const auto& s : layout_.states) times.push_back(s.t);
   state_grid_ = TimeGrid::FromPoints(times);
+  free_time_ = ocp.free_final_time().has_value();
+  time_index_ = free_time_ ? layout_.num_variables : -1;
+  inv_duration_ = 1.0 / (grid_.tf() - grid_.t0());
 
   // Variable scales.
   objective_scale_ = options.scaling.objective;
   const Vec sx = options.scaling.state.size() ? options.scaling.state : Vec::Ones(nx_);
   const Vec su = options.scaling.control.size() ? options.scaling.control : Vec::Ones(nu_);
-  var_scale_ = Vec::Ones(layout_.num_variables);
+  var_scale_ = Vec::Ones(num_variables());  // T, when a variable, is not scaled
   for (const auto& s : layout_.states) var_scale_.segment(s.offset, nx_) = sx;
   for (const auto& c : layout_.controls) var_scale_.segment(c.offset, nu_) = su;
 
@@ -120,7 +123,7 @@ CollocationNlp::CollocationNlp(const Ocp& ocp,
 }
 
 void CollocationNlp::BuildStructure() {
-  const int n = layout_.num_variables;
+  const int n = num_variables();
   const auto xcols = [&](int j) { return Range(layout_.states[j].offset, nx_); };
   const auto ucols = [&](int i) { return Range(layout_.controls[i].offset, nu_); };
   const auto append = [](std::vector<int>* pool, const std::vector<int>& slots) {
@@ -170,6 +173,12 @@ void CollocationNlp::BuildStructure() {
     terminal_slots_ =
         append(&jac_slots_, jac.Block(Range(terminal_row_begin_, npsi_), xcols(last)));
   }
+  if (free_time_) {
+    for (size_t d = 0; d < layout_.defects.size(); ++d) {
+      time_jac_slots_.push_back(append(
+          &jac_slots_, jac.Block(Range(defect_row(static_cast<int>(d)), nx_), {time_index_})));
+    }
+  }
   jac_rows_ = jac.rows();
   jac_cols_ = jac.cols();
   jac_value_scale_.resize(jac.size());
@@ -184,6 +193,9 @@ void CollocationNlp::BuildStructure() {
     const std::vector<int> uc = ucols(p.control);
     cols.insert(cols.end(), uc.begin(), uc.end());
     point_hess_slots_.push_back(append(&hess_slots_, hess.Block(cols, cols, true)));
+    if (free_time_) {  // T is the last variable: its row is in the lower triangle
+      time_hess_slots_.push_back(append(&hess_slots_, hess.Block({time_index_}, cols, true)));
+    }
   }
   terminal_hess_slots_ = append(&hess_slots_, hess.Block(xcols(last), xcols(last), true));
   for (size_t i = 0; i < layout_.controls.size(); ++i) {
@@ -207,7 +219,7 @@ void CollocationNlp::BuildStructure() {
 // ---- bounds and starting point -------------------------------------------------------------
 
 void CollocationNlp::Bounds(Vec* z_lower, Vec* z_upper, Vec* g_lower, Vec* g_upper) const {
-  const int n = layout_.num_variables;
+  const int n = num_variables();
   Vec zl = Vec::Constant(n, -kInf), zu = Vec::Constant(n, kInf);
   const auto& x0_block = layout_.states.front();
   zl.segment(x0_block.offset, nx_) = ocp_.x0();
@@ -218,6 +230,10 @@ void CollocationNlp::Bounds(Vec* z_lower, Vec* z_upper, Vec* g_lower, Vec* g_upp
       zl.segment(c.offset + b.offset, b.size) = b.lower;
       zu.segment(c.offset + b.offset, b.size) = b.upper;
     }
+  }
+  if (free_time_) {
+    zl[time_index_] = ocp_.free_final_time()->lower;
+    zu[time_index_] = ocp_.free_final_time()->upper;
   }
   *z_lower = zl.cwiseQuotient(var_scale_);
   *z_upper = zu.cwiseQuotient(var_scale_);
@@ -255,7 +271,8 @@ Vec CollocationNlp::StartingPoint() const {
   Mat X = ev.X;
   if (!X.allFinite()) X = ocp_.x0().replicate(1, state_grid_.size());
 
-  Vec z = Vec::Zero(layout_.num_variables);
+  Vec z = Vec::Zero(num_variables());
+  if (free_time_) z[time_index_] = grid_.tf();
   for (size_t j = 0; j < layout_.states.size(); ++j) {
     z.segment(layout_.states[j].offset, nx_) = X.col(j);
   }
@@ -276,8 +293,31 @@ Mat CollocationNlp::ControlValues(ConstVecRef zhat) const {
   return values;
 }
 
+double CollocationNlp::Ratio(const Vec& z) const {
+  return free_time_ ? (z[time_index_] - grid_.t0()) * inv_duration_ : 1.0;
+}
+
+double CollocationNlp::FinalTime(ConstVecRef zhat) const {
+  return free_time_ ? zhat[time_index_] * var_scale_[time_index_] : grid_.tf();
+}
+
+TimeGrid CollocationNlp::StateGrid(ConstVecRef zhat) const {
+  return free_time_ ? state_grid_.StretchedTo(FinalTime(zhat)) : state_grid_;
+}
+
 ControlTrajectory CollocationNlp::Controls(ConstVecRef zhat) const {
-  return MakeControls(ControlValues(zhat));
+  ControlTrajectory nominal = MakeControls(ControlValues(zhat));
+  if (!free_time_) return nominal;
+  // The scheme's controls on [t0, tf], read on the stretched axis [t0, T]: u(t) = u_nominal(t0 +
+  // (t - t0) / r).
+  const double t0 = grid_.t0(), r = (FinalTime(zhat) - t0) * inv_duration_;
+  const double tf = grid_.tf();
+  const std::string rule = std::string(nominal.InterpolationName()) +
+                           ", on the time axis stretched to [t0, T] (free final time)";
+  auto fn = [nominal, t0, r, tf](double t, ControlTrajectory::Side side, VecRef u) {
+    nominal.Evaluate(std::min(t0 + (t - t0) / r, tf), side, u);
+  };
+  return ControlTrajectory::Custom(nu_, grid_.StretchedTo(FinalTime(zhat)), fn, rule);
 }
 
 Mat CollocationNlp::States(ConstVecRef zhat) const {
@@ -294,6 +334,7 @@ Mat CollocationNlp::Costates(ConstVecRef zhat, ConstVecRef lambda_hat) const {
   const Vec z = Unscale(zhat);
   // Multipliers of the physical Lagrangian J + lambda^T g.
   const Vec lambda = lambda_hat.cwiseProduct(row_scale_) / objective_scale_;
+  const double r = Ratio(z);  // the step lengths' factor at T (1 for a fixed horizon)
   const int S = static_cast<int>(layout_.states.size());
   Mat P = Mat::Zero(nx_, S);
   auto x_of = [&](int j) { return z.segment(layout_.states[j].offset, nx_); };
@@ -318,12 +359,13 @@ Mat CollocationNlp::Costates(ConstVecRef zhat, ConstVecRef lambda_hat) const {
     ocp_.DynamicsJacobian(p.t, x_of(p.state), u_of(p.control), f, fx, fu);
     for (const auto& use : point_uses_[e]) {
       if (future(p.state, use.defect)) {
-        P.col(p.state) += use.coeff * fx.transpose() * lambda.segment(defect_row(use.defect), nx_);
+        P.col(p.state) +=
+            r * use.coeff * fx.transpose() * lambda.segment(defect_row(use.defect), nx_);
       }
     }
     if (p.future_cost_weight != 0.0) {
       ocp_.RunningCostGradient(p.t, x_of(p.state), u_of(p.control), &L, Lx, Lu);
-      P.col(p.state) += p.future_cost_weight * Lx;
+      P.col(p.state) += r * p.future_cost_weight * Lx;
     }
     if (path_point_row_[e] >= 0) {
       ocp_.PathConstraintsJacobian(p.t, x_of(p.state), u_of(p.control), c, cx, cu);
@@ -401,28 +443,33 @@ bool CollocationNlp::HessianValues(ConstVecRef zhat,
 
 bool CollocationNlp::EvalObjective(const Vec& z, double* f) const {
   double sum = 0.0;
+  const double r = Ratio(z);
   for (const auto& p : layout_.points) {
     if (p.cost_weight == 0.0) continue;
     sum += p.cost_weight * ocp_.RunningCost(p.t,
                                             z.segment(layout_.states[p.state].offset, nx_),
                                             z.segment(layout_.controls[p.control].offset, nu_));
   }
-  sum += ocp_.TerminalObjective(z.segment(layout_.states.back().offset, nx_), mode_);
+  sum = r * sum + ocp_.TerminalObjective(z.segment(layout_.states.back().offset, nx_), mode_);
   *f = sum;
   return std::isfinite(sum);
 }
 
 bool CollocationNlp::EvalGradient(const Vec& z, Vec* grad) const {
-  grad->setZero(layout_.num_variables);
+  grad->setZero(num_variables());
   Vec Lx(nx_), Lu(nu_);
   double L;
+  const double r = Ratio(z);
+  double running = 0.0;  // sum_e w_e L_e at the nominal weights
   for (const auto& p : layout_.points) {
     if (p.cost_weight == 0.0) continue;
     const int xo = layout_.states[p.state].offset, uo = layout_.controls[p.control].offset;
     ocp_.RunningCostGradient(p.t, z.segment(xo, nx_), z.segment(uo, nu_), &L, Lx, Lu);
-    grad->segment(xo, nx_) += p.cost_weight * Lx;
-    grad->segment(uo, nu_) += p.cost_weight * Lu;
+    grad->segment(xo, nx_) += r * p.cost_weight * Lx;
+    grad->segment(uo, nu_) += r * p.cost_weight * Lu;
+    running += p.cost_weight * L;
   }
+  if (free_time_) (*grad)[time_index_] = inv_duration_ * running;
   const int xo = layout_.states.back().offset;
   double phi;
   Vec g(nx_);
@@ -438,6 +485,7 @@ bool CollocationNlp::EvalConstraints(const Vec& z, Vec* g) const {
         use.coeff * z.segment(layout_.states[use.state].offset, nx_);
   }
   Vec f(nx_), c(nc_);
+  const double r = Ratio(z);
   for (size_t e = 0; e < layout_.points.size(); ++e) {
     const auto& p = layout_.points[e];
     const auto x = z.segment(layout_.states[p.state].offset, nx_);
@@ -445,7 +493,7 @@ bool CollocationNlp::EvalConstraints(const Vec& z, Vec* g) const {
     if (!point_uses_[e].empty()) {
       ocp_.Dynamics(p.t, x, u, f);
       for (const auto& use : point_uses_[e])
-        g->segment(defect_row(use.defect), nx_) += use.coeff * f;
+        g->segment(defect_row(use.defect), nx_) += r * use.coeff * f;
     }
     if (path_point_row_[e] >= 0) {
       ocp_.PathConstraints(p.t, x, u, c);
@@ -476,6 +524,7 @@ bool CollocationNlp::EvalJacobian(const Vec& z, Vec* values) const {
   }
   Vec f(nx_), c(nc_);
   Mat fx(nx_, nx_), fu(nx_, nu_), cx(nc_, nx_), cu(nc_, nu_);
+  const double r = Ratio(z);
   for (size_t e = 0; e < layout_.points.size(); ++e) {
     const auto& p = layout_.points[e];
     const auto x = z.segment(layout_.states[p.state].offset, nx_);
@@ -483,11 +532,14 @@ bool CollocationNlp::EvalJacobian(const Vec& z, Vec* values) const {
     if (!point_uses_[e].empty()) {
       ocp_.DynamicsJacobian(p.t, x, u, f, fx, fu);
       for (const auto& use : point_uses_[e]) {
+        const double a = r * use.coeff;
         for (int i = 0; i < nx_; ++i) {
-          for (int j = 0; j < nx_; ++j)
-            v[jac_slots_[use.x_slots + i * nx_ + j]] += use.coeff * fx(i, j);
-          for (int j = 0; j < nu_; ++j)
-            v[jac_slots_[use.u_slots + i * nu_ + j]] += use.coeff * fu(i, j);
+          for (int j = 0; j < nx_; ++j) v[jac_slots_[use.x_slots + i * nx_ + j]] += a * fx(i, j);
+          for (int j = 0; j < nu_; ++j) v[jac_slots_[use.u_slots + i * nu_ + j]] += a * fu(i, j);
+        }
+        if (free_time_) {
+          const int base = time_jac_slots_[use.defect];
+          for (int i = 0; i < nx_; ++i) v[jac_slots_[base + i]] += inv_duration_ * use.coeff * f[i];
         }
       }
     }
@@ -527,6 +579,10 @@ bool CollocationNlp::EvalHessian(const Vec& z, double sigma, const Vec& lambda, 
   const int nz = nx_ + nu_;
   Vec lam(nx_), mu = Vec::Zero(nc_);
   Mat H(nz, nz);
+  const double r = Ratio(z);
+  Vec f(nx_), Lx(nx_), Lu(nu_);
+  Mat fx(nx_, nx_), fu(nx_, nu_);
+  double L = 0.0;
   for (size_t e = 0; e < layout_.points.size(); ++e) {
     const auto& p = layout_.points[e];
     lam.setZero();
@@ -539,13 +595,21 @@ bool CollocationNlp::EvalHessian(const Vec& z, double sigma, const Vec& lambda, 
     }
     const double s = sigma * p.cost_weight;
     if (s == 0.0 && !lam.any() && !mu.any()) continue;
-    ocp_.PointHessian(p.t,
-                      z.segment(layout_.states[p.state].offset, nx_),
-                      z.segment(layout_.controls[p.control].offset, nu_),
-                      s,
-                      lam,
-                      mu,
-                      H);
+    const auto x = z.segment(layout_.states[p.state].offset, nx_);
+    const auto u = z.segment(layout_.controls[p.control].offset, nu_);
+    if (free_time_) {
+      // d^2/dT d(x, u) = (1 / (tf - t0)) grad_(x,u) (s L + lam^T f), at the nominal weights.
+      ocp_.DynamicsJacobian(p.t, x, u, f, fx, fu);
+      ocp_.RunningCostGradient(p.t, x, u, &L, Lx, Lu);
+      const int base = time_hess_slots_[e];
+      for (int j = 0; j < nx_; ++j) {
+        v[hess_slots_[base + j]] += inv_duration_ * (s * Lx[j] + fx.col(j).dot(lam));
+      }
+      for (int j = 0; j < nu_; ++j) {
+        v[hess_slots_[base + nx_ + j]] += inv_duration_ * (s * Lu[j] + fu.col(j).dot(lam));
+      }
+    }
+    ocp_.PointHessian(p.t, x, u, r * s, r * lam, mu, H);
     const int base = point_hess_slots_[e];
     for (int a = 0; a < nz; ++a) {
       for (int b = 0; b < nz; ++b) {

@@ -99,6 +99,16 @@ struct CollocationLayout {
 /// (plus bound multipliers) vanishes, as in Ipopt. Costates() turns them into p with
 /// H = p^T f + L.
 ///
+/// Free final time (Ocp::free_final_time()): T is one more variable, the last, with the problem's
+/// bounds and the grid's tf as its start. The layout is built on the nominal horizon [t0, tf];
+/// at T every step length scales by r = (T - t0) / (tf - t0), so every dynamics coefficient b_de
+/// and cost weight w_e is multiplied by r (the schemes' state coefficients a_dj do not carry h)
+/// and the problem, autonomous by Ocp's contract, is evaluated at the nominal times. Hence
+///   d(defect d)/dT = -(1 / (tf - t0)) sum_e b_de f_e,   dJ/dT = (1 / (tf - t0)) sum_e w_e L_e,
+/// and the Hessian gains the cross terms d^2/dT d(x_e, u_e) = (1 / (tf - t0)) grad_(x,u) (sigma
+/// w_e L_e - sum_d b_de lambda_d^T f_e) (d^2/dT^2 = 0: the Lagrangian is affine in r). Controls(),
+/// StateGrid() and Costates() live on the stretched axis [t0, T].
+///
 /// The Ocp must outlive this object. Evaluations return false when a value is not finite.
 class CollocationNlp : public TranscribedNlp {
  public:
@@ -108,14 +118,14 @@ class CollocationNlp : public TranscribedNlp {
                  Integrator start_integrator);
 
   // ---- Nlp ----
-  int num_variables() const override { return layout_.num_variables; }
+  int num_variables() const override { return layout_.num_variables + (free_time_ ? 1 : 0); }
   int num_constraints() const override { return num_constraints_; }
   void Bounds(Vec* z_lower, Vec* z_upper, Vec* g_lower, Vec* g_upper) const override;
-  /// Controls from TranscriptionOptions::initial_guess (default: Ocp::NominalControl() projected onto U) at every
-  /// control block's time (the left limit at tf, the right limit elsewhere), projected onto U;
-  /// states by simulating the resulting ControlTrajectory from x0 on state_grid() with the
-  /// scheme's start integrator (Euler for the Euler transcription, so its start is feasible;
-  /// RK4 otherwise). If that simulation is not finite, every state block is set to x0.
+  /// Controls from TranscriptionOptions::initial_guess (default: Ocp::NominalControl() projected
+  /// onto U) at every control block's time (the left limit at tf, the right limit elsewhere),
+  /// projected onto U; states by simulating the resulting ControlTrajectory from x0 on state_grid()
+  /// with the scheme's start integrator (Euler for the Euler transcription, so its start is
+  /// feasible; RK4 otherwise). If that simulation is not finite, every state block is set to x0.
   Vec StartingPoint() const override;
   bool Objective(ConstVecRef z, double* f) const override;
   bool Gradient(ConstVecRef z, VecRef grad) const override;
@@ -127,6 +137,9 @@ class CollocationNlp : public TranscribedNlp {
   // ---- TranscribedNlp ----
   ControlTrajectory Controls(ConstVecRef z) const override;
   const TimeGrid& state_grid() const override { return state_grid_; }
+  bool HasFinalTimeVariable() const override { return free_time_; }
+  double FinalTime(ConstVecRef zhat) const override;
+  TimeGrid StateGrid(ConstVecRef zhat) const override;
   Mat States(ConstVecRef z) const override;
   /// p (nx x state_grid().size()) from the NLP's multipliers `lambda` at z (as a solver returns
   /// them, scaled NLP); empty when lambda.size() != num_constraints().
@@ -167,6 +180,8 @@ class CollocationNlp : public TranscribedNlp {
   };
 
   void BuildStructure();
+  // r = (T - t0) / (tf - t0) at physical z (1 without a free final time).
+  double Ratio(const Vec& z) const;
   // Physical evaluations (z physical, lambda physical).
   bool EvalObjective(const Vec& z, double* f) const;
   bool EvalGradient(const Vec& z, Vec* grad) const;
@@ -182,6 +197,11 @@ class CollocationNlp : public TranscribedNlp {
   Integrator start_integrator_;
   TimeGrid state_grid_;
   int nx_, nu_, nc_, npsi_;
+  bool free_time_ = false;
+  int time_index_ = -1;        // the variable T (free final time), after the layout's variables
+  double inv_duration_ = 1.0;  // 1 / (tf - t0) of the nominal horizon
+  std::vector<int> time_jac_slots_;   // per defect: base of its nx slots in the T column
+  std::vector<int> time_hess_slots_;  // per point: base of its nx + nu slots in the T row
   int num_constraints_ = 0;
   int path_row_begin_ = 0, ball_row_begin_ = 0, terminal_row_begin_ = 0;
   std::vector<int> path_point_row_;  // per point: first path row, or -1

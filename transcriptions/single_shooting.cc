@@ -336,6 +336,11 @@ Mat SingleShootingNlp::Costates(ConstVecRef z, ConstVecRef lambda_scaled) const 
 
 std::unique_ptr<TranscribedNlp> SingleShooting::Transcribe(
     const Ocp& ocp, const TranscriptionOptions& options) const {
+  if (ocp.free_final_time()) {
+    throw std::invalid_argument("single-shooting: problem '" + ocp.name() +
+                                "' has a free final time, which single shooting does not take "
+                                "(use a collocation transcription)");
+  }
   return std::make_unique<SingleShootingNlp>(ocp, options, integrator_);
 }
 

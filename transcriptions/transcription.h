@@ -19,8 +19,15 @@ class TranscribedNlp : public Nlp {
   /// The controls encoded in z, with the interpolation rule of this transcription; this is
   /// what the common evaluator judges.
   virtual ControlTrajectory Controls(ConstVecRef z) const = 0;
-  /// The grid on which States() and Costates() are given.
+  /// The grid on which States() and Costates() are given, at the problem's (nominal) horizon.
   virtual const TimeGrid& state_grid() const = 0;
+  /// True when the final time is one of the NLP's variables (the problem's free final time).
+  virtual bool HasFinalTimeVariable() const { return false; }
+  /// The final time encoded in z (the grid's tf when it is not a variable).
+  virtual double FinalTime(ConstVecRef /*z*/) const { return state_grid().tf(); }
+  /// The grid of z's states: state_grid(), stretched to [t0, FinalTime(z)] when the final time
+  /// is a variable.
+  virtual TimeGrid StateGrid(ConstVecRef /*z*/) const { return state_grid(); }
   /// The states encoded in z (nx x state_grid().size()); empty for single shooting.
   virtual Mat States(ConstVecRef z) const = 0;
   /// A costate estimate from the constraint multipliers lambda (nx x state_grid().size()),

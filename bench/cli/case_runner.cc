@@ -489,11 +489,12 @@ json RunCase(const CaseSpec& spec) {
   // A method that did not run has nothing to judge (its "controls" would be the start).
   const bool has_controls =
       result.controls.nu() == ocp->nu() && result.status != SolveStatus::kNotApplicable;
-  // A free final time is judged on the solution's own horizon [t0, T] (its state_grid: the
-  // request's grid, stretched); a fixed horizon on the request's grid.
-  const bool free_time = ocp->free_final_time().has_value() && result.state_grid.size() == N + 1;
-  const TimeGrid& judged = free_time ? result.state_grid : grid;
+  // A free final time is judged on the solution's own horizon [t0, T] (the end of its
+  // state_grid): the request's grid stretched to T; a fixed horizon on the request's grid.
+  const bool free_time = ocp->free_final_time().has_value() && result.state_grid.size() >= 2;
+  const TimeGrid judged = free_time ? grid.StretchedTo(result.state_grid.tf()) : grid;
   rec["final_time"] = has_controls ? Number(judged.tf()) : json(nullptr);
+  rec["final_time_free"] = ocp->free_final_time().has_value();
   if (has_controls) {
     const Evaluation ev = Evaluate(*ocp, result.controls, judged, spec.evaluate_with);
     const Evaluation fine = Evaluate(*ocp, result.controls, judged.Refined(10), Integrator::kRk4);

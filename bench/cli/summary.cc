@@ -263,9 +263,11 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
     std::vector<std::string> methods;
     std::map<std::string, std::vector<const json*>> by_method;
     const json* reference = nullptr;
+    bool free_time = false;  // a free final time: the table says each method's T
     for (size_t i = 0; i < records.size(); ++i) {
       if (labels.section[i] != section) continue;
       const json& r = records[i];
+      free_time = free_time || r.value("final_time_free", false);
       if (!by_method.count(labels.row[i])) methods.push_back(labels.row[i]);
       by_method[labels.row[i]].push_back(&r);
       if (!reference && r.contains("reference") && r["reference"].is_object() &&
@@ -277,13 +279,14 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
     md << "| method | cases | status | J | Jbar | J fine | Jbar fine | terminal viol. | "
           "terminal viol. fine | U viol. | path viol. | resim. defect | iterations | CPU s | "
           "time to target s |"
-       << (reference ? " rel. error vs reference |" : "") << "\n";
+       << (free_time ? " final time T |" : "") << (reference ? " rel. error vs reference |" : "")
+       << "\n";
     md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-       << (reference ? "---|" : "") << "\n";
+       << (free_time ? "---|" : "") << (reference ? "---|" : "") << "\n";
     for (const std::string& m : methods) {
       const auto& rs = by_method[m];
       std::map<std::string, int> statuses;
-      std::vector<double> J, Jbar, Jf, Jbarf, tv, tvf, cv, pv, defect, it, cpu, ttt, rel;
+      std::vector<double> J, Jbar, Jf, Jbarf, tv, tvf, cv, pv, defect, it, cpu, ttt, rel, T;
       int reached = 0;
       for (const json* r : rs) {
         statuses[Str(*r, "status")]++;
@@ -298,6 +301,7 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
         defect.push_back(Num(*r, "resimulation_defect"));
         it.push_back(Num(*r, "iterations"));
         cpu.push_back(Num(*r, "cpu_seconds"));
+        T.push_back(Num(*r, "final_time"));
         const double t = Num(*r, "time_to_target");
         if (std::isfinite(t)) {
           ttt.push_back(t);
@@ -327,6 +331,7 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
           G(Median(ttt)),
           reached,
           rs.size());
+      if (free_time) md << " " << Spread(T) << " |";
       if (reference) md << " " << Spread(rel) << " |";
       md << "\n";
     }
@@ -361,7 +366,8 @@ std::string RecordsCsv(const std::vector<json>& records) {
                                    "final_J",
                                    "best_J",
                                    "reached_target",
-                                   "time_to_target"};
+                                   "time_to_target",
+                                   "final_time"};
   std::ostringstream csv;
   bool first = true;
   for (const char* c : kColumns) {

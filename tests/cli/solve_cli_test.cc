@@ -79,7 +79,8 @@ TEST(SolveCli, IpoptJsonHasTheContractFields) {
 }
 
 // A free final time: the record's final_time is the solution's T, and J_fine judges the controls
-// on [0, T]; a method that keeps the horizon fixed writes a not_applicable record (exit 0).
+// on [0, T] for the indirect method and for Ipopt (T an NLP variable); a method that keeps the
+// horizon fixed (single shooting) writes a not_applicable record (exit 0).
 TEST(SolveCli, FreeFinalTimeRecordsTheSolutionsFinalTime) {
   const std::string dir = testing::FreshDirectory("solve-free-time");
   const std::vector<std::string> problem = {
@@ -96,8 +97,20 @@ TEST(SolveCli, FreeFinalTimeRecordsTheSolutionsFinalTime) {
   EXPECT_LE(r["terminal_violation_fine"].get<double>(), 2e-4);
   EXPECT_NE(run.out.find("final time = 2.0598"), std::string::npos) << run.out;
 
+  // Ipopt with T as the NLP's variable reaches the same T (Hermite-Simpson: exact here).
   run = RunOcpbenchProgram(
-      Args(problem, {"--solver", "ipopt", "--transcription", "trapezoid", "--json", "out.json"}),
+      Args(problem,
+           {"--solver", "ipopt", "--transcription", "hermite-simpson", "--json", "out.json"}),
+      dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  r = json::parse(testing::ReadText(dir + "/out.json"));
+  EXPECT_EQ(r["status"], "converged");
+  EXPECT_NEAR(r["final_time"].get<double>(), std::pow(18.0, 0.25), 1e-8);
+  EXPECT_NEAR(r["Jbar_fine"].get<double>(), r["reference"]["value"].get<double>(), 1e-8);
+
+  run = RunOcpbenchProgram(
+      Args(problem,
+           {"--solver", "ipopt", "--transcription", "single-shooting", "--json", "out.json"}),
       dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   r = json::parse(testing::ReadText(dir + "/out.json"));

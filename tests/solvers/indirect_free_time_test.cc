@@ -85,7 +85,7 @@ TEST(FreeFinalTimeProblems, MethodsThatKeepTheHorizonFixedReportNotApplicable) {
   for (const char* solver : {"hamiltonian", "ipopt", "nlopt"}) {
     SCOPED_TRACE(solver);
     SolveRequest request = Request(*ocp, 20);
-    request.transcription = "trapezoid";
+    request.transcription = "single-shooting";
     if (std::string(solver) == "nlopt") request.algorithm = "LD_SLSQP";
     const SolveResult r = FindSolver(solver).make()->Solve(*ocp, request);
     EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
@@ -240,6 +240,79 @@ TEST(IndirectNewtonFreeTime, BrachistochroneFromTheTimeScaledIpoptSolution) {
   }
   EXPECT_LE(err[0], 1e-3);
   EXPECT_NEAR(std::log2(err[0] / err[1]), 2.0, 0.3) << err[0] << " " << err[1];
+}
+
+// ---- the direct transcriptions with T as a variable -------------------------------------------
+
+// Ipopt with T as the NLP's last variable: Hermite-Simpson and LGR are exact on the double
+// integrator (cubic states, linear control), the trapezoid is second order and Euler at least
+// first order in T; on the brachistochrone Hermite-Simpson and LGR reach the cycloid's T* to 1e-6.
+// The result's grid and controls live on [0, T] and solver_stats["final_time"] says T.
+TEST(DirectFreeTime, IpoptOnEveryCollocationTranscriptionReachesTheOptimalTime) {
+  const auto di = DoubleIntegratorFreeTime();
+  const auto brach = MakeProblem("brachistochrone-free-time", {}, 0);
+  auto solve = [](const Ocp& ocp, const std::string& scheme, int N) {
+    SolveRequest request = Request(ocp, N, TerminalMode::kHard);
+    request.transcription = scheme;
+    const SolveResult r = FindSolver("ipopt").make()->Solve(ocp, request);
+    EXPECT_EQ(r.status, SolveStatus::kConverged) << scheme << ": " << r.message;
+    EXPECT_DOUBLE_EQ(r.solver_stats.at("final_time"), r.state_grid.tf());
+    EXPECT_DOUBLE_EQ(r.controls.grid().tf(), r.state_grid.tf());
+    return r.state_grid.tf();
+  };
+  for (const char* scheme : {"hermite-simpson", "lgr"}) {
+    SCOPED_TRACE(scheme);
+    EXPECT_NEAR(solve(*di, scheme, 20), kT, 1e-8);
+    EXPECT_NEAR(solve(*brach, scheme, 50), FreeTimeBrachistochrone::kReferenceTime, 1e-6);
+  }
+  const double trap[2] = {std::abs(solve(*di, "trapezoid", 50) - kT),
+                          std::abs(solve(*di, "trapezoid", 100) - kT)};
+  EXPECT_NEAR(std::log2(trap[0] / trap[1]), 2.0, 0.2) << trap[0] << " " << trap[1];
+  const double euler[2] = {std::abs(solve(*di, "euler", 50) - kT),
+                           std::abs(solve(*di, "euler", 100) - kT)};
+  // Euler is first order in general; its T here comes out second order (2.1e-4, 5.1e-5).
+  EXPECT_GT(std::log2(euler[0] / euler[1]), 0.8) << euler[0] << " " << euler[1];
+  // The multiplier costates on the stretched grid follow the analytic costate.
+  SolveRequest request = Request(*di, 40, TerminalMode::kHard);
+  request.transcription = "hermite-simpson";
+  const SolveResult r = FindSolver("ipopt").make()->Solve(*di, request);
+  ASSERT_EQ(r.costates.cols(), r.state_grid.size());
+  double err = 0.0;
+  for (int k = 0; k < r.state_grid.size(); ++k) {
+    err = std::max(err,
+                   (r.costates.col(k) - ExactCostate(r.state_grid.t(k))).lpNorm<Eigen::Infinity>());
+  }
+  EXPECT_LE(err, 1e-3);
+}
+
+// The indirect method warm-started from Ipopt's trapezoid solution of the same free-time problem
+// (warm_start = ipopt, whose default costates are Ipopt's multiplier costates): where its cold
+// start fails (brachistochrone-free-time), it converges in a few steps to Ipopt's T.
+TEST(DirectFreeTime, IndirectNewtonWarmStartedFromIpoptOnTheBrachistochrone) {
+  const auto ocp = MakeProblem("brachistochrone-free-time", {}, 0);
+  for (TerminalMode mode : {TerminalMode::kHard, TerminalMode::kPenalty}) {
+    SCOPED_TRACE(ToString(mode));
+    const SolveResult cold = IndirectNewton().Solve(*ocp, Request(*ocp, 100, mode));
+    EXPECT_NE(cold.status, SolveStatus::kConverged);
+    const SolveResult r =
+        IndirectNewton().Solve(*ocp, Request(*ocp, 100, mode, {{"warm_start", "ipopt"}}));
+    ExpectConverged(r);
+    EXPECT_LE(r.iterations, 4);
+    EXPECT_GT(r.solver_stats.at("warm_start_iterations"), 0);
+    EXPECT_NE(r.message.find("costates adjoint"), std::string::npos) << r.message;
+    EXPECT_NEAR(r.state_grid.tf(), FreeTimeBrachistochrone::kReferenceTime, 2e-5);
+  }
+}
+
+// NLopt takes the same NLP (T a variable, bounded): SLSQP on a small grid.
+TEST(DirectFreeTime, NloptSlsqpSolvesTheFreeTimeDoubleIntegrator) {
+  const auto ocp = DoubleIntegratorFreeTime();
+  SolveRequest request = Request(*ocp, 10, TerminalMode::kHard);
+  request.transcription = "hermite-simpson";
+  request.algorithm = "LD_SLSQP";
+  const SolveResult r = FindSolver("nlopt").make()->Solve(*ocp, request);
+  EXPECT_TRUE(IsSuccess(r.status)) << r.solver_status << ": " << r.message;
+  EXPECT_NEAR(r.state_grid.tf(), kT, 1e-5);
 }
 
 }  // namespace

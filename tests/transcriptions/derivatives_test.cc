@@ -1,6 +1,7 @@
 // Every transcription's gradient, constraint Jacobian and Hessian of the Lagrangian against
-// central differences, on three problems, both terminal modes, with and without scaling; and the
-// declared sparsity (unique triplets, Hessian lower triangle) covers every nonzero found.
+// central differences, on five problems (two with a free final time), both terminal modes, with and
+// without scaling; and the declared sparsity (unique triplets, Hessian lower triangle) covers every
+// nonzero found.
 #include <cmath>
 #include <random>
 #include <set>
@@ -21,7 +22,7 @@ namespace {
 struct Case {
   std::string scheme;
   int degree;
-  std::string problem;  // "double-integrator", "nonlinear", "ball"
+  std::string problem;  // "double-integrator", "nonlinear", "ball", "free-time", "free-time-ball"
   TerminalMode mode;
   bool scaled;
 };
@@ -44,6 +45,9 @@ std::string CaseName(const ::testing::TestParamInfo<Case>& info) {
 std::unique_ptr<Ocp> MakeOcp(const std::string& name) {
   if (name == "nonlinear") return std::make_unique<testing::NonlinearTestOcp>();
   if (name == "ball") return std::make_unique<testing::BallTestOcp>();
+  // A free final time: T is the NLP's last variable (its column, row and cross terms).
+  if (name == "free-time") return MakeProblem("double-integrator-free-time", {}, 0);
+  if (name == "free-time-ball") return MakeProblem("brachistochrone-free-time", {}, 0);
   return MakeProblem("double-integrator", {}, 0);
 }
 
@@ -145,7 +149,8 @@ std::vector<Case> AllCases() {
   const std::vector<std::pair<std::string, int>> schemes = {
       {"euler", 0}, {"trapezoid", 0}, {"hermite-simpson", 0}, {"lgr", 1}, {"lgr", 3}, {"lgr", 4}};
   for (const auto& [scheme, degree] : schemes) {
-    for (const std::string problem : {"double-integrator", "nonlinear", "ball"}) {
+    for (const std::string problem :
+         {"double-integrator", "nonlinear", "ball", "free-time", "free-time-ball"}) {
       for (TerminalMode mode : {TerminalMode::kPenalty, TerminalMode::kHard}) {
         for (bool scaled : {false, true}) cases.push_back({scheme, degree, problem, mode, scaled});
       }
