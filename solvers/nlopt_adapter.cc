@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "core/timer.h"
+#include "solvers/nlp_stationarity.h"
 
 namespace ocpb {
 namespace {
@@ -323,6 +324,7 @@ bool NloptOptions::IsValid(std::string* error) const {
     return fail("constraint_tol must be finite and >= 0");
   }
   if (!(feasibility_tol > 0.0)) return fail("feasibility_tol must be > 0");
+  if (!(stationarity_tol > 0.0)) return fail("stationarity_tol must be > 0");
   if (!(max_dense_jacobian > 0.0)) return fail("max_dense_jacobian must be > 0");
   if (slsqp_max_variables < 1) return fail("slsqp_max_variables must be >= 1");
   if (mma_max_inequalities < 0) return fail("mma_max_inequalities must be >= 0");
@@ -340,6 +342,7 @@ NloptOptions NloptOptions::FromStrings(const std::map<std::string, std::string>&
       {"local_xtol_rel", &o.local_xtol_rel},
       {"constraint_tol", &o.constraint_tol},
       {"feasibility_tol", &o.feasibility_tol},
+      {"stationarity_tol", &o.stationarity_tol},
       {"max_dense_jacobian", &o.max_dense_jacobian},
   };
   const std::map<std::string, int*> integers = {
@@ -532,11 +535,22 @@ NlpSolution SolveNlpWithNlopt(const Nlp& nlp, const Vec& z0, const NloptOptions&
   // NLopt's convergence tests do not look at feasibility: check it.
   const double violation = NlpViolation(nlp, z);
   out.stats["nlopt_final_violation"] = violation;
+  const double stationarity = NlpStationarity(nlp, z, options.feasibility_tol);
+  out.stats["nlopt_stationarity"] = stationarity;
   if (out.status == SolveStatus::kConverged && !(violation <= options.feasibility_tol)) {
     out.status = SolveStatus::kInfeasible;
     message += "NLopt reported " + out.solver_status + " at a point violating the constraints by " +
                std::to_string(violation) + " > feasibility_tol " +
                std::to_string(options.feasibility_tol) + ". ";
+  }
+  const bool size_test = code == NLOPT_FTOL_REACHED || code == NLOPT_XTOL_REACHED;
+  if (out.status == SolveStatus::kConverged && size_test &&
+      !(stationarity <= options.stationarity_tol)) {
+    out.status = SolveStatus::kStepTooSmall;
+    message += "NLopt reported " + out.solver_status +
+               " at a point that is not stationary: relative KKT residual " +
+               std::to_string(stationarity) + " > stationarity_tol " +
+               std::to_string(options.stationarity_tol) + ". ";
   }
   if (code == NLOPT_ROUNDOFF_LIMITED) {
     message += "roundoff limited: the last point is kept (usually still useful). ";

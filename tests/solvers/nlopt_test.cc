@@ -253,7 +253,9 @@ SolveRequest ShootingRequest(double tf, int N, TerminalMode mode) {
 // reaches Ipopt's optimum of the same NLP. MMA and CCSAQ are first-order methods with
 // conservative models; on this penalized problem (C = 1000) their steps shrink and NLopt's
 // ftol_rel test stops them early: measured 0.3% and 0.06% above the optimum after ~3600
-// evaluations. The stated tolerances are those measurements rounded up.
+// evaluations, where the stationarity check finds relative KKT residuals of 2.8e-2 and 1.2e-2
+// (> stationarity_tol = 1e-2): step_too_small, NLopt's FTOL_REACHED kept. The stated tolerances
+// are those measurements rounded up.
 TEST(NloptSolver, EveryAlgorithmOnThePenalizedDoubleIntegrator) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   SolveRequest request = ShootingRequest(1.0, 20, TerminalMode::kPenalty);
@@ -270,7 +272,9 @@ TEST(NloptSolver, EveryAlgorithmOnThePenalizedDoubleIntegrator) {
   for (const auto& [alg, tol] : tolerance) {
     request.algorithm = alg;
     const SolveResult r = solver.Solve(*ocp, request);
-    EXPECT_EQ(r.status, SolveStatus::kConverged) << alg << ": " << r.message;
+    const bool creeps = alg == "LD_MMA" || alg == "LD_CCSAQ";
+    EXPECT_EQ(r.status, creeps ? SolveStatus::kStepTooSmall : SolveStatus::kConverged)
+        << alg << ": " << r.message;
     EXPECT_GE(r.objective, ipopt.objective * (1.0 - 1e-10)) << alg;
     EXPECT_LE(r.objective, ipopt.objective * (1.0 + tol)) << alg;
     EXPECT_EQ(r.solver, "nlopt");
@@ -369,11 +373,13 @@ void ExpectPaperCases(TerminalMode mode, const std::vector<PaperCase>& cases) {
 // 1.4e-3 and 1.2e-3 above (after 2000: the same to two digits). Around MMA or CCSAQ, AUGLAG's local
 // run stops at local_maxeval = 5000 and the next one barely moves, so NLopt's outer ftol test
 // reports FTOL_REACHED 1.0e-3 to 1.3e-3 above the optimum: "converged" from NLopt means f stopped
-// changing, not that it is optimal. L-BFGS takes bounds only, so the ball rows refuse it (alone, or
-// as AUGLAG_EQ's local algorithm, which keeps the inequalities).
+// changing, not that it is optimal. OCPBench's stationarity check (relative KKT residuals 0.47 to
+// 1.0 there, against 1e-2) reports them step_too_small, NLopt's FTOL_REACHED kept. L-BFGS takes
+// bounds only, so the ball rows refuse it (alone, or as AUGLAG_EQ's local algorithm, which keeps
+// the inequalities).
 TEST(NloptSolver, PaperProblemPenaltyFormEveryAlgorithm) {
   const SolveStatus ok = SolveStatus::kConverged, stop = SolveStatus::kMaxTime,
-                    no = SolveStatus::kNotApplicable;
+                    no = SolveStatus::kNotApplicable, stall = SolveStatus::kStepTooSmall;
   ExpectPaperCases(
       TerminalMode::kPenalty,
       {
@@ -383,10 +389,10 @@ TEST(NloptSolver, PaperProblemPenaltyFormEveryAlgorithm) {
           {"AUGLAG_EQ", "LD_SLSQP", 0, ok, "FTOL_REACHED", 1e-8, ""},
           {"LD_MMA", "LD_LBFGS", 1000, stop, "MAXEVAL_REACHED", 3e-3, ""},
           {"LD_CCSAQ", "LD_LBFGS", 1000, stop, "MAXEVAL_REACHED", 3e-3, ""},
-          {"AUGLAG", "LD_MMA", 0, ok, "FTOL_REACHED", 2.5e-3, ""},
-          {"AUGLAG", "LD_CCSAQ", 0, ok, "FTOL_REACHED", 2.5e-3, ""},
-          {"AUGLAG_EQ", "LD_MMA", 0, ok, "FTOL_REACHED", 2.5e-3, ""},
-          {"AUGLAG_EQ", "LD_CCSAQ", 0, ok, "FTOL_REACHED", 2.5e-3, ""},
+          {"AUGLAG", "LD_MMA", 0, stall, "FTOL_REACHED", 2.5e-3, ""},
+          {"AUGLAG", "LD_CCSAQ", 0, stall, "FTOL_REACHED", 2.5e-3, ""},
+          {"AUGLAG_EQ", "LD_MMA", 0, stall, "FTOL_REACHED", 2.5e-3, ""},
+          {"AUGLAG_EQ", "LD_CCSAQ", 0, stall, "FTOL_REACHED", 2.5e-3, ""},
           {"LD_LBFGS", "LD_LBFGS", 0, no, "not_run", 0, "takes only bound constraints"},
           {"AUGLAG_EQ", "LD_LBFGS", 0, no, "not_run", 0, "local algorithm LD_LBFGS"},
       });
