@@ -535,15 +535,19 @@ NlpSolution SolveNlpWithNlopt(const Nlp& nlp, const Vec& z0, const NloptOptions&
   // NLopt's convergence tests do not look at feasibility: check it.
   const double violation = NlpViolation(nlp, z);
   out.stats["nlopt_final_violation"] = violation;
-  const double stationarity = NlpStationarity(nlp, z, options.feasibility_tol);
-  out.stats["nlopt_stationarity"] = stationarity;
   if (out.status == SolveStatus::kConverged && !(violation <= options.feasibility_tol)) {
     out.status = SolveStatus::kInfeasible;
     message += "NLopt reported " + out.solver_status + " at a point violating the constraints by " +
                std::to_string(violation) + " > feasibility_tol " +
                std::to_string(options.feasibility_tol) + ". ";
   }
+  // Constraints within 1e-4 (relative) count as active: looser than feasibility_tol, so that
+  // rows approached from the feasible side (MMA, CCSAQ, AUGLAG's slack) are balanced too.
   const bool size_test = code == NLOPT_FTOL_REACHED || code == NLOPT_XTOL_REACHED;
+  const double stationarity = out.status == SolveStatus::kConverged && size_test
+                                  ? NlpStationarity(nlp, z, std::max(1e-4, options.feasibility_tol))
+                                  : NAN;
+  if (size_test) out.stats["nlopt_stationarity"] = stationarity;
   if (out.status == SolveStatus::kConverged && size_test &&
       !(stationarity <= options.stationarity_tol)) {
     out.status = SolveStatus::kStepTooSmall;

@@ -46,7 +46,7 @@ struct NloptOptions {
   double feasibility_tol = 1e-6;
   /// OCPBench's second check when NLopt stops on FTOL_REACHED or XTOL_REACHED (its tests look
   /// at the size of the last change, not at the gradient): the relative stationarity residual
-  /// with least-squares multipliers (NlpStationarity, active within feasibility_tol) must not
+  /// with least-squares multipliers (NlpStationarity, active within 1e-4 relative) must not
   /// exceed stationarity_tol, else the status becomes kStepTooSmall (progress stopped at a
   /// non-stationary point; NLopt's name is kept verbatim). The default separates what was
   /// measured: converged runs 2e-9 .. 2.2e-3 (single shooting, C = 500), a false FTOL_REACHED

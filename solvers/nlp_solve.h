@@ -61,10 +61,11 @@ std::unique_ptr<TranscribedNlp> TranscribeRequest(const Ocp& ocp,
 /// `scaling`), runs
 /// `backend` on the transcribed NLP from its starting point, and fills a SolveResult:
 /// controls = nlp.Controls(z) (what the evaluator judges), states and costates (from the
-/// multipliers, when the backend returns them) on nlp.state_grid(), objective = the NLP
-/// objective re-evaluated at z, and the backend's status, history and statistics verbatim.
-/// `objective` and the history's J are in the problem's units (divided by scaling.objective).
-/// std::invalid_argument from the transcription propagates (an invalid request).
+/// multipliers, when the backend returns them) on nlp.StateGrid(z) (stretched to T for a free final
+/// time), objective = the NLP objective re-evaluated at z, and the backend's status, history and
+/// statistics verbatim. `objective` and the history's J are in the problem's units (divided by
+/// scaling.objective). std::invalid_argument from the transcription propagates (an invalid
+/// request).
 SolveResult SolveTranscribed(const std::string& solver_name,
                              const Ocp& ocp,
                              const SolveRequest& request,

@@ -21,8 +21,14 @@ double NlpStationarity(const Nlp& nlp, ConstVecRef z, double active_tol) {
   // Free variables get consecutive columns; fixed ones (at or beyond a bound) are dropped.
   std::vector<int> column(n, -1);
   int nf = 0;
+  auto near = [active_tol](double v, double bound) {
+    return std::isfinite(bound) &&
+           std::abs(v - bound) <= active_tol * std::max(1.0, std::abs(bound));
+  };
   for (int i = 0; i < n; ++i) {
-    if (z[i] > zl[i] + active_tol && z[i] < zu[i] - active_tol) column[i] = nf++;
+    if (z[i] > zl[i] && z[i] < zu[i] && !near(z[i], zl[i]) && !near(z[i], zu[i])) {
+      column[i] = nf++;
+    }
   }
   Vec g_free(nf);
   for (int i = 0; i < n; ++i) {
@@ -36,7 +42,8 @@ double NlpStationarity(const Nlp& nlp, ConstVecRef z, double active_tol) {
   std::vector<int> row(m, -1);
   int na = 0;
   for (int j = 0; j < m; ++j) {
-    const bool active = gl[j] == gu[j] || g[j] <= gl[j] + active_tol || g[j] >= gu[j] - active_tol;
+    const bool active =
+        gl[j] == gu[j] || g[j] <= gl[j] || g[j] >= gu[j] || near(g[j], gl[j]) || near(g[j], gu[j]);
     if (active) row[j] = na++;
   }
   Vec values(static_cast<Eigen::Index>(nlp.jacobian_rows().size()));

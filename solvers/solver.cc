@@ -8,11 +8,12 @@ std::optional<SolveResult> FreeFinalTimeNotApplicable(const Ocp& ocp, const std:
   r.solver = solver;
   r.status = SolveStatus::kNotApplicable;
   r.solver_status = "not_applicable";
-  r.message = "problem '" + ocp.name() + "' has a free final time, which " + solver +
-              " does not take (it keeps the horizon fixed): indirect-newton (H(tf) = 0) and the "
-              "NLP solvers on a collocation transcription (T a variable) solve it; the "
-              "time-scaled problems (brachistochrone, zermelo, goddard, robot-arm) pose free "
-              "time on a fixed horizon for every method";
+  r.message =
+      "problem '" + ocp.name() + "' has a free final time, which " + solver +
+      " does not take (it keeps the horizon fixed): indirect-newton (H(tf) = 0) and the "
+      "NLP solvers on a collocation transcription (T a variable) solve it; the "
+      "time-scaled problems (brachistochrone, zermelo, steering, goddard, robot-arm) pose free "
+      "time on a fixed horizon for every method";
   r.iterations = 0;
   r.cpu_seconds = 0.0;
   r.wall_seconds = 0.0;

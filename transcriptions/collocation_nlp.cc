@@ -267,7 +267,7 @@ Vec CollocationNlp::StartingPoint() const {
     guess.Evaluate(t, side, values.col(i));
     ocp_.control_set().Project(values.col(i));
   }
-  const Evaluation ev = Evaluate(ocp_, MakeControls(values), state_grid_, start_integrator_);
+  const Evaluation ev = Evaluate(ocp_, MakeControls(values, grid_), state_grid_, start_integrator_);
   Mat X = ev.X;
   if (!X.allFinite()) X = ocp_.x0().replicate(1, state_grid_.size());
 
@@ -306,18 +306,9 @@ TimeGrid CollocationNlp::StateGrid(ConstVecRef zhat) const {
 }
 
 ControlTrajectory CollocationNlp::Controls(ConstVecRef zhat) const {
-  ControlTrajectory nominal = MakeControls(ControlValues(zhat));
-  if (!free_time_) return nominal;
-  // The scheme's controls on [t0, tf], read on the stretched axis [t0, T]: u(t) = u_nominal(t0 +
-  // (t - t0) / r).
-  const double t0 = grid_.t0(), r = (FinalTime(zhat) - t0) * inv_duration_;
-  const double tf = grid_.tf();
-  const std::string rule = std::string(nominal.InterpolationName()) +
-                           ", on the time axis stretched to [t0, T] (free final time)";
-  auto fn = [nominal, t0, r, tf](double t, ControlTrajectory::Side side, VecRef u) {
-    nominal.Evaluate(std::min(t0 + (t - t0) / r, tf), side, u);
-  };
-  return ControlTrajectory::Custom(nu_, grid_.StretchedTo(FinalTime(zhat)), fn, rule);
+  // With a free final time the scheme's own interpolation on the stretched mesh: mapping times
+  // back to the nominal mesh instead would put stretched nodes an ulp into the wrong interval.
+  return MakeControls(ControlValues(zhat), free_time_ ? grid_.StretchedTo(FinalTime(zhat)) : grid_);
 }
 
 Mat CollocationNlp::States(ConstVecRef zhat) const {

@@ -161,8 +161,11 @@ class CollocationNlp : public TranscribedNlp {
   Vec Scale(ConstVecRef z) const { return z.cwiseQuotient(var_scale_); }
 
  protected:
-  /// The scheme's interpolation of the control block values (nu x controls, physical).
-  virtual ControlTrajectory MakeControls(const Mat& values) const = 0;
+  /// The scheme's interpolation of the control block values (nu x controls, physical) on `grid`:
+  /// the transcription's mesh, or (free final time) that mesh stretched to [t0, T]. The schemes
+  /// interpolate in each interval's own coordinate (t - t_k) / h_k, so the stretched controls are
+  /// exactly the nominal ones on the stretched time axis, interval by interval.
+  virtual ControlTrajectory MakeControls(const Mat& values, const TimeGrid& grid) const = 0;
   const TimeGrid& grid() const { return grid_; }
 
  private:

@@ -10,8 +10,8 @@ class EulerNlp final : public CollocationNlp {
   using CollocationNlp::CollocationNlp;
 
  protected:
-  ControlTrajectory MakeControls(const Mat& values) const override {
-    return ControlTrajectory::PiecewiseConstant(grid(), values);
+  ControlTrajectory MakeControls(const Mat& values, const TimeGrid& grid) const override {
+    return ControlTrajectory::PiecewiseConstant(grid, values);
   }
 };
 

@@ -13,8 +13,8 @@ class HermiteSimpsonNlp final : public CollocationNlp {
   using CollocationNlp::CollocationNlp;
 
  protected:
-  ControlTrajectory MakeControls(const Mat& values) const override {
-    const TimeGrid g = grid();
+  ControlTrajectory MakeControls(const Mat& values, const TimeGrid& grid) const override {
+    const TimeGrid g = grid;
     const ControlSet set = ocp().control_set();
     auto fn = [g, values, set](double t, ControlTrajectory::Side side, VecRef u) {
       int k = g.Locate(t);

@@ -17,8 +17,8 @@ class LgrNlp final : public CollocationNlp {
         nodes_(std::move(nodes)) {}
 
  protected:
-  ControlTrajectory MakeControls(const Mat& values) const override {
-    const TimeGrid g = grid();
+  ControlTrajectory MakeControls(const Mat& values, const TimeGrid& grid) const override {
+    const TimeGrid g = grid;
     const ControlSet set = ocp().control_set();
     const Vec tau = nodes_.points, bary = nodes_.point_weights;
     const int K = nodes_.K;

@@ -10,8 +10,8 @@ class TrapezoidNlp final : public CollocationNlp {
   using CollocationNlp::CollocationNlp;
 
  protected:
-  ControlTrajectory MakeControls(const Mat& values) const override {
-    return ControlTrajectory::PiecewiseLinear(grid(), values);
+  ControlTrajectory MakeControls(const Mat& values, const TimeGrid& grid) const override {
+    return ControlTrajectory::PiecewiseLinear(grid, values);
   }
 };
 

@@ -62,8 +62,9 @@ ProblemInfo FreeTimeBrachistochroneProblemInfo() {
       "the cycloid through (2, 2), re-derived (project notes 2.10; PSOPT brac1: 0.8247591)";
   p.hamiltonian_applicable = false;
   p.hamiltonian_note =
-      "free final time: only indirect-newton takes it (H(T) = 0); the time-scaled "
-      "'brachistochrone' poses it for every method";
+      "free final time: the descent keeps tf fixed (not applicable); indirect-newton and the NLP "
+      "solvers on a collocation transcription take it; the time-scaled 'brachistochrone' poses it "
+      "for every method";
   return p;
 }
 

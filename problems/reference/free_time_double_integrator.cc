@@ -48,7 +48,8 @@ ProblemInfo FreeTimeDoubleIntegratorProblemInfo() {
       "H(T) = 0)";
   p.hamiltonian_applicable = false;
   p.hamiltonian_note =
-      "free final time: only indirect-newton takes it (H(T) = 0); the descent keeps tf fixed";
+      "free final time: the descent keeps tf fixed (not applicable); indirect-newton (H(T) = 0) "
+      "and the NLP solvers on a collocation transcription (T a variable) take it";
   return p;
 }
 

@@ -54,8 +54,8 @@ class GaussLegendre3Nlp final : public CollocationNlp {
   static constexpr double kC[3] = {0.5 - kR, 0.5, 0.5 + kR};
 
  protected:
-  ControlTrajectory MakeControls(const Mat& values) const override {
-    const TimeGrid g = grid();
+  ControlTrajectory MakeControls(const Mat& values, const TimeGrid& grid) const override {
+    const TimeGrid g = grid;
     const ControlSet set = ocp().control_set();
     return ControlTrajectory::Custom(
         static_cast<int>(values.rows()),

@@ -285,6 +285,25 @@ TEST(DirectFreeTime, IpoptOnEveryCollocationTranscriptionReachesTheOptimalTime) 
   EXPECT_LE(err, 1e-3);
 }
 
+// The Euler transcription's controls, read on the stretched grid by the Euler evaluator,
+// reproduce the NLP's own discrete problem exactly (as on a fixed horizon): every stretched node
+// keeps its own interval's control (a regression: mapping times back to the nominal grid put
+// nodes an ulp into the previous interval, 1e-3 terminal violation on the brachistochrone).
+TEST(DirectFreeTime, EulerControlsOnTheStretchedGridReproduceTheNlp) {
+  const auto ocp = MakeProblem("brachistochrone-free-time", {}, 0);
+  for (int N : {100, 400}) {
+    SolveRequest request = Request(*ocp, N, TerminalMode::kHard);
+    request.transcription = "euler";
+    const SolveResult r = FindSolver("ipopt").make()->Solve(*ocp, request);
+    ASSERT_EQ(r.status, SolveStatus::kConverged) << r.message;
+    const TimeGrid grid = request.grid.StretchedTo(r.state_grid.tf());
+    const Evaluation ev = Evaluate(*ocp, r.controls, grid, Integrator::kEuler);
+    EXPECT_LE(ev.terminal_violation, 1e-8) << N;
+    EXPECT_NEAR(ev.J, r.objective, 1e-9 * r.objective) << N;
+    EXPECT_LE((ev.X - r.states).lpNorm<Eigen::Infinity>(), 1e-8) << N;
+  }
+}
+
 // The indirect method warm-started from Ipopt's trapezoid solution of the same free-time problem
 // (warm_start = ipopt, whose default costates are Ipopt's multiplier costates): where its cold
 // start fails (brachistochrone-free-time), it converges in a few steps to Ipopt's T.
