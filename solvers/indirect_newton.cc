@@ -468,7 +468,15 @@ const char* ToString(IndirectNewtonOptions::WarmStart warm_start) {
 }
 
 const char* ToString(IndirectNewtonOptions::Costates costates) {
-  return costates == IndirectNewtonOptions::Costates::kFit ? "fit" : "adjoint";
+  switch (costates) {
+    case IndirectNewtonOptions::Costates::kFit:
+      return "fit";
+    case IndirectNewtonOptions::Costates::kAdjoint:
+      return "adjoint";
+    case IndirectNewtonOptions::Costates::kDefault:
+      break;
+  }
+  return "default";
 }
 
 bool IndirectNewtonOptions::IsValid(std::string* error) const {
@@ -546,8 +554,10 @@ IndirectNewton::Options IndirectNewton::ParseOptions(
         o.costates = Options::Costates::kFit;
       } else if (value == "adjoint") {
         o.costates = Options::Costates::kAdjoint;
+      } else if (value == "default") {
+        o.costates = Options::Costates::kDefault;
       } else {
-        BadOption(key, "'" + value + "' is not one of fit, adjoint");
+        BadOption(key, "'" + value + "' is not one of fit, adjoint, default");
       }
     } else if (key == "path_penalty") {
       o.path_penalty = ParseDouble(key, value);
@@ -620,7 +630,7 @@ void IndirectNewton::CostatesFromControls(const Ocp& ocp,
   Vec q(nx);
   double value = 0.0;
   ocp.TerminalObjectiveGradient(X.col(N), mode, &value, q);
-  if (how == Options::Costates::kFit) q = FitTerminalCostate(ocp, grid, controls, X, M, c, q);
+  if (how != Options::Costates::kAdjoint) q = FitTerminalCostate(ocp, grid, controls, X, M, c, q);
   P->resize(nx, N + 1);
   for (int k = 0; k <= N; ++k) P->col(k) = M[k] * q + c[k];
 }

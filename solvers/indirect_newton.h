@@ -32,9 +32,9 @@ struct IndirectNewtonOptions {
   ///    says (kAdjoint: Ipopt's multiplier costates).
   enum class WarmStart { kNone, kHamiltonian, kIpopt };
   /// How the start's costates are made from its controls u and states X. Key "costates":
-  /// "fit" | "adjoint"; unset: kAdjoint with warm_start = kIpopt (a KKT point's multipliers are
-  /// its costates; the fit cannot see controls on the boundary of U, such as the disc of
-  /// brachistochrone-free-time, and gives zero costates there), kFit otherwise
+  /// "fit" | "adjoint" | "default"; kDefault: kAdjoint with warm_start = kIpopt (a KKT point's
+  /// multipliers are its costates; the fit cannot see controls on the boundary of U, such as the
+  /// disc of brachistochrone-free-time, and gives zero costates there), kFit otherwise
   /// (EffectiveCostates()).
   ///  - kFit: the trapezoidal costate equation of u
   ///  (IndirectNewton::CostatesFromControls)
@@ -47,7 +47,7 @@ struct IndirectNewtonOptions {
   ///    but their terminal value 2 w psi(x_N) amplifies the terminal error a first-order method
   ///    leaves, so u*(x, p) can differ wildly from u (on comm-path2d after 200 descent iterations:
   ///    R* = 0 and |u*| = umax at every node; solvers/README-indirect.md).
-  enum class Costates { kFit, kAdjoint };
+  enum class Costates { kDefault, kFit, kAdjoint };
 
   /// Newton steps at most (>= 0; 0 only evaluates the start).
   int max_iterations = 50;
@@ -66,11 +66,11 @@ struct IndirectNewtonOptions {
   /// solvers/README-indirect.md).
   LinearSolver linear_solver = LinearSolver::kKlu;
   WarmStart warm_start = WarmStart::kNone;
-  std::optional<Costates> costates;
-  /// `costates`, or its default for `warm_start` when unset.
+  Costates costates = Costates::kDefault;
+  /// `costates`, with kDefault resolved for `warm_start` (kFit or kAdjoint, never kDefault).
   Costates EffectiveCostates() const {
-    return costates ? *costates
-                    : (warm_start == WarmStart::kIpopt ? Costates::kAdjoint : Costates::kFit);
+    if (costates != Costates::kDefault) return costates;
+    return warm_start == WarmStart::kIpopt ? Costates::kAdjoint : Costates::kFit;
   }
   /// Options handed verbatim to the "hamiltonian" solver (it validates them); only allowed with
   /// warm_start = kHamiltonian. path_penalty and regularization below are passed on to it unless
@@ -186,7 +186,7 @@ class IndirectNewton final : public Solver {
   /// the right at t_k and from the left at t_{k+1} on interval k, so that p_k = M_k q + c_k is
   /// affine in the terminal costate q = p_N. Then
   ///  - kAdjoint: q0 = grad Phi(x_N) (penalty form) or grad phi(x_N) (hard form);
-  ///  - kFit: q minimizes
+  ///  - kFit (and kDefault): q minimizes
   ///      sum_k w_k |(H_uu,k)_F^-1 (H_u,k)_F|^2 + delta^2 |q - q0|^2,
   ///    H_u,k = L_u + f_u^T p_k(q) at (t_k, x_k, u_k), F the components of u_k strictly inside U
   ///    (box components more than 1e-6 of their range from a bound; ball blocks with |u - c| <

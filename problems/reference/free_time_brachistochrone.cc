@@ -3,20 +3,12 @@
 #include <cmath>
 #include <memory>
 
+#include "problems/reference/free_time_parameters.h"
+
 namespace ocpb {
 
 std::vector<ParameterSpec> FreeTimeBrachistochrone::ParameterSpecs() {
-  return {
-      {"C", {1000.0}, "terminal penalty weight (penalty form)", 0.0, 1e300, true},
-      {"tf",
-       {1.0},
-       "nominal final time: where methods start (within [tf_min, tf_max])",
-       0.0,
-       1e6,
-       true},
-      {"tf_min", {0.1}, "lower bound of the free final time", 0.0, 1e6, true},
-      {"tf_max", {10.0}, "upper bound of the free final time", 0.0, 1e6, true},
-  };
+  return FreeFinalTimeParameterSpecs(10.0);
 }
 
 FreeTimeBrachistochrone::FreeTimeBrachistochrone(const Parameters& params) {

@@ -2,20 +2,12 @@
 
 #include <memory>
 
+#include "problems/reference/free_time_parameters.h"
+
 namespace ocpb {
 
 std::vector<ParameterSpec> FreeTimeDoubleIntegrator::ParameterSpecs() {
-  return {
-      {"C", {1000.0}, "terminal penalty weight (penalty form)", 0.0, 1e300, true},
-      {"tf",
-       {1.0},
-       "nominal final time: where methods start (within [tf_min, tf_max])",
-       0.0,
-       1e6,
-       true},
-      {"tf_min", {0.1}, "lower bound of the free final time", 0.0, 1e6, true},
-      {"tf_max", {100.0}, "upper bound of the free final time", 0.0, 1e6, true},
-  };
+  return FreeFinalTimeParameterSpecs(100.0);
 }
 
 FreeTimeDoubleIntegrator::FreeTimeDoubleIntegrator(const Parameters& params) {

@@ -201,7 +201,7 @@ TEST(IndirectNewtonOptions, DefaultsAreValid) {
   EXPECT_EQ(o.tolerance, 1e-10);
   EXPECT_EQ(o.linear_solver, IndirectNewton::Options::LinearSolver::kKlu);
   EXPECT_EQ(o.warm_start, IndirectNewton::Options::WarmStart::kNone);
-  EXPECT_FALSE(o.costates.has_value());
+  EXPECT_EQ(o.costates, IndirectNewton::Options::Costates::kDefault);
   EXPECT_EQ(o.EffectiveCostates(), IndirectNewton::Options::Costates::kFit);
   IndirectNewton::Options from_ipopt;
   from_ipopt.warm_start = IndirectNewton::Options::WarmStart::kIpopt;
@@ -255,7 +255,7 @@ TEST(IndirectNewtonOptions, RejectsBadKeysAndValuesNamingThem) {
   EXPECT_NE(message({{"min_step", "0"}}).find("(0, 1]"), std::string::npos);
   EXPECT_NE(message({{"linear_solver", "lu"}}).find("umfpack, klu"), std::string::npos);
   EXPECT_NE(message({{"warm_start", "nlopt"}}).find("none, hamiltonian, ipopt"), std::string::npos);
-  EXPECT_NE(message({{"costates", "exact"}}).find("fit, adjoint"), std::string::npos);
+  EXPECT_NE(message({{"costates", "exact"}}).find("fit, adjoint, default"), std::string::npos);
   EXPECT_NE(message({{"hamiltonian.alpha", "0.2"}}).find("warm_start"), std::string::npos);
   IndirectNewton::Options bad;
   bad.max_iterations = -1;
