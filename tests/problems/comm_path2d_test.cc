@@ -1,9 +1,11 @@
 #include "problems/comm_path2d.h"
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -359,6 +361,105 @@ TEST(CommPath2d, RunningCostLowerBoundHolds) {
     EXPECT_GE(ocp.RunningCost(0.0, x, u), m);
   }
   EXPECT_EQ(ocp.RunningCost(0.0, Vec::Zero(5), Vec::Zero(3)), m);
+}
+
+// ---- EulerStageModel: the descent's fast path returns the generic functions' numbers bitwise ----
+
+// At random (x, u, p) for k5 = k6 = 0 and > 0, on the path-loss channel and a map: the cached
+// running cost, the pointwise bound, the Euler step and the backward point against RunningCost,
+// Dynamics, MinimizeAndCompareHamiltonian, DynamicsJacobian and RunningCostGradient.
+TEST(CommPath2d, StageModelIsBitwiseTheGenericFunctions) {
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> pos(-5.0, 55.0), vel(-2.0, 2.0), unit(-1.0, 1.0);
+  const auto map = RippleMap();
+  for (const auto& [k5, k6, channel] : {std::tuple{0.0, 0.0, PaperPathLoss()},
+                                        std::tuple{0.7, 1.3, PaperPathLoss()},
+                                        std::tuple{0.0, 0.0, map},
+                                        std::tuple{0.7, 1.3, map}}) {
+    const CommPath2d ocp(WithK56(k5, k6), channel);
+    const EulerStageModel& model = ocp;
+    ASSERT_EQ(model.StageCacheSize(), 6);
+    for (int trial = 0; trial < 60; ++trial) {
+      Vec x(5), u(3), p(5), f(5), Lx(5), Lu(3), u_ref(3), cache(6), x_next(5);
+      x << pos(rng), pos(rng), vel(rng), vel(rng), 100.0 * (1.0 + unit(rng));
+      u << 0.4 * unit(rng), 0.4 * unit(rng), 3.0 + 3.0 * unit(rng);
+      if (trial % 10 == 0) x[2] = x[3] = 0.0;
+      if (trial % 10 == 1) u[0] = u[1] = u[2] = 0.0;
+      ocp.control_set().Project(u);
+      for (int i = 0; i < 5; ++i) p[i] = 5.0 * unit(rng);
+      p[4] = -std::abs(p[4]) * std::pow(10.0, -4.0 * std::abs(unit(rng)));
+      const double t = 3.0, h = 0.1;
+
+      const double L = model.RunningCostCaching(t, x.data(), u.data(), cache.data());
+      EXPECT_EQ(L, ocp.RunningCost(t, x, u));
+      EXPECT_LE(model.PointwiseRunningCostBound(t, x.data(), u.data()), L);
+
+      model.EulerStep(t, h, x.data(), u.data(), x_next.data());
+      ocp.Dynamics(t, x, u, f);
+      EXPECT_EQ(x_next, (x + h * f).eval());
+
+      // The generic backward step of DescentPasses (DiscreteOcp::Adjoint's Euler recursion and
+      // HamiltonianDescent::Direction's pointwise work).
+      double h_star_ref = 0.0, h_now_ref = 0.0, L2 = 0.0;
+      ocp.MinimizeAndCompareHamiltonian(t, x, p, u, u_ref, &h_star_ref, &h_now_ref, f);
+      Mat fx(5, 5), fu(5, 3);
+      ocp.DynamicsJacobian(t, x, u, f, fx, fu);
+      ocp.RunningCostGradient(t, x, u, &L2, Lx, Lu);
+      Vec lam_ref = p;
+      const Vec tmp = fx.transpose().lazyProduct(p);
+      lam_ref += h * (tmp + Lx);
+
+      Vec lam = p, u_star(3);
+      double h_star = 0.0, h_now = 0.0;
+      model.BackwardPoint(
+          t, h, x.data(), u.data(), cache.data(), lam.data(), u_star.data(), &h_star, &h_now);
+      EXPECT_EQ(u_star, u_ref);
+      EXPECT_EQ(h_star, h_star_ref);
+      EXPECT_EQ(h_now, h_now_ref);
+      EXPECT_EQ(lam, lam_ref);
+    }
+  }
+}
+
+// The pointwise bound the descent rejects trials with: the motion power, below L on U.
+TEST(CommPath2d, PointwiseRunningCostBoundIsTheMotionPowerAndHolds) {
+  const CommPath2d ocp(WithK56(0.5, 0.5), RippleMap());
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> pos(-10.0, 60.0), vel(-3.0, 3.0), unit(-1.0, 1.0);
+  for (int i = 0; i < 2000; ++i) {
+    Vec x(5), u(3);
+    x << pos(rng), pos(rng), vel(rng), vel(rng), 0.0;
+    u << unit(rng), unit(rng), 3.0 + 3.0 * unit(rng);
+    if (i % 4 == 0) u[2] = 0.0;  // no transmission: the bound is L itself
+    ocp.control_set().Project(u);
+    const double m = ocp.PointwiseRunningCostBound(0.0, x.data(), u.data());
+    const double L = ocp.RunningCost(0.0, x, u);
+    EXPECT_LE(m, L);
+    if (u[2] == 0.0) {
+      EXPECT_EQ(m, L);
+    }
+    EXPECT_GE(m, *ocp.RunningCostLowerBound());
+  }
+}
+
+// The double overloads the fast path uses: the same numbers as the template and Rate().
+TEST(CommPowerModel, MotionGivenSpeedNormAndRateGivenKAreBitwiseTheOriginals) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const auto& k : {std::array<double, 6>{17.75, 1.16, 10.46, 1175.0, 0.0, 0.0},
+                        std::array<double, 6>{17.75, 1.16, 0.0, 1175.0, 0.0, 0.0},
+                        std::array<double, 6>{17.75, 1.16, 10.46, 1175.0, 2.0, 0.0},
+                        std::array<double, 6>{17.75, 1.16, 0.0, 1175.0, 2.0, 0.0},
+                        std::array<double, 6>{17.75, 1.16, 10.46, 1175.0, 2.0, 3.0}}) {
+    CommPowerModel m;
+    m.k = k;
+    for (int i = 0; i < 200; ++i) {
+      const double acc2 = 0.25 * std::abs(unit(rng)), speed2 = 4.0 * std::abs(unit(rng));
+      EXPECT_EQ(m.Motion(acc2, speed2, m.SmoothNorm(speed2)), m.Motion<double>(acc2, speed2));
+      const double p3 = -std::pow(10.0, -6.0 * std::abs(unit(rng))), s = 1e-4 * (1.5 + unit(rng));
+      EXPECT_EQ(m.Rate(p3, s, 6.0, m.K()), m.Rate(p3, s, 6.0));
+    }
+  }
 }
 
 TEST(CommPath2d, SmoothingIsWithinEpsOfTheNorm) {
