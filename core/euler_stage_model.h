@@ -52,15 +52,23 @@ class EulerStageModel {
   ///                                           (bitwise Ocp::MinimizeAndCompareHamiltonian),
   ///   p <- p + h H_x(t, x, u, p) = lambda_k    (bitwise lambda_{k+1} + h (f_x^T p + L_x), the
   ///                                            Euler adjoint step of DiscreteOcp::Adjoint).
+  /// With a finite eps > 0, u_star is instead the proximal minimizer
+  ///   argmin_{w in U} H(t, x, w, p) + |w - u|^2 / (2 eps)
+  /// (ProximalHamiltonianMinimizer's numbers), *h_star = H(t, x, u_star, p) without the
+  /// proximal term, and *h_min (when not null) = min_{w in U} H(t, x, w, p), the value at the
+  /// paper's minimizer (the descent's stationarity measure sums h (h_min - h_now)). With eps
+  /// infinite *h_min is *h_star.
   virtual void BackwardPoint(double t,
                              double h,
                              const double* x,
                              const double* u,
                              const double* cache,
+                             double eps,
                              double* p,
                              double* u_star,
                              double* h_star,
-                             double* h_now) const = 0;
+                             double* h_now,
+                             double* h_min) const = 0;
 };
 
 }  // namespace ocpb

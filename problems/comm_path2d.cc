@@ -54,8 +54,15 @@ bool CommPowerModel::IsValid(std::string* error) const {
 }
 
 double CommPowerModel::AccelerationMagnitude(double a, double nv, double rmax) const {
+  return AccelerationMagnitude(a, nv, rmax, 0.0);
+}
+
+double CommPowerModel::AccelerationMagnitude(double a,
+                                             double nv,
+                                             double rmax,
+                                             double extra_curvature) const {
   if (!(a > 0.0)) return a == 0.0 ? 0.0 : a;  // NaN propagates
-  const double c2 = 2.0 * gamma * k[0];
+  const double c2 = 2.0 * gamma * k[0] + extra_curvature;
   const double b = gamma * (k[4] + k[5] * nv);
   if (b == 0.0) return c2 > 0.0 ? std::min(a / c2, rmax) : rmax;
   // Stationarity of the smoothed H along -p_u: g(r) = c2 r + b r / sqrt(r^2 + eps^2) - a = 0.
@@ -83,6 +90,22 @@ double CommPowerModel::Rate(double p3, double s, double rmax, double k_mqam) con
   const double arg = -p3 * k_mqam / (kLn2 * s);
   if (!(arg > 1.0)) return 0.0;
   return std::min(std::log2(arg), rmax);
+}
+
+double CommPowerModel::ProximalRate(
+    double p3, double s, double rmax, double k_mqam, double center, double eps) const {
+  if (std::isnan(p3) || std::isnan(s) || std::isnan(center)) return NAN;
+  const double c = kLn2 * s / k_mqam;  // d/dR (2^R - 1) s / K = c 2^R
+  auto slope = [&](double r) { return p3 + c * std::exp2(r) + (r - center) / eps; };
+  if (slope(0.0) >= 0.0) return 0.0;
+  if (slope(rmax) <= 0.0) return rmax;
+  double r = rmax;
+  for (int i = 0; i < 100; ++i) {
+    const double step = slope(r) / (kLn2 * c * std::exp2(r) + 1.0 / eps);
+    r -= step;
+    if (!(std::abs(step) > 1e-15 * (1.0 + r))) break;
+  }
+  return std::clamp(r, 0.0, rmax);
 }
 
 double CommPowerModel::Motion(double acc2, double speed2, double nv) const {
@@ -264,6 +287,34 @@ void CommPath2d::MinimizerGivenChannel(const double* p, double s, double nv, dou
   u[2] = options_.power.Rate(p[4], s, options_.rmax, k_);
 }
 
+void CommPath2d::ProximalMinimizerGivenChannel(
+    const double* p, double s, double nv, const double* center, double eps, double* w) const {
+  // The u-part of H + |w - center|^2/(2 eps), up to constants: (gamma k1 + 1/(2 eps)) |w_u|^2
+  // + q.w_u + gamma (k5 + k6 nv) n(w_u) with q = p2 - center_u / eps: u*'s form with q for p2.
+  const double q0 = p[2] - center[0] / eps, q1 = p[3] - center[1] / eps;
+  const double a = std::sqrt(q0 * q0 + q1 * q1);
+  const double r = options_.power.AccelerationMagnitude(a, nv, options_.umax, 1.0 / eps);
+  if (a > 0.0) {
+    w[0] = -r * q0 / a;
+    w[1] = -r * q1 / a;
+  } else {
+    w[0] = w[1] = (a == 0.0 ? 0.0 : a);
+  }
+  w[2] = options_.power.ProximalRate(p[4], s, options_.rmax, k_, center[2], eps);
+}
+
+void CommPath2d::MinimizeProximalHamiltonian(
+    double, ConstVecRef x, ConstVecRef p, ConstVecRef center, double eps, VecRef w) const {
+  double s = 0.0;
+  channel_->Evaluate(Eigen::Vector2d(x[0], x[1]), &s, nullptr, nullptr);
+  ProximalMinimizerGivenChannel(p.data(),
+                                s,
+                                options_.power.SmoothNorm(x[2] * x[2] + x[3] * x[3]),
+                                center.data(),
+                                eps,
+                                w.data());
+}
+
 double CommPath2d::HamiltonianGivenChannel(ConstVecRef x,
                                            ConstVecRef p,
                                            ConstVecRef u,
@@ -340,19 +391,33 @@ void CommPath2d::BackwardPoint(double,
                                const double* x,
                                const double* u,
                                const double* cache,
+                               double eps,
                                double* p,
                                double* u_star,
                                double* h_star,
-                               double* h_now) const {
+                               double* h_now,
+                               double* h_min) const {
   const CommPowerModel& m = options_.power;
   const double s = cache[0], rate_factor = cache[3], motion = cache[4], root_v = cache[5];
   const double nv = root_v - m.eps;
-  MinimizerGivenChannel(p, s, nv, u_star);
-  {  // HamiltonianGivenChannel(x, p, u_star, s) with the cached n(x2)
-    const double* w = u_star;
+  // HamiltonianGivenChannel(x, p, w, s) with the cached n(x2).
+  auto hamiltonian = [&](const double* w) {
     const double pf = p[0] * x[2] + p[1] * x[3] + p[2] * w[0] + p[3] * w[1] + p[4] * w[2];
-    *h_star = pf + m.Transmission(w[2], s, inv_k_) +
-              m.Motion(w[0] * w[0] + w[1] * w[1], x[2] * x[2] + x[3] * x[3], nv);
+    return pf + m.Transmission(w[2], s, inv_k_) +
+           m.Motion(w[0] * w[0] + w[1] * w[1], x[2] * x[2] + x[3] * x[3], nv);
+  };
+  if (std::isfinite(eps)) {
+    ProximalMinimizerGivenChannel(p, s, nv, u, eps, u_star);
+    if (h_min) {
+      double w[3];
+      MinimizerGivenChannel(p, s, nv, w);
+      *h_min = hamiltonian(w);
+    }
+    *h_star = hamiltonian(u_star);
+  } else {
+    MinimizerGivenChannel(p, s, nv, u_star);
+    *h_star = hamiltonian(u_star);
+    if (h_min) *h_min = *h_star;
   }
   const double pf = p[0] * x[2] + p[1] * x[3] + p[2] * u[0] + p[3] * u[1] + p[4] * u[2];
   *h_now = pf + rate_factor * (s * inv_k_) + motion;

@@ -13,6 +13,7 @@
 #include "core/autodiff_ocp.h"
 #include "core/euler_stage_model.h"
 #include "core/parameters.h"
+#include "core/proximal_hamiltonian.h"
 #include "problems/channel/channel_quality.h"
 #include "problems/registry.h"
 
@@ -84,6 +85,16 @@ struct CommPowerModel {
   /// below the root; the left side is concave and increasing, so the iterates increase
   /// monotonically to the root (exact minimizer of the smoothed H, to roundoff).
   double AccelerationMagnitude(double a, double nv, double rmax) const;
+  /// The same with `extra_curvature` c added to the quadratic: the minimizer of
+  ///   -a r + gamma (k1 r^2 + (k5 + k6 nv) n(r)) + c r^2 / 2  over [0, rmax]
+  /// (the proximal direction's magnitude, c = 1/eps; c = 0 gives AccelerationMagnitude's numbers).
+  double AccelerationMagnitude(double a, double nv, double rmax, double extra_curvature) const;
+  /// R = argmin_{0 <= R <= rmax} p3 R + (2^R - 1)/K s + (R - center)^2 / (2 eps), for eps > 0:
+  /// the root of the increasing convex g'(R) = p3 + ln2 2^R s / K + (R - center) / eps, 0 when
+  /// g'(0) >= 0, rmax when g'(rmax) <= 0, otherwise by Newton's method from rmax (where g' > 0;
+  /// g' convex, so the iterates decrease monotonically to the root) until a step is below
+  /// 1e-15 (1 + R). k = K().
+  double ProximalRate(double p3, double s, double rmax, double k, double center, double eps) const;
   /// R* = argmin_{0 <= R <= rmax} p3 R + (2^R - 1)/K s = clip(log2(-p3 K / (ln2 s)), 0, rmax)
   /// (0 when p3 >= -ln2 s / K).
   double Rate(double p3, double s, double rmax) const;
@@ -144,7 +155,9 @@ class PathLossChannel final : public ChannelQuality {
 /// power and sqrt(|x2|^2 + eps^2); the backward sweep at the accepted points reuses them, so the
 /// channel is not evaluated again there. The pointwise bound is the motion power (the
 /// transmission term, >= 0 on U, is what it leaves out).
-class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0>, public EulerStageModel {
+class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0>,
+                         public EulerStageModel,
+                         public ProximalHamiltonianMinimizer {
  public:
   struct Options {
     Eigen::Vector2d start{20.0, 40.0};          ///< S, in the workspace
@@ -239,10 +252,23 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0>, public Eule
                      const double* x,
                      const double* u,
                      const double* cache,
+                     double eps,
                      double* p,
                      double* u_star,
                      double* h_star,
-                     double* h_now) const override;
+                     double* h_now,
+                     double* h_min) const override;
+
+  /// The proximal minimizer of the smoothed H (exact, any k5, k6 >= 0): separable like u*, with
+  /// q = p2 - center_u / eps in place of p2 and 2 gamma k1 + 1/eps as the quadratic's curvature,
+  ///   w_u = -r q/|q|,  r = CommPowerModel::AccelerationMagnitude(|q|, n(x2), umax, 1/eps),
+  ///   w_R = CommPowerModel::ProximalRate(p3, s(x1), Rmax, K, center_R, eps).
+  void MinimizeProximalHamiltonian(double t,
+                                   ConstVecRef x,
+                                   ConstVecRef p,
+                                   ConstVecRef center,
+                                   double eps,
+                                   VecRef w) const override;
 
   /// s(q) as a double or a jet (value, gradient and Hessian from the channel, by the chain rule).
   template <class T>
@@ -270,6 +296,9 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0>, public Eule
   void MinimizerGivenChannel(ConstVecRef x, ConstVecRef p, double s, VecRef u) const;
   /// The same given also nv = n(x2), the smoothed speed (p, u: raw arrays of 5 and 3).
   void MinimizerGivenChannel(const double* p, double s, double nv, double* u) const;
+  /// MinimizeProximalHamiltonian given s and nv (raw arrays of 5, 3 and 3).
+  void ProximalMinimizerGivenChannel(
+      const double* p, double s, double nv, const double* center, double eps, double* w) const;
   /// H(x, u, p) given s = s(x1), with the operations of Dynamics and RunningCost.
   double HamiltonianGivenChannel(ConstVecRef x, ConstVecRef p, ConstVecRef u, double s) const;
 

@@ -17,8 +17,18 @@ namespace ocpb {
 /// is also how tests run a problem without its fast paths.
 class ForwardingOcp : public Ocp {
  public:
-  explicit ForwardingOcp(const Ocp& inner) : inner_(inner) {
-    SetDimensions(inner.nx(), inner.nu(), inner.num_terminal(), inner.num_path());
+  explicit ForwardingOcp(const Ocp& inner) : ForwardingOcp(inner, true) {}
+
+  const Ocp& inner() const { return inner_; }
+  std::string name() const override { return inner_.name(); }
+
+ protected:
+  /// With keep_path_constraints = false the wrapper has num_path() == 0 and its
+  /// PathConstraints* functions must not be called (a subclass that folds the constraints into
+  /// L overrides them).
+  ForwardingOcp(const Ocp& inner, bool keep_path_constraints) : inner_(inner) {
+    SetDimensions(
+        inner.nx(), inner.nu(), inner.num_terminal(), keep_path_constraints ? inner.num_path() : 0);
     SetHorizon(inner.t0(), inner.tf());
     SetInitialState(inner.x0());
     if (inner.num_terminal() > 0) SetTerminalWeights(inner.terminal_weights());
@@ -28,9 +38,7 @@ class ForwardingOcp : public Ocp {
     }
   }
 
-  const Ocp& inner() const { return inner_; }
-  std::string name() const override { return inner_.name(); }
-
+ public:
   void Dynamics(double t, ConstVecRef x, ConstVecRef u, VecRef f) const override {
     inner_.Dynamics(t, x, u, f);
   }

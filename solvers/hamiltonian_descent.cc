@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/timer.h"
+#include "solvers/descent_loop.h"
 #include "solvers/descent_passes.h"
 
 namespace ocpb {
@@ -229,99 +230,6 @@ Target ResolveTarget(const Ocp& original,
   return t;
 }
 
-// How the loop ended: the result's status, the verbatim code and the reason.
-struct Stop {
-  SolveStatus status;
-  const char* code;
-  std::string why;
-};
-
-// The stopping tests made before an Armijo search, in the documented order.
-std::optional<Stop> StopTest(const HamiltonianDescentOptions& opt,
-                             int iteration,
-                             double theta,
-                             double theta_scale,
-                             double cpu) {
-  if (!std::isfinite(theta)) {
-    return Stop{SolveStatus::kNumericalFailure,
-                "nonfinite_theta",
-                "theta is not finite at iteration " + std::to_string(iteration)};
-  }
-  // At a stationary point every term H(u*) - H(u) is zero up to rounding, and their sum can
-  // come out as +1e-17: that is convergence to machine precision, not a failed minimizer.
-  const double roundoff = 64.0 * std::numeric_limits<double>::epsilon() * theta_scale;
-  if (theta > 0.0 && theta <= roundoff) {
-    return Stop{SolveStatus::kConverged,
-                "theta_at_roundoff",
-                "theta = " + Format(theta) + " is at the rounding level " + Format(roundoff) +
-                    " of the Hamiltonian sums: stationary to machine precision"};
-  }
-  if (theta > 0.0) {
-    return Stop{SolveStatus::kError,
-                "theta_positive",
-                "theta = " + Format(theta) +
-                    " > 0: the problem's Hamiltonian minimizer did not minimize H"};
-  }
-  if (std::abs(theta) <= opt.theta_tolerance) {
-    return Stop{SolveStatus::kConverged,
-                "theta_below_tolerance",
-                "|theta| = " + Format(std::abs(theta)) + " <= " + Format(opt.theta_tolerance)};
-  }
-  if (iteration >= opt.max_iterations) {
-    return Stop{SolveStatus::kMaxIterations,
-                "max_iterations",
-                "reached max_iterations = " + std::to_string(opt.max_iterations)};
-  }
-  if (cpu >= opt.max_cpu_seconds) {
-    return Stop{SolveStatus::kMaxTime,
-                "max_cpu_seconds",
-                "reached max_cpu_seconds = " + Format(opt.max_cpu_seconds)};
-  }
-  return std::nullopt;
-}
-
-// The iterations: backward sweep, stopping tests, Armijo search, until a test stops them.
-// Fills status, message and history of *result; returns the last theta (NaN if none).
-double Iterate(const HamiltonianDescentOptions& opt,
-               const Stopwatch& clock,
-               DescentPasses* passes,
-               SolveResult* result,
-               bool* have_costates) {
-  const ArmijoRule rule{opt.alpha, opt.beta, opt.max_armijo_exponent};
-  int iteration = 0, last_j = -1;
-  double theta = NAN;
-  std::optional<Stop> stop;
-  if (!std::isfinite(passes->J())) {
-    stop = Stop{SolveStatus::kNumericalFailure,
-                "nonfinite_cost",
-                "the cost of the starting control is not finite"};
-    result->history.push_back({0, passes->J(), NAN, -1, NAN, NAN, clock.cpu()});
-  }
-  while (!stop) {
-    double theta_scale = 0.0;
-    theta = passes->Backward(&theta_scale);
-    *have_costates = true;
-    result->history.push_back({iteration, passes->J(), theta, last_j, NAN, NAN, clock.cpu()});
-    stop = StopTest(opt, iteration, theta, theta_scale, clock.cpu());
-    if (stop) break;
-    const int accepted = passes->Armijo(rule, theta);
-    if (accepted < 0) {
-      stop = Stop{SolveStatus::kStepTooSmall,
-                  "armijo_exponent_exceeded",
-                  "no Armijo exponent j <= " + std::to_string(opt.max_armijo_exponent) +
-                      " gave sufficient decrease at iteration " + std::to_string(iteration)};
-      break;
-    }
-    last_j = accepted;
-    ++iteration;
-  }
-  result->status = stop->status;
-  result->solver_status = stop->code;
-  result->message = stop->why;
-  result->iterations = iteration;
-  return theta;
-}
-
 }  // namespace
 
 SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& request) const {
@@ -343,8 +251,18 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
   SolveResult result;
   result.solver = "hamiltonian";
   result.history.reserve(static_cast<size_t>(opt.max_iterations) + 1);
-  bool have_costates = false;
-  const double theta = Iterate(opt, clock, &passes, &result, &have_costates);
+  DescentLoopOptions loop;
+  loop.armijo = ArmijoRule{opt.alpha, opt.beta, opt.max_armijo_exponent};
+  loop.max_iterations = opt.max_iterations;
+  loop.theta_tolerance = opt.theta_tolerance;
+  loop.max_cpu_seconds = opt.max_cpu_seconds;
+  const DescentLoopOutcome outcome = RunDescentLoop(loop, clock, &passes, &result.history);
+  const double theta = outcome.theta;
+  const bool have_costates = outcome.have_costates;
+  result.status = outcome.stop.status;
+  result.solver_status = outcome.stop.code;
+  result.message = outcome.stop.why;
+  result.iterations = outcome.iterations;
 
   const double J = passes.J();
   if (std::isfinite(theta)) {

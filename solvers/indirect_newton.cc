@@ -271,7 +271,12 @@ void RunNewton(const NewtonRun& run, const Mat& X0, const Mat& P0, const Vec* nu
   const IndirectNewtonOptions& o = run.options;
   const TimeGrid& grid = run.request.grid;
   const double newton_cpu0 = CpuSeconds();
-  PmpResidual pmp(ocp, grid, run.request.terminal);
+  PmpResidual pmp(ocp,
+                  grid,
+                  run.request.terminal,
+                  o.scheme == IndirectNewtonOptions::Scheme::kEuler
+                      ? PmpResidual::Scheme::kEuler
+                      : PmpResidual::Scheme::kTrapezoid);
   const int N = grid.intervals();
   if (X0.rows() != ocp.nx() || X0.cols() != N + 1 || P0.rows() != ocp.nx() || P0.cols() != N + 1) {
     throw std::invalid_argument(std::string(kName) +
@@ -428,7 +433,7 @@ void RunNewton(const NewtonRun& run, const Mat& X0, const Mat& P0, const Vec* nu
   r->status = status;
   r->solver_status = solver_status;
   r->message = r->message.empty() ? message : r->message + "; Newton: " + message;
-  r->controls = ControlTrajectory::PiecewiseLinear(solution_grid, pmp.Controls(z));
+  r->controls = pmp.ControlFunction(z);
   r->state_grid = solution_grid;
   r->states = std::move(X);
   r->costates = std::move(P);

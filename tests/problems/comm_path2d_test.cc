@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -411,12 +412,101 @@ TEST(CommPath2d, StageModelIsBitwiseTheGenericFunctions) {
 
       Vec lam = p, u_star(3);
       double h_star = 0.0, h_now = 0.0;
-      model.BackwardPoint(
-          t, h, x.data(), u.data(), cache.data(), lam.data(), u_star.data(), &h_star, &h_now);
+      model.BackwardPoint(t,
+                          h,
+                          x.data(),
+                          u.data(),
+                          cache.data(),
+                          std::numeric_limits<double>::infinity(),
+                          lam.data(),
+                          u_star.data(),
+                          &h_star,
+                          &h_now,
+                          nullptr);
       EXPECT_EQ(u_star, u_ref);
       EXPECT_EQ(h_star, h_star_ref);
       EXPECT_EQ(h_now, h_now_ref);
       EXPECT_EQ(lam, lam_ref);
+    }
+  }
+}
+
+// The proximal minimizer (Sakawa-Shindo's direction) beats a brute-force search over U of
+// H + |w - center|^2 / (2 eps) (a polar grid of the ball times a grid of [0, Rmax], a fine line in
+// R at w, and random points near w), for k5 = k6 = 0 and > 0 and eps from small to large; and
+// the fast path's BackwardPoint with eps returns the same w and H(w).
+TEST(CommPath2d, ProximalMinimizerBeatsBruteForce) {
+  const auto map = RippleMap();
+  std::mt19937_64 rng(44);
+  std::uniform_real_distribution<double> pos(0.0, 50.0), vel(-2.0, 2.0), unit(-1.0, 1.0);
+  for (const auto& [k5, k6, channel] : {std::tuple{0.0, 0.0, PaperPathLoss()},
+                                        std::tuple{2.0, 3.0, PaperPathLoss()},
+                                        std::tuple{0.5, 0.5, map}}) {
+    const CommPath2d ocp(WithK56(k5, k6), channel);
+    for (int trial = 0; trial < 8; ++trial) {
+      Vec x(5), p(5), c(3), w(3);
+      x << pos(rng), pos(rng), vel(rng), vel(rng), 0.0;
+      if (trial % 4 == 0) x[2] = x[3] = 0.0;
+      for (int i = 0; i < 4; ++i)
+        p[i] = std::pow(10.0, -3.0 + 3.0 * std::abs(unit(rng))) * unit(rng);
+      double s;
+      ocp.channel().Evaluate(Eigen::Vector2d(x[0], x[1]), &s, nullptr, nullptr);
+      p[4] = -std::log(2.0) * s / 0.130288 * std::pow(2.0, 7.0 * (0.5 + 0.5 * unit(rng)));
+      c << 0.3 * unit(rng), 0.3 * unit(rng), 3.0 + 3.0 * unit(rng);
+      ocp.control_set().Project(c);
+      for (double eps : {1e-3, 0.3, 30.0}) {
+        ocp.MinimizeProximalHamiltonian(0.0, x, p, c, eps, w);
+        ASSERT_LE(ocp.control_set().Violation(w), 1e-12);
+        auto phi = [&](const Vec& v) {
+          return ocp.Hamiltonian(0.0, x, v, p) + (v - c).squaredNorm() / (2.0 * eps);
+        };
+        const double at_w = phi(w);
+        double best = INFINITY;
+        Vec v(3);
+        for (int ir = 0; ir <= 20; ++ir) {
+          for (int ia = 0; ia < 48; ++ia) {
+            const double r = 0.5 * ir / 20.0, a = 2.0 * M_PI * ia / 48.0;
+            for (int iR = 0; iR <= 60; iR += 4) {
+              v << r * std::cos(a), r * std::sin(a), 6.0 * iR / 60.0;
+              best = std::min(best, phi(v));
+            }
+          }
+        }
+        for (int iR = 0; iR <= 3000; ++iR) {
+          v << w[0], w[1], 6.0 * iR / 3000.0;
+          best = std::min(best, phi(v));
+        }
+        for (int i = 0; i < 2000; ++i) {
+          v = w + Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) *
+                      std::pow(10.0, -1.0 - 5.0 * (i % 6) / 5.0);
+          ocp.control_set().Project(v);
+          best = std::min(best, phi(v));
+        }
+        EXPECT_LE(at_w, best + 1e-12 * (1.0 + std::abs(best)))
+            << "eps " << eps << "\nx = " << x.transpose() << "\np = " << p.transpose();
+        // The fast path's proximal step at the same point.
+        const EulerStageModel& model = ocp;
+        Vec cache(6), lam = p, w2(3);
+        model.RunningCostCaching(0.0, x.data(), c.data(), cache.data());
+        double h_star = 0.0, h_now = 0.0, h_min = 0.0;
+        model.BackwardPoint(0.0,
+                            0.1,
+                            x.data(),
+                            c.data(),
+                            cache.data(),
+                            eps,
+                            lam.data(),
+                            w2.data(),
+                            &h_star,
+                            &h_now,
+                            &h_min);
+        EXPECT_EQ(w2, w);
+        EXPECT_NEAR(h_star, ocp.Hamiltonian(0.0, x, w, p), 1e-12 * (1.0 + std::abs(h_star)));
+        Vec u_star(3);
+        ocp.MinimizeHamiltonian(0.0, x, p, u_star);
+        EXPECT_NEAR(h_min, ocp.Hamiltonian(0.0, x, u_star, p), 1e-12 * (1.0 + std::abs(h_min)));
+        EXPECT_LE(h_min, h_star);
+      }
     }
   }
 }
