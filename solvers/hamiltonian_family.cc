@@ -34,11 +34,6 @@ SolveResult NotApplicable(const std::string& solver, const std::string& reason) 
 }
 
 void CheckRequest(const std::string& name, const Ocp& ocp, const SolveRequest& request) {
-  if (!request.options.empty()) {
-    throw std::invalid_argument(name +
-                                ": string options are not parsed yet (pending the option "
-                                "schema); set HamiltonianFamilyOptions in code");
-  }
   const TimeGrid& grid = request.grid;
   if (grid.size() < 2) throw std::invalid_argument(name + ": the request's grid is empty");
   const double tol = 1e-9 * std::max(1.0, std::abs(ocp.tf() - ocp.t0()));
@@ -110,44 +105,12 @@ Target Resolve(const std::string& name,
 
 }  // namespace
 
-bool HamiltonianFamilyOptions::IsValid(std::string* error) const {
-  auto fail = [error](const std::string& why) {
-    if (error) *error = why;
-    return false;
-  };
-  if (!(alpha > 0.0 && alpha < 1.0)) return fail("alpha must lie in (0, 1)");
-  if (!(beta > 0.0 && beta < 1.0)) return fail("beta must lie in (0, 1)");
-  if (max_armijo_exponent < 0) return fail("max_armijo_exponent must be >= 0");
-  if (max_iterations < 0) return fail("max_iterations must be >= 0");
-  if (!(relative_theta_tolerance >= 0.0) || !std::isfinite(relative_theta_tolerance)) {
-    return fail("relative_theta_tolerance must be finite and >= 0");
-  }
-  if (!(max_cpu_seconds > 0.0)) return fail("max_cpu_seconds must be > 0");
-  if (path_penalty && !(*path_penalty > 0.0 && std::isfinite(*path_penalty))) {
-    return fail("path_penalty must be finite and > 0");
-  }
-  if (regularization && !(*regularization > 0.0 && std::isfinite(*regularization))) {
-    return fail("regularization must be finite and > 0");
-  }
-  std::string why;
-  if (!proximal.IsValid(&why)) return fail("proximal: " + why);
-  if (!augmented_lagrangian.IsValid(&why)) return fail("augmented_lagrangian: " + why);
-  if (!(free_time_initial_fraction > 0.0) || !std::isfinite(free_time_initial_fraction)) {
-    return fail("free_time_initial_fraction must be finite and > 0");
-  }
-  if (!(polish_switch > 0.0)) return fail("polish_switch must be > 0");
-  if (newton_max_iterations < 0) return fail("newton_max_iterations must be >= 0");
-  if (polish_attempts < 1) return fail("polish_attempts must be >= 1");
-  if (!(newton_tolerance > 0.0) || !std::isfinite(newton_tolerance)) {
-    return fail("newton_tolerance must be finite and > 0");
-  }
-  return true;
-}
+HamiltonianFamily::HamiltonianFamily(Preset preset) : HamiltonianFamily(Defaults(preset), preset) {}
 
-HamiltonianFamily::HamiltonianFamily(const Options& options, std::string name)
-    : options_(options), name_(std::move(name)) {
+HamiltonianFamily::HamiltonianFamily(const Options& options, Preset preset)
+    : preset_(preset), options_(options) {
   std::string error;
-  if (!options_.IsValid(&error)) throw std::invalid_argument(name_ + ": " + error);
+  if (!options_.IsValid(&error)) throw std::invalid_argument(name() + ": " + error);
 }
 
 HamiltonianFamily::Options HamiltonianFamily::Proximal() {
@@ -168,14 +131,14 @@ HamiltonianFamily::Options HamiltonianFamily::Polished() {
   return o;
 }
 
-void HamiltonianFamily::Polish(const Ocp& original,
+void HamiltonianFamily::Polish(const Options& o,
+                               const Ocp& original,
                                const Ocp& problem,
                                const SolveRequest& request,
                                const Stopwatch& clock,
                                DescentLoopOptions loop,
                                DescentPasses* passes,
                                SolveResult* r) const {
-  const Options& o = options_;
   auto& stats = r->solver_stats;
   IndirectNewtonOptions no;
   no.scheme = IndirectNewtonOptions::Scheme::kEuler;
@@ -259,10 +222,11 @@ void HamiltonianFamily::Polish(const Ocp& original,
 }
 
 SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& request) const {
-  const Options& o = options_;
-  CheckRequest(name_, original, request);
+  const Options o = ApplyOptions(preset_, request.options, options_);
+  const std::string name = this->name();
+  CheckRequest(name, original, request);
   const Stopwatch clock;
-  Target target = Resolve(name_, original, request, o);
+  Target target = Resolve(name, original, request, o);
   if (target.not_applicable) return *target.not_applicable;
   const Ocp& problem = *target.ocp;
   const bool path_al = problem.num_path() > 0;  // Resolve left them only for the outer loop
@@ -304,7 +268,7 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
   if (o.direction == Options::Direction::kProximal) loop.proximal = o.proximal;
 
   SolveResult r;
-  r.solver = name_;
+  r.solver = name;
   auto& stats = r.solver_stats;
   int descent_iterations = 0;
   double theta = NAN;
@@ -357,7 +321,7 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
   r.objective = DiscreteOcp(problem, grid, request.integrator, request.terminal)
                     .Simulate(passes.U(), nullptr);
 
-  if (o.polish) Polish(original, problem, request, clock, loop, &passes, &r);
+  if (o.polish) Polish(o, original, problem, request, clock, loop, &passes, &r);
   if (std::isfinite(r.objective)) r.message += "; final J = " + Format(r.objective);
   r.cpu_seconds = clock.cpu();
   r.wall_seconds = clock.wall();

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "core/option_schema.h"
 #include "solvers/augmented_lagrangian_loop.h"
 #include "solvers/descent_loop.h"
 #include "solvers/solver.h"
@@ -114,28 +115,45 @@ struct HamiltonianFamilyOptions {
 class HamiltonianFamily final : public Solver {
  public:
   using Options = HamiltonianFamilyOptions;
+  /// The registered methods: each is the family with one ingredient on by default (and every
+  /// other one an option): "hamiltonian-proximal" (direction = proximal), "hamiltonian-al"
+  /// (path = augmented-lagrangian; the hard form uses the outer loop in every preset),
+  /// "hamiltonian-polish" (polish = true).
+  enum class Preset { kProximal, kAugmentedLagrangian, kPolish };
 
-  /// Throws std::invalid_argument when !options.IsValid().
-  explicit HamiltonianFamily(const Options& options = Options(),
-                             std::string name = "hamiltonian-family");
+  /// The registered method `preset` with its defaults.
+  explicit HamiltonianFamily(Preset preset = Preset::kProximal);
+  /// Given options (validated: throws std::invalid_argument when !options.IsValid()); request
+  /// options are applied over them by `preset`'s schema.
+  HamiltonianFamily(const Options& options, Preset preset = Preset::kProximal);
 
-  /// The presets: the proximal direction; the outer loop for path constraints too; the polish.
+  /// The presets' defaults: the proximal direction; the outer loop for path constraints too;
+  /// the polish.
   static Options Proximal();
   static Options AugmentedLagrangian();
   static Options Polished();
+  static Options Defaults(Preset preset);
+  static const char* Name(Preset preset);
+  /// The one-line description `ocpbench list solvers` prints.
+  static const char* Description(Preset preset);
+  /// The option schema of each registered method (`ocpbench describe solver NAME`): one set of
+  /// keys, each preset's defaults.
+  static const OptionSchema& Schema(Preset preset);
+  /// `base` with `options` applied and validated; throws std::invalid_argument naming the key.
+  static Options ApplyOptions(Preset preset, const OptionMap& options, const Options& base);
 
-  std::string name() const override { return name_; }
+  std::string name() const override { return Name(preset_); }
   const Options& options() const { return options_; }
 
-  /// Throws std::invalid_argument for an invalid request: a grid that does not span the
-  /// horizon, an initial guess of the wrong size, or string options (SolveRequest::options;
-  /// this solver's options come from its Options until the option schema lands).
+  /// Throws std::invalid_argument for an invalid request: bad options, a grid that does not
+  /// span the horizon, an initial guess of the wrong size.
   SolveResult Solve(const Ocp& ocp, const SolveRequest& request) const override;
 
  private:
   // The polish stage after the descent: fitted costates, Newton on the Euler maximum principle,
   // and on failure more descent and another attempt (polish_attempts). Updates *r.
-  void Polish(const Ocp& original,
+  void Polish(const Options& o,
+              const Ocp& original,
               const Ocp& problem,
               const SolveRequest& request,
               const Stopwatch& clock,
@@ -143,8 +161,8 @@ class HamiltonianFamily final : public Solver {
               DescentPasses* passes,
               SolveResult* r) const;
 
+  Preset preset_;
   Options options_;
-  std::string name_;
 };
 
 }  // namespace ocpb

@@ -5,8 +5,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "bench/cli/channel_command.h"
-#include "bench/cli/online_command.h"
+#include <CLI/CLI.hpp>
+
+#include "bench/cli/main.h"
 #include "bench/cli/version.h"
 
 namespace ocpb {
@@ -16,7 +17,19 @@ bool g_some_failed = false;
 
 void ReportSomeFailed() { g_some_failed = true; }
 
-int RunOcpbench(int argc, char** argv) {
+OptionMap ParseKeyValues(const std::vector<std::string>& items, const std::string& flag) {
+  OptionMap out;
+  for (const std::string& item : items) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw std::invalid_argument("malformed " + flag + " '" + item + "': expected key=value");
+    }
+    out.Set(item.substr(0, eq), item.substr(eq + 1));
+  }
+  return out;
+}
+
+int Main(int argc, char** argv) {
   g_some_failed = false;
   CLI::App app{
       "OCPBench: optimal-control problems solved by Hamiltonian descent and by sparse NLPs",

@@ -10,10 +10,12 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "bench/cli/app.h"
 #include "bench/cli/case_runner.h"
 #include "bench/cli/io.h"
+#include "bench/cli/records_file.h"
 #include "bench/cli/suite.h"
 #include "bench/cli/summary.h"
 
@@ -31,48 +33,6 @@ struct RunArgs {
   bool overwrite = false;
 };
 
-// Reads a JSON Lines file of records (JSON objects). A last line cut short by a killed run is
-// dropped (*dropped_partial); any other malformed line is an error. *unterminated tells that the
-// file does not end with a newline (a whole last record whose '\n' was never written): the
-// next append would glue onto it, so the caller rewrites the file first.
-std::vector<json> ReadRecords(const std::string& path,
-                              bool* dropped_partial,
-                              bool* unterminated = nullptr) {
-  std::vector<json> records;
-  *dropped_partial = false;
-  if (unterminated) *unterminated = false;
-  if (!fs::exists(path)) return records;
-  const std::string text = ReadFile(path);
-  if (unterminated) *unterminated = !text.empty() && text.back() != '\n';
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (!line.empty()) lines.push_back(line);
-  }
-  for (size_t i = 0; i < lines.size(); ++i) {
-    json record;
-    try {
-      record = json::parse(lines[i]);
-    } catch (const json::exception&) {  // parse_error, or out_of_range (1e999)
-    }
-    if (record.is_object()) {
-      records.push_back(std::move(record));
-    } else if (i + 1 == lines.size()) {
-      *dropped_partial = true;
-    } else {
-      throw std::invalid_argument(fmt::format("{}: line {} is not a JSON record", path, i + 1));
-    }
-  }
-  return records;
-}
-
-std::string JoinLines(const std::vector<json>& records) {
-  std::string text;
-  for (const json& r : records) text += r.dump() + "\n";
-  return text;
-}
-
 void ParseShard(const std::string& s, int* index, int* count) {
   const auto slash = s.find('/');
   try {
@@ -89,12 +49,16 @@ void ParseShard(const std::string& s, int* index, int* count) {
   }
 }
 
-void WriteSummaries(const std::string& dir, const std::string& name, std::vector<json> records) {
-  DeriveTargets(&records);
-  WriteFileAtomically(dir + "/summary.md", SummaryMarkdown(name, records));
+void WriteSummaries(const std::string& dir,
+                    const std::string& name,
+                    const std::vector<Record>& records,
+                    size_t expected_cases = 0) {
+  WriteFileAtomically(dir + "/summary.md", SummaryMarkdown(name, records, expected_cases));
   WriteFileAtomically(dir + "/records.csv", RecordsCsv(records));
   // Derived fields (best_J, time_to_target) for the plotting script; records.jsonl stays raw.
-  WriteFileAtomically(dir + "/derived.jsonl", JoinLines(records));
+  std::string derived;
+  for (const json& j : DerivedRecordsJson(records)) derived += j.dump() + "\n";
+  WriteFileAtomically(dir + "/derived.jsonl", derived);
   json meta{{"suite", name}, {"records", records.size()}};
   WriteFileAtomically(dir + "/suite.json", meta.dump(1) + "\n");
 }
@@ -116,7 +80,7 @@ void Run(const RunArgs& args) {
                   : fmt::format("{}/records.shard-{}-of-{}.jsonl", dir, shard, shards);
 
   std::set<std::string> done;
-  std::vector<json> records;
+  std::vector<Record> records;
   if (fs::exists(records_path) && fs::file_size(records_path) > 0) {
     if (args.overwrite) {
       fs::rename(records_path, records_path + ".prev");
@@ -126,14 +90,16 @@ void Run(const RunArgs& args) {
                                   " exists: pass --resume to continue it or --overwrite to " +
                                   "start over (the old file is kept as .prev)");
     } else {
-      bool dropped = false, unterminated = false;
-      records = ReadRecords(records_path, &dropped, &unterminated);
-      if (dropped) {
+      RecordFile file = ReadRecords(records_path);
+      if (file.dropped_partial) {
         std::cerr << "ocpbench: dropped a partial last record in " << records_path
                   << " (its case runs again)\n";
       }
-      if (dropped || unterminated) WriteFileAtomically(records_path, JoinLines(records));
-      for (const json& r : records) done.insert(r.value("key", ""));
+      if (file.dropped_partial || file.unterminated) {
+        WriteFileAtomically(records_path, JoinLines(file.lines));
+      }
+      records = std::move(file.records);
+      for (const Record& r : records) done.insert(r.key);
     }
   }
 
@@ -169,9 +135,9 @@ void Run(const RunArgs& args) {
                 << std::flush;
     }
     // One case never stops the suite: whatever it throws becomes its record.
-    json record = RunCaseRecordingFailures(spec);
-    if (IsFailure(record.value("status", ""))) ++failed;
-    AppendLineDurably(records_path, record.dump());
+    Record record = RunCaseRecordingFailures(spec);
+    if (IsFailure(record.status)) ++failed;
+    AppendLineDurably(records_path, record.ToJson().dump());
     records.push_back(std::move(record));
   }
   if (tty) std::cerr << "\r\033[K";
@@ -183,7 +149,7 @@ void Run(const RunArgs& args) {
                            failed,
                            records_path);
   if (shards == 1) {
-    WriteSummaries(dir, suite.name, records);
+    WriteSummaries(dir, suite.name, records, suite.cases.size());
     std::cerr << "ocpbench: summary in " << dir << "/summary.md\n";
   } else {
     std::cerr << "ocpbench: shard done; join shards with `ocpbench merge " << dir << "`\n";
@@ -203,18 +169,24 @@ void Merge(const std::string& dir, const std::string& name_arg) {
   if (shard_files.empty())
     throw std::invalid_argument("merge: no records.shard-*.jsonl files in " + dir);
   std::sort(shard_files.begin(), shard_files.end());
-  std::vector<json> merged;
+  std::vector<Record> merged;
+  std::vector<std::string> merged_lines;
   std::set<std::string> keys;
   for (const std::string& f : shard_files) {
-    bool dropped = false;
-    for (json& r : ReadRecords(f, &dropped)) {
-      if (keys.insert(r.value("key", "")).second) merged.push_back(std::move(r));
+    RecordFile file = ReadRecords(f);
+    for (size_t i = 0; i < file.records.size(); ++i) {
+      if (keys.insert(file.records[i].key).second) {
+        merged.push_back(std::move(file.records[i]));
+        merged_lines.push_back(std::move(file.lines[i]));
+      }
     }
-    if (dropped) std::cerr << "ocpbench: merge: ignored a partial last record in " << f << "\n";
+    if (file.dropped_partial) {
+      std::cerr << "ocpbench: merge: ignored a partial last record in " << f << "\n";
+    }
   }
   const std::string records_path = dir + "/records.jsonl";
   if (fs::exists(records_path)) fs::rename(records_path, records_path + ".prev");
-  WriteFileAtomically(records_path, JoinLines(merged));
+  WriteFileAtomically(records_path, JoinLines(merged_lines));
   const std::string name = name_arg.empty() ? fs::path(dir).filename().string() : name_arg;
   WriteSummaries(dir, name, merged);
   std::cerr << fmt::format("ocpbench: merged {} records from {} shards into {}\n",

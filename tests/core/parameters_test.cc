@@ -28,7 +28,10 @@ TEST(Parameters, InvalidValuesAreRejectedWithOneLineMessages) {
   Parameters p({{"S", {20.0, 40.0}, "start"}, {"tf", {40.0}, "horizon", 0.0, 1e6, true}});
   EXPECT_EQ(ErrorOf([&] { p.SetFromString("tf=-1"); }),
             "parameter 'tf' = -1 out of range: need > 0 and <= 1e+06");
+  // NaN is no number in the option grammar; infinity is one, refused by the parameter's rule.
   EXPECT_EQ(ErrorOf([&] { p.SetFromString("tf=nan"); }),
+            "malformed --set 'tf=nan': 'nan' is not a number");
+  EXPECT_EQ(ErrorOf([&] { p.SetFromString("tf=inf"); }),
             "parameter 'tf' must be finite (got NaN or inf)");
   EXPECT_EQ(ErrorOf([&] { p.SetFromString("S=1"); }), "parameter 'S' takes 2 value(s), got 1");
   EXPECT_EQ(ErrorOf([&] { p.SetFromString("gamma=1"); }),

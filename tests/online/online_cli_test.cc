@@ -95,7 +95,7 @@ TEST(OnlineCli, BadInputsExitTwoWithOneLine) {
       {Changed("--initial-measurements", "2"), "initial_measurements"},
       {With(Small("hamiltonian"), {"--placement", "everywhere"}), "placement"},
       {With(Small("hamiltonian"), {"--estimator", "median"}),
-       "online.estimator: unknown estimator"},
+       "online option 'estimator': must be one of: binned, ml, reml (got 'median')"},
       {With(Small("hamiltonian"), {"--set", "samples=50"}), "samples"},
       {With(Small("hamiltonian"), {"--set", "base=45,45"}),
        "base: (45, 45) lies outside the workspace [0, 25]^2"},

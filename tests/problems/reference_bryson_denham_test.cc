@@ -117,7 +117,7 @@ TEST(BrysonDenham, IpoptCostatesMatchTheAnalyticOnes) {
 TEST(BrysonDenham, NloptSlsqpReachesTheSameOptimumAsIpopt) {
   const auto ocp = MakeProblem("bryson-denham", {}, 0);
   SolveRequest req = Request(*ocp, 20, TerminalMode::kHard, "hermite-simpson");
-  req.algorithm = "LD_SLSQP";
+  req.options.Set("algorithm", "LD_SLSQP");
   const SolveResult nlopt = SolveWith("nlopt", *ocp, req);
   ASSERT_EQ(nlopt.status, SolveStatus::kConverged) << nlopt.solver_status << " " << nlopt.message;
   const SolveResult ipopt = SolveWithIpopt(*ocp, "hermite-simpson", 20);

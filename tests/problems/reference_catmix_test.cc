@@ -205,7 +205,7 @@ INSTANTIATE_TEST_SUITE_P(Transcriptions,
 TEST(Catmix, NloptSlsqpReachesTheSameOptimumAsIpopt) {
   const auto ocp = MakeProblem("catmix", {}, 0);
   SolveRequest req = Request(*ocp, 10, TerminalMode::kHard, "trapezoid");
-  req.algorithm = "LD_SLSQP";
+  req.options.Set("algorithm", "LD_SLSQP");
   const SolveResult nlopt = SolveWith("nlopt", *ocp, req);
   ASSERT_EQ(nlopt.status, SolveStatus::kConverged) << nlopt.solver_status << " " << nlopt.message;
   const SolveResult ipopt = SolveWithIpopt(*ocp, "trapezoid", 10);

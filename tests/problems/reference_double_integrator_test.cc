@@ -90,7 +90,7 @@ TEST(DoubleIntegratorBounded, NloptReachesTheReference) {
   ASSERT_EQ(ipopt.status, SolveStatus::kConverged);
   for (const char* algorithm : {"LD_SLSQP", "AUGLAG"}) {
     SolveRequest request = Request(*ocp, 100, TerminalMode::kHard, "single-shooting");
-    request.algorithm = algorithm;
+    request.options.Set("algorithm", algorithm);
     const SolveResult r = SolveWith("nlopt", *ocp, request);
     ASSERT_EQ(r.status, SolveStatus::kConverged) << algorithm << ": " << r.message;
     EXPECT_NEAR(r.objective, ipopt.objective, 1e-8 * ipopt.objective) << algorithm;

@@ -155,7 +155,7 @@ TEST(Lqr, IpoptCostatesMatchRiccati) {
 TEST(Lqr, NloptSlsqpReachesTheSameOptimumAsIpopt) {
   const auto ocp = MakeProblem("lqr", {}, 0);
   SolveRequest req = Request(*ocp, 20, TerminalMode::kHard, "hermite-simpson");
-  req.algorithm = "LD_SLSQP";
+  req.options.Set("algorithm", "LD_SLSQP");
   const SolveResult nlopt = SolveWith("nlopt", *ocp, req);
   ASSERT_EQ(nlopt.status, SolveStatus::kConverged) << nlopt.solver_status << " " << nlopt.message;
   const SolveResult ipopt = SolveWithIpopt(*ocp, "hermite-simpson", 20);

@@ -275,7 +275,7 @@ TEST(ReferenceProblems, HamiltonianSolverSolvesTheReformulation) {
     req.grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 40);
     req.options = {{"max_iterations", "30"}};
     const SolveResult direct = FindSolver("hamiltonian").make()->Solve(*re, req);
-    req.options[option] = std::to_string(value);
+    req.options.Set(option, std::to_string(value));
     const SolveResult through = FindSolver("hamiltonian").make()->Solve(*ocp, req);
     EXPECT_EQ(through.status, direct.status) << through.message;
     EXPECT_EQ(through.iterations, direct.iterations);

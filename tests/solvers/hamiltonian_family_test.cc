@@ -76,7 +76,7 @@ TEST(HamiltonianFamilyOptions, IsValidRejectsEachBadField) {
   invalid([](Options& o) { o.max_cpu_seconds = 0.0; }, "max_cpu_seconds");
   invalid([](Options& o) { o.path_penalty = -1.0; }, "path_penalty");
   invalid([](Options& o) { o.regularization = 0.0; }, "regularization");
-  invalid([](Options& o) { o.proximal.initial_eps = 0.0; }, "initial_eps");
+  invalid([](Options& o) { o.proximal.initial_eps = 0.0; }, "proximal_eps");
   invalid([](Options& o) { o.proximal.growth = 0.5; }, "growth");
   invalid([](Options& o) { o.proximal.max_eps = 1e-20; }, "max_eps");
   invalid([](Options& o) { o.augmented_lagrangian.penalty_growth = 1.0; }, "penalty_growth");
@@ -100,14 +100,39 @@ TEST(ProximalSchedule, GrowsAfterAFullStepAndShrinksToTheAcceptedStep) {
   EXPECT_EQ(s.Next(1.0, 0, 0.5), 1.5);
 }
 
-TEST(HamiltonianFamily, StringOptionsAndBadGridsThrow) {
+TEST(HamiltonianFamily, BadOptionsAndBadGridsThrow) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   SolveRequest r = Request(*ocp, 10);
-  r.options = {{"max_iterations", "3"}};
+  r.options = {{"max_iteration", 3}};
+  EXPECT_THROW(HamiltonianFamily().Solve(*ocp, r), std::invalid_argument);
+  r.options = {{"proximal_eps", -1.0}};
   EXPECT_THROW(HamiltonianFamily().Solve(*ocp, r), std::invalid_argument);
   r = Request(*ocp, 10);
   r.grid = TimeGrid::Uniform(0.0, 2.0, 10);
   EXPECT_THROW(HamiltonianFamily().Solve(*ocp, r), std::invalid_argument);
+}
+
+// The registered methods: each preset's name, schema defaults and options from the request.
+TEST(HamiltonianFamily, IsRegisteredWithItsPresets) {
+  for (const char* name : {"hamiltonian-proximal", "hamiltonian-al", "hamiltonian-polish"}) {
+    const SolverInfo& info = FindSolver(name);
+    EXPECT_FALSE(info.uses_transcription);
+    EXPECT_EQ(info.make()->name(), name);
+    EXPECT_TRUE(info.options.Contains("direction")) << name;
+    EXPECT_TRUE(info.options.Contains("polish")) << name;
+  }
+  EXPECT_EQ(FindSolver("hamiltonian-proximal").options.Find("direction")->DefaultText(),
+            "proximal");
+  EXPECT_EQ(FindSolver("hamiltonian-al").options.Find("path")->DefaultText(),
+            "augmented-lagrangian");
+  EXPECT_EQ(FindSolver("hamiltonian-polish").options.Find("polish")->DefaultText(), "true");
+  // Options from the request override the preset's.
+  const auto ocp = MakeProblem("double-integrator", {"C=10"}, 0);
+  SolveRequest r = Request(*ocp, 20);
+  r.options = {{"max_iterations", 7}, {"direction", "paper"}};
+  const SolveResult s = FindSolver("hamiltonian-proximal").make()->Solve(*ocp, r);
+  EXPECT_EQ(s.iterations, 7);
+  EXPECT_EQ(s.solver, "hamiltonian-proximal");
 }
 
 // With the paper's direction and the penalty form, the family is the paper's method: the same

@@ -211,15 +211,15 @@ TEST(IpoptOptions, DefaultsAreValidAndTheTableMatchesIpopt) {
 }
 
 TEST(IpoptOptions, ParsesEachTypeAndRejectsBadInput) {
-  const IpoptOptions o = IpoptOptions::FromStrings({{"tol", "1e-10"},
-                                                    {"max_iter", "77"},
-                                                    {"mu_strategy", "adaptive"},
-                                                    {"hessian_approximation", "limited-memory"},
-                                                    {"obj_scaling_factor", "0.01"},
-                                                    {"limited_memory_max_history", "12"},
-                                                    {"bound_push", "1e-3"},
-                                                    {"derivative_test", "first-order"}},
-                                                   IpoptOptions());
+  const IpoptOptions o = IpoptOptions::Apply({{"tol", "1e-10"},
+                                              {"max_iter", "77"},
+                                              {"mu_strategy", "adaptive"},
+                                              {"hessian_approximation", "limited-memory"},
+                                              {"obj_scaling_factor", "0.01"},
+                                              {"limited_memory_max_history", "12"},
+                                              {"bound_push", "1e-3"},
+                                              {"derivative_test", "first-order"}},
+                                             IpoptOptions());
   EXPECT_EQ(o.tol, 1e-10);
   EXPECT_EQ(o.max_iter, 77);
   EXPECT_EQ(o.mu_strategy, "adaptive");
@@ -240,7 +240,7 @@ TEST(IpoptOptions, ParsesEachTypeAndRejectsBadInput) {
   }
   auto message = [](const std::map<std::string, std::string>& m) {
     try {
-      IpoptOptions::FromStrings(m, IpoptOptions());
+      IpoptOptions::Apply(m, IpoptOptions());
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }
@@ -250,7 +250,7 @@ TEST(IpoptOptions, ParsesEachTypeAndRejectsBadInput) {
   EXPECT_NE(message({{"max_itr", "5"}}).find("max_iter"), std::string::npos);  // lists valid keys
   EXPECT_NE(message({{"max_iter", "1.5"}}).find("integer"), std::string::npos);
   EXPECT_NE(message({{"tol", "abc"}}).find("number"), std::string::npos);
-  EXPECT_NE(message({{"tol", "-1"}}).find("tol must be > 0"), std::string::npos);
+  EXPECT_NE(message({{"tol", "-1"}}).find("'tol': must be a number > 0"), std::string::npos);
   EXPECT_NE(message({{"mu_strategy", "fast"}}).find("monotone"), std::string::npos);
   EXPECT_NE(message({{"linear_solver", "ma27"}}).find("mumps"), std::string::npos);
   EXPECT_NE(message({{"print_level", "13"}}).find("print_level"), std::string::npos);
@@ -365,7 +365,7 @@ TEST(IpoptSolver, TranscriptionScalingKeepsResultsInProblemUnits) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   SolveRequest request = DoubleIntegratorRequest("single-shooting", 30, TerminalMode::kPenalty);
   const SolveResult plain = IpoptSolver().Solve(*ocp, request);
-  request.options = {{"objective_scale", "0.01"}, {"control_scale", "5"}};
+  request.transcription_options = {{"objective_scale", "0.01"}, {"control_scale", "5"}};
   const SolveResult scaled = IpoptSolver().Solve(*ocp, request);
   ASSERT_EQ(plain.status, SolveStatus::kConverged) << plain.message;
   ASSERT_EQ(scaled.status, SolveStatus::kConverged) << scaled.message;
@@ -414,9 +414,12 @@ TEST(IpoptSolver, RejectsInvalidRequests) {
   request.transcription = "single-shooting";
   request.options = {{"bogus", "1"}};
   EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
-  request.options = {{"objective_scale", "-1"}};
-  EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
   request.options = {};
+  request.transcription_options = {{"objective_scale", "-1"}};
+  EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
+  request.transcription_options = {{"objective_scale", "1"}, {"max_iter", "3"}};  // Ipopt's key
+  EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
+  request.transcription_options = {};
   request.grid = TimeGrid::Uniform(0.0, 2.0, 10);  // the horizon is [0, 1]
   EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
 }

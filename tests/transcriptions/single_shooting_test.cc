@@ -85,7 +85,8 @@ std::unique_ptr<TranscribedNlp> Make(const Ocp& ocp,
   options.grid = grid;
   options.terminal = mode;
   options.scaling = scaling;
-  return SingleShooting(integrator).Transcribe(ocp, options);
+  options.integrator = integrator;
+  return SingleShooting().Transcribe(ocp, options);
 }
 
 Mat DenseJacobian(const Nlp& nlp, const Vec& z) {

@@ -1,4 +1,4 @@
-#include "problems/online/online_channel.h"
+#include "drivers/online/online_channel.h"
 
 #include <algorithm>
 #include <cmath>
