@@ -128,6 +128,10 @@ HamiltonianFamily::Options HamiltonianFamily::AugmentedLagrangian() {
 HamiltonianFamily::Options HamiltonianFamily::Polished() {
   Options o;
   o.polish = true;
+  // Newton's first attempt after 250 descent steps (then 500, 1000, ...): on comm-path2d's hard
+  // form (N = 400, seeds 1-5, gamma = 1e-2 .. 1e-5) every case converged within two attempts
+  // (BM_HardFormFamilyPolish; figures in solvers/README-family.md).
+  o.max_iterations = 250;
   return o;
 }
 

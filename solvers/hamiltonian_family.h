@@ -32,7 +32,8 @@ struct HamiltonianFamilyOptions {
   double beta = 0.5;
   int max_armijo_exponent = 50;
   bool armijo_prefilter = true;
-  /// Descent steps at most, over every phase and outer iteration (>= 0).
+  /// Descent steps at most, over every phase and outer iteration (>= 0); with the polish, the
+  /// descent's steps before Newton's first attempt (the Polished() preset: 250).
   int max_iterations = 500;
   /// Penalty form: stop when |theta| <= relative_theta_tolerance (1 + |J|) (>= 0; 0: off). With
   /// polish, the descent hands over to Newton at this level (polish_switch below).
@@ -65,10 +66,9 @@ struct HamiltonianFamilyOptions {
   /// Newton attempts at most (>= 1). When Newton does not converge, the descent continues from
   /// its own last iterate for as many steps again as it has taken (its budget doubles) and Newton
   /// starts over from there: Newton's basin on the semismooth maximum principle is irregular
-  /// (on comm-path2d at gamma = 1e-5 a start from 500 descent steps failed on 3 of 5 channel
-  /// seeds, and from 1000 or 2000 steps converged on each of them; measured in
-  /// solvers/README-family.md).
-  int polish_attempts = 4;
+  /// (comm-path2d, hard form, gamma = 1e-5: a start from 250 descent steps fails on some channel
+  /// seeds and a later one converges; solvers/README-family.md). 6 attempts: up to 8000 steps.
+  int polish_attempts = 6;
 
   bool IsValid(std::string* error) const;
 };
