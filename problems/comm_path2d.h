@@ -257,7 +257,13 @@ std::vector<ParameterSpec> CommParameterSpecs();
 CommPowerModel CommPowerFromParameters(const Parameters& params);
 /// The channel `params` asks for, with realization `seed` (ignored by the path-loss channel).
 /// Throws std::invalid_argument naming the field on invalid values.
+/// Channels 1 and 2 are kept in ChannelCache::Global() under CommChannelKey: a suite's cases of
+/// one seed and channel build it once.
 std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params, std::uint64_t seed);
+/// The cache key of the channel `params` and `seed` define: the seed and the values of every
+/// shared comm parameter except the task's and the motion model's (S, D, c, tf, umax, Rmax,
+/// gamma, C, k, eps, pb).
+std::string CommChannelKey(const Parameters& params, std::uint64_t seed);
 /// Runs the checks of MakeCommChannel without simulating anything and returns a path-loss
 /// stand-in with the same base station and constants (for ProblemInfo::make_for_checks).
 std::shared_ptr<const ChannelQuality> MakeCommChannelForChecks(const Parameters& params);
