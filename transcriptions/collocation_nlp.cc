@@ -135,8 +135,9 @@ CollocationNlp::CollocationNlp(const Ocp& ocp,
   // Affine dynamics on a fixed horizon: the defect rows' Jacobian does not depend on z (any z
   // gives it; the starting point's states are simulated, so use zeros), so it is computed once.
   if (ocp_.HasAffineDynamics() && !free_time_) {
-    constant_defect_jacobian_.setZero(static_cast<Eigen::Index>(jac_rows_.size()));
-    AddDefectJacobian(Vec::Zero(num_variables()), &constant_defect_jacobian_);
+    Vec defect = Vec::Zero(static_cast<Eigen::Index>(jac_rows_.size()));
+    AddDefectJacobian(Vec::Zero(num_variables()), &defect);
+    if (defect.allFinite()) scaled_defect_jacobian_ = defect.cwiseProduct(jac_value_scale_);
   }
 }
 
@@ -429,6 +430,12 @@ bool CollocationNlp::Constraints(ConstVecRef zhat, VecRef g) const {
 }
 
 bool CollocationNlp::JacobianValues(ConstVecRef zhat, VecRef values) const {
+  if (scaled_defect_jacobian_.size() > 0) {
+    // Affine dynamics: the defect rows were computed and scaled once; only the other rows
+    // (balls, path constraints, hard terminal constraints) depend on z.
+    values = scaled_defect_jacobian_;
+    return AddOtherJacobianRows(Unscale(zhat), jac_value_scale_.data(), values.data());
+  }
   Vec out;
   if (!EvalJacobian(Unscale(zhat), &out)) return false;
   values = out.cwiseProduct(jac_value_scale_);
@@ -526,13 +533,20 @@ bool CollocationNlp::EvalConstraints(const Vec& z, Vec* g) const {
 }
 
 bool CollocationNlp::EvalJacobian(const Vec& z, Vec* values) const {
-  if (constant_defect_jacobian_.size() > 0) {
-    *values = constant_defect_jacobian_;
-  } else {
-    values->setZero(static_cast<Eigen::Index>(jac_rows_.size()));
-    AddDefectJacobian(z, values);
-  }
-  Vec& v = *values;
+  values->setZero(static_cast<Eigen::Index>(jac_rows_.size()));
+  AddDefectJacobian(z, values);
+  AddOtherJacobianRows(z, nullptr, values->data());
+  return values->allFinite();
+}
+
+bool CollocationNlp::AddOtherJacobianRows(const Vec& z, const double* scale, double* v) const {
+  // Each slot of these rows gets exactly one term, so adding scale * term to a zero entry gives
+  // the same double as scaling the finished sum (the order EvalJacobian's callers use).
+  bool finite = true;
+  auto add = [&](int slot, double term) {
+    v[slot] += scale == nullptr ? term : term * scale[slot];
+    finite = finite && std::isfinite(term);
+  };
   Vec c(nc_);
   Mat cx(nc_, nx_), cu(nc_, nu_);
   for (size_t e = 0; e < layout_.points.size(); ++e) {
@@ -542,8 +556,8 @@ bool CollocationNlp::EvalJacobian(const Vec& z, Vec* values) const {
       const auto u = z.segment(layout_.controls[p.control].offset, nu_);
       ocp_.PathConstraintsJacobian(p.t, x, u, c, cx, cu);
       for (int i = 0; i < nc_; ++i) {
-        for (int j = 0; j < nx_; ++j) v[jac_slots_[path_x_slots_[e] + i * nx_ + j]] += cx(i, j);
-        for (int j = 0; j < nu_; ++j) v[jac_slots_[path_u_slots_[e] + i * nu_ + j]] += cu(i, j);
+        for (int j = 0; j < nx_; ++j) add(jac_slots_[path_x_slots_[e] + i * nx_ + j], cx(i, j));
+        for (int j = 0; j < nu_; ++j) add(jac_slots_[path_u_slots_[e] + i * nu_ + j], cu(i, j));
       }
     }
   }
@@ -553,8 +567,8 @@ bool CollocationNlp::EvalJacobian(const Vec& z, Vec* values) const {
     for (int b : ball_blocks_) {
       const int base = ball_slots_[ball++];
       for (int j = 0; j < blocks[b].size; ++j) {
-        v[jac_slots_[base + j]] +=
-            2.0 * (z[cb.offset + blocks[b].offset + j] - blocks[b].center[j]);
+        add(jac_slots_[base + j],
+            2.0 * (z[cb.offset + blocks[b].offset + j] - blocks[b].center[j]));
       }
     }
   }
@@ -563,10 +577,10 @@ bool CollocationNlp::EvalJacobian(const Vec& z, Vec* values) const {
     Mat psix(npsi_, nx_);
     ocp_.TerminalConstraintsJacobian(z.segment(layout_.states.back().offset, nx_), psi, psix);
     for (int i = 0; i < npsi_; ++i) {
-      for (int j = 0; j < nx_; ++j) v[jac_slots_[terminal_slots_ + i * nx_ + j]] += psix(i, j);
+      for (int j = 0; j < nx_; ++j) add(jac_slots_[terminal_slots_ + i * nx_ + j], psix(i, j));
     }
   }
-  return v.allFinite();
+  return finite;
 }
 
 void CollocationNlp::AddDefectJacobian(const Vec& z, Vec* values) const {

@@ -192,6 +192,9 @@ class CollocationNlp : public TranscribedNlp {
   bool EvalJacobian(const Vec& z, Vec* values) const;
   // Adds the defect rows' entries (states and dynamics, the T column) to the Jacobian values.
   void AddDefectJacobian(const Vec& z, Vec* values) const;
+  // Adds the other rows' entries (path constraints, balls, hard terminal constraints), each
+  // times scale[slot] when `scale` is not null; false when one is not finite.
+  bool AddOtherJacobianRows(const Vec& z, const double* scale, double* values) const;
   bool EvalHessian(const Vec& z, double sigma, const Vec& lambda, Vec* values) const;
 
   const Ocp& ocp_;
@@ -219,9 +222,9 @@ class CollocationNlp : public TranscribedNlp {
 
   // Jacobian structure.
   std::vector<int> jac_slots_;
-  // The defect rows' Jacobian values when they do not depend on z (Ocp::HasAffineDynamics on a
-  // fixed horizon), else empty.
-  Vec constant_defect_jacobian_;
+  // The defect rows' Jacobian values times jac_value_scale_ when they do not depend on z
+  // (Ocp::HasAffineDynamics on a fixed horizon), else empty.
+  Vec scaled_defect_jacobian_;
   std::vector<std::vector<PointUse>> point_uses_;  // per point
   std::vector<StateUse> state_uses_;
   std::vector<int> path_x_slots_, path_u_slots_;  // per point (base into jac_slots_), or -1
