@@ -527,6 +527,9 @@ bool IpoptOptions::IsValid(std::string* error) const {
     return fail("hessian_approximation must be one of: auto, exact, limited-memory");
   }
   if (linear_solver != "mumps") return fail("linear_solver must be mumps (the only one built in)");
+  if (mumps_pivot_order < -1 || mumps_pivot_order > 7) {
+    return fail("mumps_pivot_order must be in -1..7 (-1: by problem class)");
+  }
   if (nlp_scaling_method != "none" && nlp_scaling_method != "gradient-based") {
     return fail("nlp_scaling_method must be one of: none, gradient-based");
   }
@@ -763,6 +766,8 @@ NlpSolution SolveNlpWithIpopt(const Nlp& nlp, const Vec& z0, const IpoptOptions&
       NumberOption("max_cpu_time", options.max_cpu_time),
       TextOption("mu_strategy", options.mu_strategy),
       TextOption("linear_solver", options.linear_solver),
+      IntegerOption("mumps_pivot_order",
+                    options.mumps_pivot_order >= 0 ? options.mumps_pivot_order : (exact ? 0 : 7)),
       TextOption("nlp_scaling_method", options.nlp_scaling_method),
       NumberOption("obj_scaling_factor", options.obj_scaling_factor),
       NumberOption("nlp_scaling_max_gradient", options.nlp_scaling_max_gradient),
