@@ -186,7 +186,9 @@ def callgrind_section(after, before, old_benchmarks):
              "(before, commit %s) by `results/plotting/callgrind_counts.py`: instruction counts do "
              "not depend on the machine's load, times do. Times are CPU / wall; \"before\" times "
              "are this file's kernel run below, \"after\" times the kernels run with the counts "
-             "(load average %s before, %s after)." % (
+             "(load average %s before, %s after). Times of the two runs are not comparable "
+             "with each other (another day and load; equal instruction counts took up to 2x "
+             "different CPU times): compare instructions across columns, times within one." % (
                  after.get("ipopt_commit", "?"), before.get("ipopt_commit", "?"),
                  ", ".join("%.1f" % x for x in after.get("times", {}).get("load_before", [])),
                  ", ".join("%.1f" % x for x in after.get("times", {}).get("load_after", []))),
@@ -235,7 +237,7 @@ def callgrind_section(after, before, old_benchmarks):
                       mega(ca["paper_channel_build_instructions"]))]
         for threads in (1, 2):
             name = "BM_ChannelPredictGrid/threads:%d/process_time/real_time" % threads
-            t_after = times.get(name + "_median")
+            t_after = times.get(name + "_median", times.get(name))
             lines.append("| time, %d thread%s (process CPU / wall) | %s | %s |" % (
                 threads, "s" if threads > 1 else "", ms(kernel_time(old_benchmarks, name)),
                 "-" if not t_after else ms((t_after["cpu_seconds"], t_after["wall_seconds"]))))
@@ -264,7 +266,7 @@ def callgrind_section(after, before, old_benchmarks):
                                                     mega(oa["fft_execute"]))]
         for name in ("BM_OnlineCycle/hamiltonian_50it/process_time/real_time",
                      "BM_OnlineCycle/ipopt_euler/process_time/real_time"):
-            t_after = times.get(name + "_median")
+            t_after = times.get(name + "_median", times.get(name))
             lines.append("| time, `%s` | %s | %s |" % (
                 name.split("/")[1], ms(kernel_time(old_benchmarks, name)),
                 "-" if not t_after else ms((t_after["cpu_seconds"], t_after["wall_seconds"]))))

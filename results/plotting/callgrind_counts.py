@@ -73,19 +73,26 @@ def matching(counts, pattern, exclude=None):
     return sum(v for k, v in counts.items() if rx.search(k) and not (ex and ex.search(k)))
 
 
-def callgrind(command, collect, tmp):
+def callgrind(command, collect, tmp, threads=False):
+    """Counts of `command`, collected inside `collect` (and, with threads, inside every thread
+    the process starts: the grid prediction's workers)."""
     out = os.path.join(tmp, "callgrind.out")
-    subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out,
-                    "--toggle-collect=" + collect] + command,
+    toggles = ["--toggle-collect=" + collect]
+    if threads:
+        toggles.append("--toggle-collect=std::thread::_State_impl*")
+    subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out] + toggles +
+                   command,
                    check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     return inclusive_counts(out)
 
 
-def measure_ipopt(bin_dir, tmp):
+IPOPT_CASES = "euler:penalty,trapezoid:penalty,hermite-simpson:penalty,hermite-simpson:hard," \
+              "lgr:penalty"
+
+
+def measure_ipopt(bin_dir, tmp, cases=IPOPT_CASES):
     rows = []
-    for scheme, terminal in [("euler", "penalty"), ("trapezoid", "penalty"),
-                             ("hermite-simpson", "penalty"), ("hermite-simpson", "hard"),
-                             ("lgr", "penalty")]:
+    for scheme, terminal in (c.split(":") for c in cases.split(",")):
         record = os.path.join(tmp, "solve.json")
         command = [os.path.join(bin_dir, "ocpbench"), "solve", "--problem", "comm-path2d",
                    "--solver", "ipopt", "--transcription", scheme, "--terminal", terminal,
@@ -132,12 +139,20 @@ def measure_channel(bin_dir, tmp):
            "serial_fraction": serial / whole, "critical_path_2_threads": path,
            "instruction_speedup_2_threads": whole / path,
            "fft_plan": matching(c, FFT_PLAN), "fft_execute": matching(c, FFT_EXECUTE)}
-    command = [os.path.join(bin_dir, "ocpbench"), "solve", "--problem", "comm-path2d",
-               "--solver", "hamiltonian", "--option", "max_iterations=1", "--no-trajectory"]
-    c = callgrind(command, "ocpb::MakePaperChannel*", tmp)
-    out["paper_channel_build_instructions"] = total(c)
+    out["paper_channel_build_instructions"] = measure_channel_build(bin_dir, tmp)
     print("channel", out, file=sys.stderr)
     return out
+
+
+def measure_channel_build(bin_dir, tmp):
+    """Instructions of MakePaperChannel in one comm-path2d make (all threads)."""
+    command = [os.path.join(bin_dir, "ocpbench"), "solve", "--problem", "comm-path2d",
+               "--solver", "hamiltonian", "--option", "max_iterations=1", "--no-trajectory"]
+    return total(callgrind(command, "ocpb::MakePaperChannel*", tmp, threads=True))
+
+
+def measure_build(bin_dir, tmp):
+    return {"paper_channel_build_instructions": measure_channel_build(bin_dir, tmp)}
 
 
 def measure_online(bin_dir, tmp):
@@ -200,6 +215,8 @@ def main():
     ap.add_argument("--bin", default="build/bin")
     ap.add_argument("--out", default="results/callgrind.json")
     ap.add_argument("--only", default="ipopt,channel,online,times,suite")
+    ap.add_argument("--ipopt-cases", default=IPOPT_CASES,
+                    help="scheme:terminal,... for the ipopt part (default: %(default)s)")
     a = ap.parse_args()
     result = {}
     if os.path.exists(a.out):
@@ -210,9 +227,12 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for part in a.only.split(","):
             fn = {"ipopt": measure_ipopt, "channel": measure_channel,
-                  "online": measure_online, "times": measure_times,
+                  "online": measure_online, "times": measure_times, "build": measure_build,
                   "suite": measure_suite}[part]
-            result[part] = fn(a.bin, tmp)
+            if part == "build":  # the channel build alone (also part of "channel")
+                result.setdefault("channel", {}).update(fn(a.bin, tmp))
+                continue
+            result[part] = fn(a.bin, tmp, a.ipopt_cases) if part == "ipopt" else fn(a.bin, tmp)
             result[part + "_commit"] = commit
     tmp_out = a.out + ".tmp"
     with open(tmp_out, "w") as f:
