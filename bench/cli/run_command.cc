@@ -35,6 +35,7 @@ struct RunArgs {
   int jobs = 1;
   bool resume = false;
   bool overwrite = false;
+  bool check = false;
 };
 
 std::string MethodLabel(const CaseSpec& spec) {
@@ -86,6 +87,15 @@ void Run(const RunArgs& args) {
         "--jobs {}: must be an integer from 1 to {} (worker processes)", args.jobs, kMaxJobs));
   }
   if (shard) CheckShardManifest(dir, suite, shard->count);
+  if (args.check) {
+    std::cerr << fmt::format(
+        "ocpbench: suite {} checked: {} cases{}; nothing run\n",
+        suite.name,
+        suite.cases.size(),
+        shard ? fmt::format(", {} in shard {}", shard->CaseCount(suite.cases.size()), shard->Text())
+              : "");
+    return;
+  }
   const std::string records_path =
       dir + "/" + (shard ? shard->RecordsFileName() : std::string("records.jsonl"));
 
@@ -147,7 +157,7 @@ void Run(const RunArgs& args) {
       // One case never stops the suite: whatever it throws becomes its record.
       Record record = RunCaseRecordingFailures(*todo[i]);
       const std::string line = record.ToJson().dump();
-      record_done(i, std::move(record), line, 0);
+      record_done(i, std::move(record), line, i + 1 < todo.size() ? 1 : 0);
     }
   } else {
     WorkerPoolTasks tasks;
@@ -206,6 +216,10 @@ void AddRunCommand(CLI::App& app) {
                   args->jobs,
                   "worker processes running cases at once (default 1); each case's CPU time "
                   "stays its own, records come out in the suite's order");
+  run->add_flag("--check",
+                args->check,
+                "check the suite (every case) and the output folder's shard rules; run and "
+                "write nothing");
   run->callback([args]() { Run(*args); });
 }
 
