@@ -167,7 +167,7 @@ void Run(const RunArgs& args) {
       Record rec = CaseIdentityRecord(*todo[i]);
       rec.status = ToString(SolveStatus::kError);
       rec.solver_status = "worker_died";
-      rec.message = "the worker process running this case " + why;
+      rec.message = "the worker process running this case ended: " + why;
       return rec.ToJson().dump();
     };
     tasks.done = [&](size_t i, std::string line, size_t running) {
