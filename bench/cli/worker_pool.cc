@@ -86,6 +86,18 @@ std::string DescribeExit(int status) {
 class Pool {
  public:
   Pool(const WorkerPoolTasks& tasks, int jobs) : tasks_(tasks), jobs_(jobs) {}
+  Pool(const Pool&) = delete;
+  Pool& operator=(const Pool&) = delete;
+  // Leaving early (a result that could not be written throws out of `done`): no worker stays.
+  ~Pool() {
+    for (Worker& w : workers_) {
+      if (w.fd < 0) continue;
+      ::close(w.fd);
+      ::kill(w.pid, SIGKILL);
+      while (::waitpid(w.pid, nullptr, 0) < 0 && errno == EINTR) {
+      }
+    }
+  }
 
   void Run() {
     const size_t wanted = std::min(static_cast<size_t>(jobs_), tasks_.count);
@@ -208,6 +220,7 @@ class Pool {
     if (w->fd < 0) return;
     SendAll(w->fd, "quit\n");
     ::close(w->fd);
+    w->fd = -1;
     int status = 0;
     while (::waitpid(w->pid, &status, 0) < 0 && errno == EINTR) {
     }
