@@ -112,6 +112,13 @@ void Header(const Comparison& c, std::ostringstream& md) {
     }
   }
   Verdict(c, md);
+  if (std::isfinite(c.overall_cpu_ratio)) {
+    md << fmt::format(
+        "CPU over all matched cases: geometric mean of the ratios x {:.3g}. A shift that every "
+        "method shares usually comes from the machine (its load, its clock), not from the "
+        "code: compare CPU of runs made back to back on one machine.\n\n",
+        c.overall_cpu_ratio);
+  }
   const CompareThresholds& t = c.options.thresholds;
   md << fmt::format(
       "Thresholds: cost (final J fine) {:g} relative; violations +{:g} and +{:g} x base; CPU "
@@ -236,7 +243,9 @@ void Profiles(const Comparison& c, std::ostringstream& md) {
         "(problem, seed, parameters, terminal form), every method on each side one solver of a "
         "single profile, so that both sides are measured against the same best time: rho(tau) "
         "is the fraction of the method's groups where its time is within tau times the best "
-        "(times below 1e-6 s count as 1e-6 s, as in results/plot.py); ever = reached at all.\n\n";
+        "(times below 1e-6 s count as 1e-6 s, as in results/plot.py); ever = reached at all. Two "
+        "runs of an unchanged method split the wins at tau = 1 by timing noise alone: read tau "
+        ">= 2 for speed.\n\n";
   if (c.profiles.empty()) {
     md << "No group has a time to target.\n\n";
     return;
@@ -482,7 +491,8 @@ json CompareJson(const Comparison& c) {
                 {"regressed_methods", c.RegressedMethods()},
                 {"matched_cases", c.cases.size()},
                 {"only_in_base", c.only_in_base.size()},
-                {"only_in_new", c.only_in_new.size()}}},
+                {"only_in_new", c.only_in_new.size()},
+                {"overall_cpu_ratio", JsonNumber(c.overall_cpu_ratio)}}},
               {"cases", cases},
               {"only_in_base", UnmatchedJson(c.only_in_base)},
               {"only_in_new", UnmatchedJson(c.only_in_new)},
