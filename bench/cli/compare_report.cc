@@ -114,9 +114,9 @@ void Header(const Comparison& c, std::ostringstream& md) {
   Verdict(c, md);
   if (std::isfinite(c.overall_cpu_ratio)) {
     md << fmt::format(
-        "CPU over all matched cases: geometric mean of the ratios x {:.3g}. A shift that every "
-        "method shares usually comes from the machine (its load, its clock), not from the "
-        "code: compare CPU of runs made back to back on one machine.\n\n",
+        "CPU over all matched cases: geometric mean of the ratios x {:.3g}. Where every method "
+        "shows about this ratio, the shift is the machine's (its load, its clock), not the "
+        "code's: compare CPU of runs made back to back on one machine.\n\n",
         c.overall_cpu_ratio);
   }
   const CompareThresholds& t = c.options.thresholds;
