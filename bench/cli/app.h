@@ -38,6 +38,9 @@ void AddMergeCommand(CLI::App& app);
 void AddChannelCommand(CLI::App& app);
 /// `ocpbench online --problem comm-path2d --solver S [...]` (bench/cli/online_command.cc).
 void AddOnlineCommand(CLI::App& app);
+/// `ocpbench compare BASE NEW [...]`: two runs of one suite, case by case
+/// (bench/cli/compare_command.cc).
+void AddCompareCommand(CLI::App& app);
 
 /// Subcommands set this when their work ran but some cases failed.
 void ReportSomeFailed();
