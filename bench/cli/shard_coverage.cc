@@ -18,8 +18,13 @@ std::string ShardCoverage::IncompleteShardList() const {
   for (size_t a = 0; a < incomplete.size();) {
     size_t b = a;
     while (b + 1 < incomplete.size() && incomplete[b + 1] == incomplete[b] + 1) ++b;
-    out += (out.empty() ? "" : ",") + std::to_string(incomplete[a]);
-    if (b > a) out += "-" + std::to_string(incomplete[b]);
+    // Appended piecewise: GCC 12 -O2 reports a false -Wrestrict on `"," + text`.
+    if (!out.empty()) out += ',';
+    out += std::to_string(incomplete[a]);
+    if (b > a) {
+      out += '-';
+      out += std::to_string(incomplete[b]);
+    }
     a = b + 1;
   }
   return out;
