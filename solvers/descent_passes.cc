@@ -268,6 +268,12 @@ double DescentPasses::Backward(double* theta_scale, double eps) {
       const double duration = grid.tf() - grid.t0();
       dJdT_ = 0.0;
       for (int k = 0; k < N_; ++k) dJdT_ += grid.h(k) / duration * nows_[k];
+      // T's share of the stationarity measure: min over T' in [lower, upper] of dJ/dT (T' - T),
+      // the counterpart of the controls' min H - H (<= 0, and 0 exactly where T is stationary:
+      // dJ/dT = 0, or a bound with dJ/dT pointing out of the box). Without it the stopping tests
+      // saw the controls only and stopped at a non-stationary T.
+      const double T = grid.tf();
+      stationarity_theta_ += std::min(dJdT_ * (T_lower_ - T), dJdT_ * (T_upper_ - T));
     }
     return theta;
   }

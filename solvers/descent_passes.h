@@ -121,7 +121,8 @@ class DescentPasses {
   /// derivative of J along d is at most theta and the Armijo search ends when theta < 0.
   /// stationarity_theta() then holds the paper's theta at the iterate (equal to the return value
   /// for eps infinite): the proximal theta shrinks with eps whether or not the iterate is
-  /// stationary, so stopping tests use the paper's.
+  /// stationary, so stopping tests use the paper's. With a free final time it also holds T's
+  /// share, min over T' in [lower, upper] of dJ/dT (T' - T) <= 0 (0 only at a stationary T).
   double Backward(double* theta_scale, double eps = std::numeric_limits<double>::infinity());
   double stationarity_theta() const { return stationarity_theta_; }
   /// The Armijo search along D (Backward first). Returns the accepted exponent, or -1 when no

@@ -395,6 +395,26 @@ TEST(FreeFinalTime, PolishedFamilyReachesIpoptEulersTime) {
   EXPECT_LE(Stat(descent, "final_time"), ocp->free_final_time()->upper);
 }
 
+// The stopping tests see T too: the outer loop on the free-time hard form once reported
+// al_converged at T = 0.66 and J = 21.2 (Ipopt + Euler: T = 2.06, J = 2.75), its inner
+// stationarity measure counting the controls only. A converged result must be at Ipopt's T and J
+// (an unconverged one says so in its status).
+TEST(FreeFinalTime, OuterLoopDoesNotStopAtANonStationaryT) {
+  const auto ocp = MakeProblem("double-integrator-free-time", {}, 0);
+  const int N = 100;
+  Options o = HamiltonianFamily::AugmentedLagrangian();
+  o.max_iterations = 2000;
+  const SolveResult r = HamiltonianFamily(o).Solve(*ocp, Request(*ocp, N, TerminalMode::kHard));
+  ASSERT_NE(r.status, SolveStatus::kNotApplicable) << r.message;
+  const SolveResult ipopt = IpoptEuler(*ocp, N, TerminalMode::kHard);
+  ASSERT_EQ(ipopt.status, SolveStatus::kConverged) << ipopt.message;
+  const double T_ipopt = ipopt.state_grid.tf();
+  if (r.status == SolveStatus::kConverged) {
+    EXPECT_NEAR(Stat(r, "final_time"), T_ipopt, 1e-3 * T_ipopt) << r.solver_status;
+    EXPECT_NEAR(r.objective, ipopt.objective, 1e-3 * ipopt.objective) << r.solver_status;
+  }
+}
+
 // ---- the polish ---------------------------------------------------------------------------------
 
 // The polished J is never above the descent's, in the descent's own discrete J and judged by
