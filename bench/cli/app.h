@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/integrator.h"
 #include "core/option_value.h"
 
 namespace CLI {
@@ -33,6 +34,10 @@ void AddRunCommand(CLI::App& app);
 void AddChannelCommand(CLI::App& app);
 /// `ocpbench online --problem comm-path2d --solver S [...]` (bench/cli/online_command.cc).
 void AddOnlineCommand(CLI::App& app);
+
+/// ParseIntegrator with the flag's name in the message: "--evaluate-with: unknown integrator
+/// 'rk45' (valid: euler, rk4)".
+Integrator ParseFlagIntegrator(const std::string& flag, const std::string& text);
 
 /// Subcommands set this when their work ran but some cases failed.
 void ReportSomeFailed();

@@ -15,6 +15,7 @@
 #include "bench/cli/app.h"
 #include "bench/cli/case_runner.h"
 #include "bench/cli/io.h"
+#include "bench/cli/output_place.h"
 #include "bench/cli/records_file.h"
 #include "bench/cli/suite.h"
 #include "bench/cli/summary.h"
@@ -78,6 +79,8 @@ void Run(const RunArgs& args) {
   const std::string records_path =
       shards == 1 ? dir + "/records.jsonl"
                   : fmt::format("{}/records.shard-{}-of-{}.jsonl", dir, shard, shards);
+  // Before any work: the folder and its files are usable, and this run is their only writer.
+  const OutputFolderLock lock = ClaimRunFolder(dir, records_path, shard, shards);
 
   std::set<std::string> done;
   std::vector<Record> records;
@@ -95,7 +98,12 @@ void Run(const RunArgs& args) {
         std::cerr << "ocpbench: dropped a partial last record in " << records_path
                   << " (its case runs again)\n";
       }
-      if (file.dropped_partial || file.unterminated) {
+      const int duplicates = file.DropDuplicateKeys();
+      if (duplicates > 0) {
+        std::cerr << "ocpbench: dropped " << duplicates << " duplicate records in " << records_path
+                  << " (a case recorded again; the first record of each case stays)\n";
+      }
+      if (file.dropped_partial || file.unterminated || duplicates > 0) {
         WriteFileAtomically(records_path, JoinLines(file.lines));
       }
       records = std::move(file.records);
@@ -159,6 +167,7 @@ void Run(const RunArgs& args) {
 
 void Merge(const std::string& dir, const std::string& name_arg) {
   if (!fs::is_directory(dir)) throw std::invalid_argument("merge: no such directory " + dir);
+  const OutputFolderLock lock = ClaimMergeFolder(dir);  // no shard may still be running there
   std::vector<std::string> shard_files;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string f = e.path().filename().string();
