@@ -9,16 +9,16 @@
 namespace ocpb {
 
 /// A GP prediction from m measurements: 32 m^2 bytes (the covariance, its Cholesky factor and
-/// the estimator's work matrices, 8 bytes an entry). Measured peaks of `ocpbench channel predict
-/// --samples m --resolution 0.5 --no-files` less its 17 MB at m = 0: 23 m^2 bytes at m = 1000,
-/// 21 m^2 at m = 4000.
+/// the estimator's work matrices, 8 bytes an entry). Measured: `ocpbench channel predict
+/// --samples 1000 --resolution 0.5 --no-files` peaks at 39.2 MB resident (debug build), of which
+/// about 12.7 MB is the program itself (a run refused at validation): about 27 m^2 bytes.
 inline double EstimateGpMemoryBytes(double measurements) {
   return 32.0 * measurements * measurements;
 }
 
 /// A simulated and predicted channel on a grid of `points` points: 160 bytes a point (the
 /// gain, shadowing and multipath fields, the predicted mean, variance and s, the map's
-/// coefficients). Measured: 105 bytes a point at 500 x 500 points (`--resolution 0.1`).
+/// coefficients); generous by design (not measured separately from the GP).
 inline double EstimateChannelGridBytes(double points) { return 160.0 * points; }
 
 /// Throws std::invalid_argument (CheckMemoryEstimate) naming `grid_field` when the grid alone,
