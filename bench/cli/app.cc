@@ -15,9 +15,11 @@
 namespace ocpb {
 namespace {
 bool g_some_failed = false;
+bool g_incomplete = false;
 }  // namespace
 
 void ReportSomeFailed() { g_some_failed = true; }
+void ReportIncomplete() { g_incomplete = true; }
 
 Integrator ParseFlagIntegrator(const std::string& flag, const std::string& text) {
   try {
@@ -41,6 +43,7 @@ OptionMap ParseKeyValues(const std::vector<std::string>& items, const std::strin
 
 int Main(int argc, char** argv) {
   g_some_failed = false;
+  g_incomplete = false;
   // Past a file-size limit (RLIMIT_FSIZE) a write then fails with EFBIG, which the writers turn
   // into an error that keeps the records file whole, instead of the signal killing the process
   // mid-record.
@@ -53,8 +56,10 @@ int Main(int argc, char** argv) {
   AddListCommand(app);
   AddSolveCommand(app);
   AddRunCommand(app);
+  AddMergeCommand(app);
   AddChannelCommand(app);
   AddOnlineCommand(app);
+  AddCompareCommand(app);
   try {
     // Name an unknown command plainly (CLI11 alone would say "A subcommand is required").
     if (argc >= 2 && argv[1][0] != '-') {
@@ -87,6 +92,7 @@ int Main(int argc, char** argv) {
     std::cerr << "ocpbench: error: " << OneLine(e.what()) << "\n";
     return kExitInternalError;
   }
+  if (g_incomplete) return kExitIncomplete;
   return g_some_failed ? kExitSomeFailed : kExitOk;
 }
 

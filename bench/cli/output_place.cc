@@ -184,7 +184,9 @@ OutputFolderLock ClaimRunFolder(const std::string& dir,
     Refuse("--out", records_path, "is not a regular file (--resume reads a records file back)");
   }
   CheckOutputFile(records_path + ".prev", "--out");
-  if (!sharded) {
+  if (sharded) {
+    CheckOutputFile((fs::path(dir) / "shards.json").string(), "--out");
+  } else {
     for (const std::string& name : SummaryFileNames()) {
       CheckOutputFile((fs::path(dir) / name).string(), "--out");
     }

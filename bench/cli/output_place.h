@@ -57,12 +57,13 @@ class OutputFolderLock {
 };
 
 /// The files `ocpbench run` (without shards) and `merge` write beside the records
-/// (WriteSummaries in bench/cli/run_command.cc; a file added there belongs here too).
+/// (WriteRunSummaries in bench/cli/run_outputs.cc; a file added there belongs here too).
 const std::vector<std::string>& SummaryFileNames();
 
 /// What `ocpbench run` does before solving: CheckOutputFolder(dir), the folder's lock (kShard
 /// for a shard's records file, kExclusive otherwise), and CheckOutputFile for the records file,
-/// its ".prev" (--overwrite keeps the old one there) and, without shards, each summary file.
+/// its ".prev" (--overwrite keeps the old one there) and, without shards, each summary file
+/// (with shards: the folder's shards.json, bench/cli/shard_manifest.h).
 /// `shard` and `shards` as the records file names them (0 <= shard <= shards).
 OutputFolderLock ClaimRunFolder(const std::string& dir,
                                 const std::string& records_path,

@@ -59,6 +59,7 @@ Suite ParseSuite(const json& j, const std::string& source, const JsonLines* line
       errors.Fail(v, "unknown key '" + k + "' (valid: description, groups, name)");
   }
   Suite suite;
+  suite.document = j;
   if (!j.contains("name") || !j["name"].is_string() || j["name"].get<std::string>().empty()) {
     errors.Fail(j.contains("name") ? j["name"] : j, "name: required non-empty string");
   }

@@ -27,6 +27,8 @@ struct Suite {
   std::string name;
   std::string description;
   std::vector<CaseSpec> cases;
+  /// The suite as parsed (a sharded run keeps it in its output folder for `merge`).
+  nlohmann::json document;
 };
 
 /// The most cases one suite file may expand to (seeds x N x methods over its groups), counted
