@@ -101,8 +101,10 @@ void PrintCoverage(const std::string& command, const ShardCoverage& coverage) {
 }
 
 void Merge(const MergeArgs& args) {
+  // The folder's exclusive lock before anything is read: no shard may still be running there.
+  OutputFolderLock lock;
+  if (fs::is_directory(args.dir)) lock = ClaimMergeFolder(args.dir);
   const Sweep sweep = ReadSweep("merge", args);
-  const OutputFolderLock lock = ClaimMergeFolder(args.dir);  // no shard may still be running there
   const std::vector<std::string> suite_keys = SuiteKeys(sweep.suite);
   std::unordered_map<std::string, size_t> position;
   for (size_t i = 0; i < suite_keys.size(); ++i) position.emplace(suite_keys[i], i);
