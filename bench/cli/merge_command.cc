@@ -101,10 +101,10 @@ void PrintCoverage(const std::string& command, const ShardCoverage& coverage) {
 }
 
 void Merge(const MergeArgs& args) {
-  // The folder's exclusive lock before anything is read: no shard may still be running there.
-  OutputFolderLock lock;
-  if (fs::is_directory(args.dir)) lock = ClaimMergeFolder(args.dir);
   const Sweep sweep = ReadSweep("merge", args);
+  // The folder's exclusive lock before anything is written (no shard may still be running
+  // there); after the sweep is read, so that a refused merge leaves no lock file behind.
+  const OutputFolderLock lock = ClaimMergeFolder(args.dir);
   const std::vector<std::string> suite_keys = SuiteKeys(sweep.suite);
   std::unordered_map<std::string, size_t> position;
   for (size_t i = 0; i < suite_keys.size(); ++i) position.emplace(suite_keys[i], i);
