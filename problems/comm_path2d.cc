@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "problems/channel/channel_memory.h"
+#include "problems/channel/measurement_sampling.h"
 #include "problems/channel/paper_channel.h"
 #include "problems/comm_channel_cache.h"
 
@@ -647,7 +649,22 @@ std::string CommChannelKey(const Parameters& params, std::uint64_t seed) {
 std::shared_ptr<const ChannelQuality> MakeCommChannelForChecks(const Parameters& params) {
   const int model = params.Integer("channel");
   CheckChannelGeometry(params);
-  if (model != 0) CommPaperChannelOptions(params, model);
+  if (model != 0) {
+    // What MakePaperChannel would refuse or run out of memory on, found before simulating.
+    const PaperChannelOptions options = CommPaperChannelOptions(params, model);
+    const GridSpec& grid = options.simulation.grid;
+    const int samples = params.Integer("samples");
+    CheckChannelMemory(samples, "samples", static_cast<double>(grid.num_points()), "grid_step");
+    const long eligible = EligibleMeasurementPoints(grid, options.truth);
+    if (2L * samples > eligible) {
+      throw std::invalid_argument(
+          "samples: " + std::to_string(samples) + " measurements need " +
+          std::to_string(2L * samples) +
+          " grid points beyond the distance floor of the base station (twice as many); the "
+          "channel grid (workspace / grid_step) has " +
+          std::to_string(eligible));
+    }
+  }
   return std::make_shared<PathLossChannel>(params.Vector("base"),
                                            params.Scalar("K_PL"),
                                            params.Scalar("n_PL"),

@@ -403,16 +403,16 @@ TEST(LoadCompareSide, DamagedInputIsNamedByFileLineAndField) {
   json bad = MakeRecord(Case{.seed = 2});
   bad["J_fine"] = "high";
   testing::WriteText(dir + "/records.jsonl", good + "\n" + bad.dump() + "\n");
-  EXPECT_EQ(ErrorOf(dir), dir + "/records.jsonl: line 2: J_fine: must be a number or null");
+  EXPECT_EQ(ErrorOf(dir), dir + "/records.jsonl:2: J_fine: must be a number or null");
   testing::WriteText(dir + "/records.jsonl", good + "\n" + good + "\n");
   EXPECT_EQ(ErrorOf(dir),
-            dir + "/records.jsonl: line 2: key: the case of line 1 again (a case recorded twice)");
+            dir + "/records.jsonl:2: key: the case of line 1 again (a case recorded twice)");
   json keyless = MakeRecord(Case{});
   keyless.erase("key");
   testing::WriteText(dir + "/records.jsonl", keyless.dump() + "\n");
   EXPECT_EQ(ErrorOf(dir),
             dir +
-                "/records.jsonl: line 1: key: missing (a record without a case key cannot be "
+                "/records.jsonl:1: key: missing (a record without a case key cannot be "
                 "matched)");
   testing::WriteText(dir + "/records.jsonl", good + "\n");
   testing::WriteText(dir + "/suite.json", "{\"records\": 1}");
@@ -577,7 +577,7 @@ TEST_F(CompareRuns, InvalidInputIsOneLineAndExitTwoAndWritesNothing) {
       {{"base", "other"},
        "compare: base is a run of suite 'tiny', other of suite 'paper': not two runs of one "
        "suite"},
-      {{"base", "damaged"}, "damaged/records.jsonl: line 1: iterations: must be an integer"},
+      {{"base", "damaged"}, "damaged/records.jsonl:1: iterations: must be an integer"},
       {{"base", "again", "--cpu-ratio", "0.5"},
        "compare option 'cpu_ratio': must be a number >= 1 (got '0.5')"},
       {{"base", "stranger.jsonl"},
