@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "bench/cli/channel_command.h"
 #include "bench/cli/online_command.h"
 #include "bench/cli/version.h"

@@ -1,7 +1,9 @@
 // The `ocpbench` command-line program: subcommands register themselves on one CLI11 app.
 #pragma once
 
-#include <CLI/CLI.hpp>
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace ocpb {
 

@@ -1,7 +1,9 @@
 // `ocpbench channel simulate|predict`: the channel model from the command line.
 #pragma once
 
-#include <CLI/CLI.hpp>
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace ocpb {
 

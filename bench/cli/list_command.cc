@@ -1,6 +1,8 @@
 #include <iostream>
 #include <memory>
 
+#include <CLI/CLI.hpp>
+
 #include "bench/cli/app.h"
 #include "problems/registry.h"
 #include "solvers/registry.h"

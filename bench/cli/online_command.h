@@ -2,10 +2,13 @@
 // channel, next to the offline plan made at t0 = 0.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "bench/cli/case_runner.h"
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace ocpb {
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "bench/cli/app.h"
 #include "bench/cli/case_runner.h"

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "bench/cli/app.h"
 #include "bench/cli/case_runner.h"
