@@ -169,16 +169,16 @@ TEST(Catmix, CopsSchemeReproducesTheCopsValueAndConvergesToTheContinuousEstimate
 // cost). They improve slowly or not at all with N (N = 100: 2.8e-4 and 1.4e-3; LGR N = 200:
 // 1.3e-3): with polynomial controls LGR cannot reach the optimum on this problem to better than
 // about 1e-3.
-struct IpoptCase {
+struct CatmixIpoptCase {
   const char* transcription;
   int N;
   double tolerance;
 };
 
-class CatmixIpopt : public ::testing::TestWithParam<IpoptCase> {};
+class CatmixIpopt : public ::testing::TestWithParam<CatmixIpoptCase> {};
 
 TEST_P(CatmixIpopt, ReachesTheReference) {
-  const IpoptCase c = GetParam();
+  const CatmixIpoptCase c = GetParam();
   const auto ocp = MakeProblem("catmix", {}, 0);
   const SolveResult r = SolveWithIpopt(*ocp, c.transcription, c.N);
   ASSERT_TRUE(IsSuccess(r.status)) << r.solver_status << " " << r.message;
@@ -189,10 +189,10 @@ TEST_P(CatmixIpopt, ReachesTheReference) {
 
 INSTANTIATE_TEST_SUITE_P(Transcriptions,
                          CatmixIpopt,
-                         ::testing::Values(IpoptCase{"euler", 50, 5e-3},
-                                           IpoptCase{"trapezoid", 100, 5e-6},
-                                           IpoptCase{"hermite-simpson", 50, 1.2e-3},
-                                           IpoptCase{"lgr", 50, 2e-3}),
+                         ::testing::Values(CatmixIpoptCase{"euler", 50, 5e-3},
+                                           CatmixIpoptCase{"trapezoid", 100, 5e-6},
+                                           CatmixIpoptCase{"hermite-simpson", 50, 1.2e-3},
+                                           CatmixIpoptCase{"lgr", 50, 2e-3}),
                          [](const auto& info) {
                            std::string n = info.param.transcription;
                            for (char& ch : n) ch = ch == '-' ? '_' : ch;

@@ -21,7 +21,7 @@ using reference_testing::SolveWith;
 using reference_testing::SolveWithHamiltonian;
 using reference_testing::SolveWithIpopt;
 
-constexpr double kJ = Hager::kReferenceCost;
+constexpr double kHagerJ = Hager::kReferenceCost;
 
 TEST(Hager, ClosedFormSatisfiesTheOptimalityConditions) {
   // x' = x/2 + u, x(0) = 1; p' = -H_x = -(2x + p/2), p(1) = 0; u = -p (H_u = 0), checked with
@@ -48,34 +48,34 @@ TEST(Hager, ClosedFormSatisfiesTheOptimalityConditions) {
     J += w * (0.5 * u * u + x * x);
   }
   J /= 3.0 * n;
-  EXPECT_NEAR(J, kJ, 1e-13);
+  EXPECT_NEAR(J, kHagerJ, 1e-13);
 }
 
-struct IpoptCase {
+struct HagerIpoptCase {
   const char* transcription;
   int N;
   double tolerance;  // on |Jbar_fine - J*| / J*: measured accuracy rounded up
 };
 
-class HagerIpopt : public ::testing::TestWithParam<IpoptCase> {};
+class HagerIpopt : public ::testing::TestWithParam<HagerIpoptCase> {};
 
 TEST_P(HagerIpopt, ReachesTheReference) {
-  const IpoptCase c = GetParam();
+  const HagerIpoptCase c = GetParam();
   const auto ocp = MakeProblem("hager", {}, 0);
   const SolveResult r = SolveWithIpopt(*ocp, c.transcription, c.N);
   ASSERT_EQ(r.status, SolveStatus::kConverged) << r.solver_status << " " << r.message;
   const double jbar = FineEvaluation(*ocp, r, c.N).Jbar;
-  EXPECT_LT(RelativeError(jbar, kJ), c.tolerance) << "Jbar_fine = " << jbar;
+  EXPECT_LT(RelativeError(jbar, kHagerJ), c.tolerance) << "Jbar_fine = " << jbar;
 }
 
 // Measured: Euler 3.8e-5 (N = 100), trapezoid 3.6e-6 (N = 50), Hermite-Simpson 8.0e-9 (N = 25),
 // LGR 5.3e-12 (N = 25).
 INSTANTIATE_TEST_SUITE_P(Transcriptions,
                          HagerIpopt,
-                         ::testing::Values(IpoptCase{"euler", 100, 6e-5},
-                                           IpoptCase{"trapezoid", 50, 6e-6},
-                                           IpoptCase{"hermite-simpson", 25, 1.5e-8},
-                                           IpoptCase{"lgr", 25, 1e-11}),
+                         ::testing::Values(HagerIpoptCase{"euler", 100, 6e-5},
+                                           HagerIpoptCase{"trapezoid", 50, 6e-6},
+                                           HagerIpoptCase{"hermite-simpson", 25, 1.5e-8},
+                                           HagerIpoptCase{"lgr", 25, 1e-11}),
                          [](const auto& info) {
                            std::string n = info.param.transcription;
                            for (char& ch : n) ch = ch == '-' ? '_' : ch;
@@ -124,7 +124,7 @@ Errors Measure(const std::string& transcription, int N) {
     double& slot = (k == 0 || k == N) ? e.u_ends : e.u_interior;
     slot = std::max(slot, eu);
   }
-  e.J = std::abs(r.objective - kJ);
+  e.J = std::abs(r.objective - kHagerJ);
   return e;
 }
 
@@ -189,7 +189,7 @@ TEST(Hager, NloptSlsqpReachesTheSameOptimumAsIpopt) {
   ASSERT_EQ(nlopt.status, SolveStatus::kConverged) << nlopt.solver_status << " " << nlopt.message;
   const SolveResult ipopt = SolveWithIpopt(*ocp, "hermite-simpson", 20);
   EXPECT_NEAR(nlopt.objective, ipopt.objective, 1e-8);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, nlopt, 20).Jbar, kJ), 5e-8);  // measured 2.0e-8
+  EXPECT_LT(RelativeError(FineEvaluation(*ocp, nlopt, 20).Jbar, kHagerJ), 5e-8);  // measured 2.0e-8
 }
 
 // Forward Euler: the Hamiltonian method and Ipopt on the Euler transcription solve the same
@@ -203,7 +203,7 @@ TEST(Hager, HamiltonianReachesTheEulerOptimumAndTheReference) {
   ASSERT_EQ(h.status, SolveStatus::kConverged) << h.solver_status << " " << h.message;
   const SolveResult ipopt = SolveWithIpopt(*ocp, "euler", N, TerminalMode::kPenalty);
   EXPECT_NEAR(h.objective, ipopt.objective, 1e-9);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, h, N).Jbar, kJ), 6e-5);
+  EXPECT_LT(RelativeError(FineEvaluation(*ocp, h, N).Jbar, kHagerJ), 6e-5);
   double ep = 0.0;
   for (int k = 0; k < h.state_grid.size(); ++k) {
     ep = std::max(ep, std::abs(h.costates(0, k) - Hager::OptimalCostate(h.state_grid.t(k))));

@@ -21,7 +21,7 @@ using reference_testing::SolveWith;
 using reference_testing::SolveWithHamiltonian;
 using reference_testing::SolveWithIpopt;
 
-constexpr double kJ = Lqr::kReferenceCost;
+constexpr double kLqrJ = Lqr::kReferenceCost;
 
 /// The Riccati solution and the optimal closed loop on [0, 5], by RK4 with step 5/kSteps:
 ///   -P' = A^T P + P A - P B B^T P + I, P(5) = 0;   x' = (A - B B^T P) x, x(0) = x0.
@@ -83,7 +83,7 @@ const RiccatiSolution& Riccati() {
 
 TEST(Lqr, RiccatiReproducesTheReferenceValue) {
   const Eigen::Vector2d x0(0.0, 1.0);
-  EXPECT_NEAR(0.5 * x0.dot(Riccati().P(0.0) * x0), kJ, 1e-10);
+  EXPECT_NEAR(0.5 * x0.dot(Riccati().P(0.0) * x0), kLqrJ, 1e-10);
   // The closed loop's control, simulated open loop, costs the same.
   const auto ocp = MakeProblem("lqr", {}, 0);
   const TimeGrid grid = TimeGrid::Uniform(0.0, 5.0, 2000);
@@ -91,34 +91,34 @@ TEST(Lqr, RiccatiReproducesTheReferenceValue) {
   for (int k = 0; k < grid.size(); ++k) U(0, k) = Riccati().u(grid.t(k));
   const Evaluation ev =
       Evaluate(*ocp, ControlTrajectory::PiecewiseLinear(grid, U), grid, Integrator::kRk4);
-  EXPECT_LT(RelativeError(ev.Jbar, kJ), 1e-7);  // linear interpolation of u*: O(h^2)
+  EXPECT_LT(RelativeError(ev.Jbar, kLqrJ), 1e-7);  // linear interpolation of u*: O(h^2)
 }
 
-struct IpoptCase {
+struct LqrIpoptCase {
   const char* transcription;
   int N;
   double tolerance;  // on |Jbar_fine - J*| / J*: measured accuracy of the scheme, rounded up
 };
 
-class LqrIpopt : public ::testing::TestWithParam<IpoptCase> {};
+class LqrIpopt : public ::testing::TestWithParam<LqrIpoptCase> {};
 
 TEST_P(LqrIpopt, ReachesTheReference) {
-  const IpoptCase c = GetParam();
+  const LqrIpoptCase c = GetParam();
   const auto ocp = MakeProblem("lqr", {}, 0);
   const SolveResult r = SolveWithIpopt(*ocp, c.transcription, c.N);
   ASSERT_EQ(r.status, SolveStatus::kConverged) << r.solver_status << " " << r.message;
   const double jbar = FineEvaluation(*ocp, r, c.N).Jbar;
-  EXPECT_LT(RelativeError(jbar, kJ), c.tolerance) << "Jbar_fine = " << jbar;
+  EXPECT_LT(RelativeError(jbar, kLqrJ), c.tolerance) << "Jbar_fine = " << jbar;
 }
 
 // Euler: first order in the states, second in J (measured 5.5e-3 at N = 100); trapezoid:
 // 1.5e-5 at N = 100; Hermite-Simpson: 1.1e-7 at N = 50; LGR (degree 3): 5.7e-9 at N = 25.
 INSTANTIATE_TEST_SUITE_P(Transcriptions,
                          LqrIpopt,
-                         ::testing::Values(IpoptCase{"euler", 100, 8e-3},
-                                           IpoptCase{"trapezoid", 100, 3e-5},
-                                           IpoptCase{"hermite-simpson", 50, 2e-7},
-                                           IpoptCase{"lgr", 25, 1e-8}),
+                         ::testing::Values(LqrIpoptCase{"euler", 100, 8e-3},
+                                           LqrIpoptCase{"trapezoid", 100, 3e-5},
+                                           LqrIpoptCase{"hermite-simpson", 50, 2e-7},
+                                           LqrIpoptCase{"lgr", 25, 1e-8}),
                          [](const auto& info) {
                            std::string n = info.param.transcription;
                            for (char& ch : n) ch = ch == '-' ? '_' : ch;
@@ -160,7 +160,7 @@ TEST(Lqr, NloptSlsqpReachesTheSameOptimumAsIpopt) {
   ASSERT_EQ(nlopt.status, SolveStatus::kConverged) << nlopt.solver_status << " " << nlopt.message;
   const SolveResult ipopt = SolveWithIpopt(*ocp, "hermite-simpson", 20);
   EXPECT_NEAR(nlopt.objective, ipopt.objective, 1e-7);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, nlopt, 20).Jbar, kJ), 1e-5);  // measured 4.3e-6
+  EXPECT_LT(RelativeError(FineEvaluation(*ocp, nlopt, 20).Jbar, kLqrJ), 1e-5);  // measured 4.3e-6
 }
 
 // The Hamiltonian method on forward Euler solves the same discrete problem as Ipopt on the Euler
@@ -178,7 +178,7 @@ TEST(Lqr, HamiltonianReachesTheEulerOptimumAndTheReference) {
     ASSERT_EQ(h.status, SolveStatus::kConverged) << h.solver_status << " " << h.message;
     const SolveResult ipopt = SolveWithIpopt(*ocp, "euler", N, TerminalMode::kPenalty);
     EXPECT_NEAR(h.objective, ipopt.objective, 1e-8 * ipopt.objective) << "N = " << N;
-    const double err = RelativeError(FineEvaluation(*ocp, h, N).Jbar, kJ);
+    const double err = RelativeError(FineEvaluation(*ocp, h, N).Jbar, kLqrJ);
     EXPECT_LT(err, tolerance) << "N = " << N;
     if (previous > 0.0) {
       EXPECT_GT(previous / err, 3.0) << "second order in J";

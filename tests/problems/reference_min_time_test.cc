@@ -25,7 +25,7 @@ using reference_testing::RelativeError;
 using reference_testing::Request;
 using reference_testing::SolveWith;
 
-const std::vector<std::string> kNames = {"brachistochrone", "zermelo", "steering"};
+const std::vector<std::string> kMinTimeNames = {"brachistochrone", "zermelo", "steering"};
 
 double ReferenceOf(const std::string& name) { return *FindProblem(name).reference_value; }
 
@@ -33,7 +33,7 @@ TEST(MinTimeProblems, AreRegisteredWithTheirReferenceTimes) {
   EXPECT_EQ(ReferenceOf("brachistochrone"), 0.824759143157);
   EXPECT_EQ(ReferenceOf("zermelo"), 5.2649320661);
   EXPECT_EQ(ReferenceOf("steering"), 0.5545708783);
-  for (const std::string& name : kNames) {
+  for (const std::string& name : kMinTimeNames) {
     SCOPED_TRACE(name);
     const ProblemInfo& info = FindProblem(name);
     EXPECT_TRUE(info.hamiltonian_applicable);
@@ -74,13 +74,13 @@ TEST(MinTimeProblems, CostIsTheFinalTimePlusEpsTimesTheVarianceOfSigma) {
 }
 
 // (x, u, lambda, mu, nu) around the problem's scale, with u in U.
-struct Point {
+struct MinTimePoint {
   Vec x, u, lambda, mu, nu;
 };
 
-Point RandomPoint(const Ocp& ocp, std::mt19937_64* rng) {
+MinTimePoint RandomMinTimePoint(const Ocp& ocp, std::mt19937_64* rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  Point p;
+  MinTimePoint p;
   p.x = Vec(ocp.nx());
   for (int i = 0; i < ocp.nx(); ++i) p.x[i] = ocp.x0()[i] + 1.5 * unit(*rng);
   const double sigma = 1.0 + 0.5 * unit(*rng);
@@ -95,14 +95,14 @@ Point RandomPoint(const Ocp& ocp, std::mt19937_64* rng) {
 
 TEST(MinTimeProblems, DerivativesMatchFiniteDifferences) {
   std::mt19937_64 rng(17);
-  for (const std::string& name : kNames) {
+  for (const std::string& name : kMinTimeNames) {
     const auto ocp = MakeProblem(name, {}, 0);
     HamiltonianReformulationOptions o;
     o.path_penalty = 29.0;  // moderate, so that finite differences stay accurate
     const auto re = ocp->HamiltonianReformulation(o);
     int active = 0;
     for (int trial = 0; trial < 8; ++trial) {
-      const Point p = RandomPoint(*ocp, &rng);
+      const MinTimePoint p = RandomMinTimePoint(*ocp, &rng);
       const DerivativeCheck check = CheckOcpDerivatives(*ocp, 0.5, p.x, p.u, p.lambda, p.mu, p.nu);
       EXPECT_LT(check.max_error, 1e-7) << name << "\n" << check.log;
       // The penalty's kink |v| = sigma is not for finite differences.
@@ -162,7 +162,7 @@ void ExpectMinimizerIsExact(const Ocp& ocp,
 
 TEST(MinTimeProblems, HamiltonianMinimizersAreExact) {
   std::mt19937_64 rng(23);
-  for (const std::string& name : kNames) {
+  for (const std::string& name : kMinTimeNames) {
     const auto ocp = MakeProblem(name, {"sigma_max=3"}, 0);
     ExpectMinimizerIsExact(*ocp, true, &rng, name);
     // A weak and a strong cone penalty (both branches of the piecewise minimizer).
@@ -175,20 +175,20 @@ TEST(MinTimeProblems, HamiltonianMinimizersAreExact) {
   }
 }
 
-struct IpoptCase {
+struct MinTimeCase {
   const char* problem;
   const char* transcription;
   int N;
   double tolerance;  // on |J - tf*| / tf*: the measured error rounded up
 };
 
-class MinTimeIpopt : public ::testing::TestWithParam<IpoptCase> {};
+class MinTimeIpopt : public ::testing::TestWithParam<MinTimeCase> {};
 
 // Hard terminal form, Ipopt at tol 1e-12 (its bound_relax_factor 1e-8 still loosens the cone
 // |v|^2 <= sigma^2, which shortens tf by about 7e-9 relative). Jbar on the transcription's own
 // discretization is J (no penalty), the value the scheme's optimum has.
 TEST_P(MinTimeIpopt, ReachesTheReferenceTime) {
-  const IpoptCase c = GetParam();
+  const MinTimeCase c = GetParam();
   const auto ocp = MakeProblem(c.problem, {}, 0);
   const SolveResult r = SolveWith(
       "ipopt", *ocp, Request(*ocp, c.N, TerminalMode::kHard, c.transcription, {{"tol", "1e-12"}}));
@@ -202,19 +202,19 @@ TEST_P(MinTimeIpopt, ReachesTheReferenceTime) {
 // LGR 3e-10; steering Euler 1.8e-6, trapezoid 4.4e-5, HS 1e-8, LGR 1e-8.
 INSTANTIATE_TEST_SUITE_P(Transcriptions,
                          MinTimeIpopt,
-                         ::testing::Values(IpoptCase{"brachistochrone", "euler", 100, 4e-3},
-                                           IpoptCase{"brachistochrone", "trapezoid", 100, 7e-6},
-                                           IpoptCase{
+                         ::testing::Values(MinTimeCase{"brachistochrone", "euler", 100, 4e-3},
+                                           MinTimeCase{"brachistochrone", "trapezoid", 100, 7e-6},
+                                           MinTimeCase{
                                                "brachistochrone", "hermite-simpson", 25, 2e-8},
-                                           IpoptCase{"brachistochrone", "lgr", 10, 2e-8},
-                                           IpoptCase{"zermelo", "euler", 100, 5e-3},
-                                           IpoptCase{"zermelo", "trapezoid", 100, 9e-5},
-                                           IpoptCase{"zermelo", "hermite-simpson", 25, 2e-8},
-                                           IpoptCase{"zermelo", "lgr", 10, 2e-8},
-                                           IpoptCase{"steering", "euler", 100, 2e-6},
-                                           IpoptCase{"steering", "trapezoid", 100, 5e-5},
-                                           IpoptCase{"steering", "hermite-simpson", 25, 2e-8},
-                                           IpoptCase{"steering", "lgr", 10, 2e-8}),
+                                           MinTimeCase{"brachistochrone", "lgr", 10, 2e-8},
+                                           MinTimeCase{"zermelo", "euler", 100, 5e-3},
+                                           MinTimeCase{"zermelo", "trapezoid", 100, 9e-5},
+                                           MinTimeCase{"zermelo", "hermite-simpson", 25, 2e-8},
+                                           MinTimeCase{"zermelo", "lgr", 10, 2e-8},
+                                           MinTimeCase{"steering", "euler", 100, 2e-6},
+                                           MinTimeCase{"steering", "trapezoid", 100, 5e-5},
+                                           MinTimeCase{"steering", "hermite-simpson", 25, 2e-8},
+                                           MinTimeCase{"steering", "lgr", 10, 2e-8}),
                          [](const auto& info) {
                            std::string n =
                                std::string(info.param.problem) + "_" + info.param.transcription;
@@ -261,7 +261,7 @@ TEST(MinTimeProblems, SteeringTrapezoidMatchesCopsAtItsOwnGrid) {
 // w1 >= 0 is inactive; the brachistochrone ends at v = sqrt(2 g y) = sqrt(39.2) with heading
 // angle phi_f / 2 from the vertical.
 TEST(MinTimeProblems, OptimumHasConstantSigmaAndUnitHeading) {
-  for (const std::string& name : kNames) {
+  for (const std::string& name : kMinTimeNames) {
     SCOPED_TRACE(name);
     const auto ocp = MakeProblem(name, {}, 0);
     const int N = 40;
@@ -302,7 +302,7 @@ TEST(MinTimeProblems, OptimumHasConstantSigmaAndUnitHeading) {
 // Euler problem converges in 11-40 iterations. The test pins the descent (J decreases at every
 // accepted step, the penalized endpoint is reached), not an accuracy it does not have.
 TEST(MinTimeProblems, HamiltonianDescentDescendsButSlowly) {
-  for (const std::string& name : kNames) {
+  for (const std::string& name : kMinTimeNames) {
     SCOPED_TRACE(name);
     const auto ocp = MakeProblem(name, {}, 0);
     const SolveResult r =

@@ -20,16 +20,16 @@ using reference_testing::SolveWith;
 using reference_testing::SolveWithHamiltonian;
 using reference_testing::SolveWithIpopt;
 
-constexpr double kJ = Rayleigh::kReferenceCost;
+constexpr double kRayleighJ = Rayleigh::kReferenceCost;
 
-struct IpoptCase {
+struct RayleighIpoptCase {
   const char* transcription;
   int N;
   double tolerance;       // on |Jbar_fine - J*| / J*
   double path_tolerance;  // max(u + x1/6, 0) on the fine grid
 };
 
-class RayleighIpopt : public ::testing::TestWithParam<IpoptCase> {};
+class RayleighIpopt : public ::testing::TestWithParam<RayleighIpoptCase> {};
 
 // Hard form (no terminal constraint). Measured errors: Euler 7.4e-4 (N = 100), trapezoid 2.5e-4
 // (N = 100), Hermite-Simpson 6.1e-6 (N = 50), LGR 1.8e-9 (N = 50; from N = 100 on LGR settles
@@ -37,21 +37,21 @@ class RayleighIpopt : public ::testing::TestWithParam<IpoptCase> {};
 // 44.80444491: the reference's own precision). The fine-grid path violation is the constraint
 // evaluated along the re-simulated states, which differ from the scheme's by its state error.
 TEST_P(RayleighIpopt, ReachesTheReference) {
-  const IpoptCase c = GetParam();
+  const RayleighIpoptCase c = GetParam();
   const auto ocp = MakeProblem("rayleigh", {}, 0);
   const SolveResult r = SolveWithIpopt(*ocp, c.transcription, c.N);
   ASSERT_EQ(r.status, SolveStatus::kConverged) << r.solver_status << " " << r.message;
   const Evaluation fine = FineEvaluation(*ocp, r, c.N);
-  EXPECT_LT(RelativeError(fine.Jbar, kJ), c.tolerance) << "Jbar_fine = " << fine.Jbar;
+  EXPECT_LT(RelativeError(fine.Jbar, kRayleighJ), c.tolerance) << "Jbar_fine = " << fine.Jbar;
   EXPECT_LT(fine.path_violation, c.path_tolerance);
 }
 
 INSTANTIATE_TEST_SUITE_P(Transcriptions,
                          RayleighIpopt,
-                         ::testing::Values(IpoptCase{"euler", 100, 1.2e-3, 5e-2},
-                                           IpoptCase{"trapezoid", 100, 4e-4, 1.5e-2},
-                                           IpoptCase{"hermite-simpson", 50, 1e-5, 5e-3},
-                                           IpoptCase{"lgr", 50, 1e-7, 5e-3}),
+                         ::testing::Values(RayleighIpoptCase{"euler", 100, 1.2e-3, 5e-2},
+                                           RayleighIpoptCase{"trapezoid", 100, 4e-4, 1.5e-2},
+                                           RayleighIpoptCase{"hermite-simpson", 50, 1e-5, 5e-3},
+                                           RayleighIpoptCase{"lgr", 50, 1e-7, 5e-3}),
                          [](const auto& info) {
                            std::string n = info.param.transcription;
                            for (char& ch : n) ch = ch == '-' ? '_' : ch;
@@ -67,8 +67,8 @@ TEST(Rayleigh, NloptSlsqpReachesTheSameOptimumAsIpopt) {
   const SolveResult nlopt = SolveWith("nlopt", *ocp, req);
   ASSERT_EQ(nlopt.status, SolveStatus::kConverged) << nlopt.solver_status << " " << nlopt.message;
   const SolveResult ipopt = SolveWithIpopt(*ocp, "hermite-simpson", 20);
-  EXPECT_NEAR(nlopt.objective, ipopt.objective, 1e-7 * kJ);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, nlopt, 20).Jbar, kJ), 3e-4);
+  EXPECT_NEAR(nlopt.objective, ipopt.objective, 1e-7 * kRayleighJ);
+  EXPECT_LT(RelativeError(FineEvaluation(*ocp, nlopt, 20).Jbar, kRayleighJ), 3e-4);
 }
 
 // The penalty reformulation's optimum approaches J* from below as rho grows (Ipopt,
@@ -83,10 +83,10 @@ TEST(Rayleigh, PenaltyReformulationGapShrinksWithRho) {
     ASSERT_EQ(r.status, SolveStatus::kConverged) << "rho = " << rho;
     const double jbar = FineEvaluation(*ocp, r, 100).Jbar;
     EXPECT_GT(jbar, previous) << "rho = " << rho;
-    EXPECT_LT(jbar, kJ) << "rho = " << rho;
+    EXPECT_LT(jbar, kRayleighJ) << "rho = " << rho;
     previous = jbar;
   }
-  EXPECT_LT(RelativeError(previous, kJ), 1e-3);  // measured 3e-4 at rho = 1e4
+  EXPECT_LT(RelativeError(previous, kRayleighJ), 1e-3);  // measured 3e-4 at rho = 1e4
 }
 
 // The Hamiltonian method on the penalty reformulation (rho = 1e3, the default), Euler N = 50,
@@ -107,7 +107,7 @@ TEST(Rayleigh, HamiltonianOnThePenaltyReformulation) {
       SolveWithIpopt(*ocp->HamiltonianReformulation({}), "euler", N, TerminalMode::kPenalty);
   ASSERT_EQ(ipopt.status, SolveStatus::kConverged);
   EXPECT_LT(RelativeError(h.objective, ipopt.objective), 1.5e-2);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, h, N).Jbar, kJ), 5e-3);
+  EXPECT_LT(RelativeError(FineEvaluation(*ocp, h, N).Jbar, kRayleighJ), 5e-3);
 }
 
 }  // namespace

@@ -20,33 +20,33 @@ using reference_testing::SolveWith;
 using reference_testing::SolveWithHamiltonian;
 using reference_testing::SolveWithIpopt;
 
-constexpr double kJ = VanDerPol::kReferenceCost;
+constexpr double kVdpJ = VanDerPol::kReferenceCost;
 
-struct IpoptCase {
+struct VdpIpoptCase {
   const char* transcription;
   int N;
   double tolerance;  // on |Jbar_fine - J*| / J*: measured accuracy rounded up
 };
 
-class VanDerPolIpopt : public ::testing::TestWithParam<IpoptCase> {};
+class VanDerPolIpopt : public ::testing::TestWithParam<VdpIpoptCase> {};
 
 TEST_P(VanDerPolIpopt, ReachesTheReference) {
-  const IpoptCase c = GetParam();
+  const VdpIpoptCase c = GetParam();
   const auto ocp = MakeProblem("vanderpol", {}, 0);
   const SolveResult r = SolveWithIpopt(*ocp, c.transcription, c.N);
   ASSERT_EQ(r.status, SolveStatus::kConverged) << r.solver_status << " " << r.message;
   const double jbar = FineEvaluation(*ocp, r, c.N).Jbar;
-  EXPECT_LT(RelativeError(jbar, kJ), c.tolerance) << "Jbar_fine = " << jbar;
+  EXPECT_LT(RelativeError(jbar, kVdpJ), c.tolerance) << "Jbar_fine = " << jbar;
 }
 
 // Measured: Euler 8.6e-5 (N = 100), trapezoid 9.7e-6 (N = 50), Hermite-Simpson 1.2e-7 (N = 25),
 // LGR 8.1e-11 (N = 25; the reference has 11 digits, so this also checks them).
 INSTANTIATE_TEST_SUITE_P(Transcriptions,
                          VanDerPolIpopt,
-                         ::testing::Values(IpoptCase{"euler", 100, 1.3e-4},
-                                           IpoptCase{"trapezoid", 50, 1.5e-5},
-                                           IpoptCase{"hermite-simpson", 25, 2e-7},
-                                           IpoptCase{"lgr", 25, 2e-10}),
+                         ::testing::Values(VdpIpoptCase{"euler", 100, 1.3e-4},
+                                           VdpIpoptCase{"trapezoid", 50, 1.5e-5},
+                                           VdpIpoptCase{"hermite-simpson", 25, 2e-7},
+                                           VdpIpoptCase{"lgr", 25, 2e-10}),
                          [](const auto& info) {
                            std::string n = info.param.transcription;
                            for (char& ch : n) ch = ch == '-' ? '_' : ch;
@@ -71,7 +71,7 @@ TEST(VanDerPol, NloptSlsqpReachesTheSameOptimumAsIpopt) {
   ASSERT_EQ(nlopt.status, SolveStatus::kConverged) << nlopt.solver_status << " " << nlopt.message;
   const SolveResult ipopt = SolveWithIpopt(*ocp, "hermite-simpson", 20);
   EXPECT_NEAR(nlopt.objective, ipopt.objective, 1e-7);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, nlopt, 20).Jbar, kJ), 6e-7);  // measured 3.0e-7
+  EXPECT_LT(RelativeError(FineEvaluation(*ocp, nlopt, 20).Jbar, kVdpJ), 6e-7);  // measured 3.0e-7
 }
 
 // Forward Euler: the Hamiltonian method reaches the optimum Ipopt finds for the same discrete
@@ -85,7 +85,7 @@ TEST(VanDerPol, HamiltonianReachesTheEulerOptimumAndTheReference) {
   ASSERT_EQ(h.status, SolveStatus::kConverged) << h.solver_status << " " << h.message;
   const SolveResult ipopt = SolveWithIpopt(*ocp, "euler", N, TerminalMode::kPenalty);
   EXPECT_NEAR(h.objective, ipopt.objective, 1e-9);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, h, N).Jbar, kJ), 1.3e-4);
+  EXPECT_LT(RelativeError(FineEvaluation(*ocp, h, N).Jbar, kVdpJ), 1.3e-4);
 }
 
 }  // namespace
