@@ -3,10 +3,11 @@
 #
 #   find_package(OCPBench REQUIRED)
 #   target_link_libraries(my_target PRIVATE OCPBench::solvers OCPBench::problems)
+#   target_link_libraries(my_ocpbench PRIVATE OCPBench::cli)   # the whole command line
 #
-# and include "core/autodiff_ocp.h", "problems/registry.h", "solvers/registry.h", ... (see
-# problems/user_example/). Layout under the prefix:
-#   include/ocpbench/{core,transcriptions,solvers,problems}/**.h
+# and include "core/autodiff_ocp.h", "problems/registry.h", "solvers/registry.h",
+# "bench/cli/main.h" (ocpb::Main), ... (see problems/user_example/). Layout under the prefix:
+#   include/ocpbench/{core,transcriptions,solvers,problems,drivers,bench}/**.h
 #   lib/libocpb_*.a
 #   lib/cmake/OCPBench/{OCPBenchConfig,OCPBenchConfigVersion,OCPBenchTargets}.cmake
 #   bin/ocpbench
@@ -21,7 +22,7 @@ set(OCPB_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/OCPBench)
 # imported third-party targets are found again by OCPBenchConfig.cmake).
 set(OCPB_EXPORTED_TARGETS)
 foreach(target ocpb_core ocpb_transcriptions ocpb_solvers ocpb_channel ocpb_problems
-               ocpb_suitesparse)
+               ocpb_online ocpb_cli ocpb_suitesparse)
   if(NOT TARGET ${target})
     continue()
   endif()
@@ -47,7 +48,7 @@ if(TARGET ocpbench)
   install(TARGETS ocpbench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 
-foreach(dir core transcriptions solvers problems)
+foreach(dir core transcriptions solvers problems drivers bench)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/
     DESTINATION ${OCPB_INSTALL_INCLUDEDIR}/${dir}
     FILES_MATCHING PATTERN "*.h")
@@ -66,6 +67,9 @@ include(CMakeFindDependencyMacro)
 find_dependency(Eigen3 3.4 NO_MODULE)
 find_dependency(NLopt)
 find_dependency(Threads)
+find_dependency(nlohmann_json 3.10)
+find_dependency(fmt)
+find_dependency(CLI11)
 find_dependency(PkgConfig)
 if(NOT TARGET PkgConfig::IPOPT)
   pkg_check_modules(IPOPT REQUIRED IMPORTED_TARGET ipopt)

@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/option_value.h"
+
 namespace ocpb {
 
 Parameters::Parameters(std::vector<ParameterSpec> specs) : specs_(std::move(specs)) {
@@ -69,22 +71,36 @@ void Parameters::SetFromString(const std::string& assignment) {
       throw std::invalid_argument("malformed --set '" + assignment + "': value " +
                                   std::to_string(index) + " is empty");
     }
-    size_t used = 0;
-    double v = 0.0;
-    try {
-      v = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size()) {
+    // The one number grammar of every option and parameter text (core/option_value.h).
+    const std::optional<double> v = ParseNumberText(item);
+    if (!v) {
       throw std::invalid_argument("malformed --set '" + assignment + "': '" + item +
                                   "' is not a number");
     }
-    values.push_back(v);
+    values.push_back(*v);
     if (comma == std::string::npos) break;
     begin = comma + 1;
   }
   Set(key, values);
+}
+
+OptionSpec ToOptionSpec(const ParameterSpec& p) {
+  OptionSpec s;
+  s.name = p.name;
+  s.doc = p.help;
+  s.bounds.min = p.min;
+  s.bounds.max = p.max;
+  s.bounds.min_exclusive = p.min_exclusive;
+  if (p.default_value.size() == 1) {
+    s.type = p.integer ? OptionType::kInteger : OptionType::kNumber;
+    s.default_value = p.integer ? OptionValue(static_cast<long long>(p.default_value[0]))
+                                : OptionValue(p.default_value[0]);
+  } else {
+    s.type = OptionType::kVector;
+    s.size = static_cast<int>(p.default_value.size());
+    s.default_value = p.default_value;
+  }
+  return s;
 }
 
 bool Parameters::Has(const std::string& name) const { return values_.count(name) > 0; }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/option_schema.h"
 #include "core/types.h"
 
 namespace ocpb {
@@ -20,6 +21,10 @@ struct ParameterSpec {
   bool min_exclusive = false;                             ///< then every component > min
   bool integer = false;                                   ///< components must be integers
 };
+
+/// The parameter as a general option description (`ocpbench describe problem`): a number, an
+/// integer, or a vector of the default's length, with the same range.
+OptionSpec ToOptionSpec(const ParameterSpec& spec);
 
 /// Values for a list of declared parameters. Every setter validates and throws
 /// std::invalid_argument with a one-line message naming the parameter and the rule.

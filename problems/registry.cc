@@ -2,6 +2,9 @@
 
 #include <stdexcept>
 
+#include "core/named_registry.h"
+
+#include "problems/channel_sample.h"
 #include "problems/comm_fixed_path.h"
 #include "problems/comm_path2d.h"
 #include "problems/double_integrator.h"
@@ -22,7 +25,8 @@ std::vector<ProblemInfo> BuildRegistry() {
     };
     p.default_intervals = 100;
     p.reference_value = 6.0;
-    p.reference_source = "analytic: u* = 6 - 12t (Bryson-Ho; CTProblems.jl double_integrator_energy)";
+    p.reference_source =
+        "analytic: u* = 6 - 12t (Bryson-Ho; CTProblems.jl double_integrator_energy)";
     list.push_back(p);
   }
   {
@@ -41,44 +45,33 @@ std::vector<ProblemInfo> BuildRegistry() {
   // [problems] one block per problem, in the order `ocpbench list problems` prints them.
   AppendReferenceProblems(&list);  // bryson-denham, lqr, hager, vanderpol, rayleigh, catmix
   list.push_back(CommPath2dProblemInfo());
+  list.back().sample_for_figures = SampleCommPath2dChannel;
   list.push_back(CommFixedPathProblemInfo());
   return list;
 }
 
-std::vector<ProblemInfo>& MutableProblems() {
-  static std::vector<ProblemInfo> registry = BuildRegistry();
+NamedRegistry<ProblemInfo>& Registry() {
+  static NamedRegistry<ProblemInfo> registry("problem", BuildRegistry);
   return registry;
 }
 
 }  // namespace
 
-const std::vector<ProblemInfo>& Problems() { return MutableProblems(); }
+const std::vector<ProblemInfo>& Problems() { return Registry().All(); }
 
 void RegisterProblem(ProblemInfo info) {
-  if (info.name.empty()) throw std::invalid_argument("RegisterProblem: the name must not be empty");
-  if (!info.make) {
-    throw std::invalid_argument("RegisterProblem: '" + info.name + "' has no make function");
-  }
-  for (const ProblemInfo& p : MutableProblems()) {
-    if (p.name == info.name) {
-      throw std::invalid_argument("RegisterProblem: a problem named '" + info.name +
-                                  "' exists already");
-    }
-  }
-  MutableProblems().push_back(std::move(info));
+  Registry().Add("RegisterProblem", std::move(info), [](const ProblemInfo& p) {
+    if (!p.make)
+      throw std::invalid_argument("RegisterProblem: '" + p.name + "' has no make function");
+  });
 }
 
-const ProblemInfo& FindProblem(const std::string& name) {
-  std::string names;
-  for (const ProblemInfo& p : Problems()) {
-    if (p.name == name) return p;
-    names += (names.empty() ? "" : ", ") + p.name;
-  }
-  throw std::invalid_argument("unknown problem '" + name + "' (valid: " + names + ")");
-}
+const ProblemInfo& FindProblem(const std::string& name) { return Registry().Find(name); }
 
-std::unique_ptr<Ocp> MakeProblem(const std::string& name, const std::vector<std::string>& assignments,
-                                 std::uint64_t seed, Parameters* resolved) {
+std::unique_ptr<Ocp> MakeProblem(const std::string& name,
+                                 const std::vector<std::string>& assignments,
+                                 std::uint64_t seed,
+                                 Parameters* resolved) {
   const ProblemInfo& info = FindProblem(name);
   Parameters params(info.parameters);
   for (const std::string& a : assignments) params.SetFromString(a);

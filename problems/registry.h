@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/field_sample.h"
 #include "core/ocp.h"
 #include "core/parameters.h"
 
@@ -44,6 +45,9 @@ struct ProblemInfo {
   /// How it applies (for example "path constraint as penalty rho max(0, c)^2, rho = 1e4"), or
   /// why it does not; empty when it applies to the problem as stated.
   std::string hamiltonian_note;
+  /// Optional: a field to draw a solution over (comm-path2d: its channel map), kept in records
+  /// that keep their trajectory (field s_map). Empty, or nullopt for a given problem: none.
+  std::function<std::optional<FieldSample>(const Ocp& ocp)> sample_for_figures;
 };
 
 /// Every registered problem, in a fixed order.

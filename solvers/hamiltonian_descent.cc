@@ -7,44 +7,11 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/option_binding.h"
 #include "core/timer.h"
 
 namespace ocpb {
 namespace {
-
-constexpr const char* kValidKeys =
-    "alpha, beta, max_iterations, max_armijo_exponent, theta_tolerance, max_cpu_seconds, "
-    "path_penalty, regularization, armijo_prefilter";
-
-double ParseDouble(const std::string& key, const std::string& text) {
-  size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || std::isnan(v)) {
-    throw std::invalid_argument("hamiltonian option '" + key + "': '" + text + "' is not a number");
-  }
-  return v;
-}
-
-int ParseInt(const std::string& key, const std::string& text) {
-  const double v = ParseDouble(key, text);
-  if (!std::isfinite(v) || v != std::round(v) || std::abs(v) > 1e9) {
-    throw std::invalid_argument("hamiltonian option '" + key + "': '" + text +
-                                "' is not an integer");
-  }
-  return static_cast<int>(v);
-}
-
-bool ParseBool(const std::string& key, const std::string& text) {
-  if (text == "1" || text == "true") return true;
-  if (text == "0" || text == "false") return false;
-  throw std::invalid_argument("hamiltonian option '" + key + "': '" + text +
-                              "' is not a boolean (1, 0, true, false)");
-}
 
 // A lower bound on the discrete J of U under forward Euler: the states x_N by exactly
 // DiscreteOcp's Euler update (x += h f, same calls, so the same x_N), the running part by
@@ -118,74 +85,67 @@ double HamiltonianDescent::Direction(const DiscreteOcp& docp,
   return theta;
 }
 
+namespace {
+
+const OptionBinding<HamiltonianDescentOptions>& DescentBinding() {
+  static const OptionBinding<HamiltonianDescentOptions> table = [] {
+    using O = HamiltonianDescentOptions;
+    OptionBinding<O> t("hamiltonian");
+    t.Number("alpha", &O::alpha, "Armijo sufficient-decrease constant", OptionBounds::Open(0, 1));
+    t.Number("beta", &O::beta, "Armijo step reduction", OptionBounds::Open(0, 1));
+    t.Integer(
+        "max_iterations", &O::max_iterations, "accepted steps at most", OptionBounds::AtLeast(0));
+    t.Integer("max_armijo_exponent",
+              &O::max_armijo_exponent,
+              "largest Armijo exponent j tried (the paper's rule: stop beyond 50)",
+              OptionBounds::AtLeast(0));
+    t.Number("theta_tolerance",
+             &O::theta_tolerance,
+             "stop when |theta| <= this (0: off)",
+             OptionBounds::AtLeast(0));
+    t.Number("max_cpu_seconds",
+             &O::max_cpu_seconds,
+             "CPU time limit (inf: none)",
+             OptionBounds::Above(0).WithInfinity());
+    t.OptionalNumber("path_penalty",
+                     &O::path_penalty,
+                     "rho of the reformulation's path penalty rho max(0, c)^2",
+                     OptionBounds::Above(0),
+                     "the problem's own default");
+    t.OptionalNumber("regularization",
+                     &O::regularization,
+                     "eps of the reformulation's control regularization eps |u|^2",
+                     OptionBounds::Above(0),
+                     "the problem's own default");
+    t.Bool("armijo_prefilter",
+           &O::armijo_prefilter,
+           "reject Armijo trials by a states-only lower bound (same iterates, less work)");
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
 bool HamiltonianDescentOptions::IsValid(std::string* error) const {
-  auto fail = [error](const std::string& why) {
-    if (error) *error = why;
-    return false;
-  };
-  if (!(alpha > 0.0 && alpha < 1.0)) return fail("alpha must lie in (0, 1), got " + Format(alpha));
-  if (!(beta > 0.0 && beta < 1.0)) return fail("beta must lie in (0, 1), got " + Format(beta));
-  if (max_iterations < 0) {
-    return fail("max_iterations must be >= 0, got " + std::to_string(max_iterations));
-  }
-  if (max_armijo_exponent < 0) {
-    return fail("max_armijo_exponent must be >= 0, got " + std::to_string(max_armijo_exponent));
-  }
-  if (!(theta_tolerance >= 0.0) || !std::isfinite(theta_tolerance)) {
-    return fail("theta_tolerance must be finite and >= 0, got " + Format(theta_tolerance));
-  }
-  if (!(max_cpu_seconds > 0.0)) {
-    return fail("max_cpu_seconds must be > 0 (inf: no limit), got " + Format(max_cpu_seconds));
-  }
-  if (path_penalty && !(*path_penalty > 0.0 && std::isfinite(*path_penalty))) {
-    return fail("path_penalty must be finite and > 0, got " + Format(*path_penalty));
-  }
-  if (regularization && !(*regularization > 0.0 && std::isfinite(*regularization))) {
-    return fail("regularization must be finite and > 0, got " + Format(*regularization));
-  }
-  return true;
+  return DescentBinding().Check(*this, error);
 }
 
 HamiltonianDescent::HamiltonianDescent(const Options& options) : options_(options) {
   std::string error;
-  if (!options_.IsValid(&error)) throw std::invalid_argument("hamiltonian: " + error);
+  if (!options_.IsValid(&error)) throw std::invalid_argument(error);
 }
 
-HamiltonianDescent::Options HamiltonianDescent::ParseOptions(
-    const std::map<std::string, std::string>& options, const Options& base) {
-  Options o = base;
-  for (const auto& [key, text] : options) {
-    if (key == "alpha") {
-      o.alpha = ParseDouble(key, text);
-    } else if (key == "beta") {
-      o.beta = ParseDouble(key, text);
-    } else if (key == "max_iterations") {
-      o.max_iterations = ParseInt(key, text);
-    } else if (key == "max_armijo_exponent") {
-      o.max_armijo_exponent = ParseInt(key, text);
-    } else if (key == "theta_tolerance") {
-      o.theta_tolerance = ParseDouble(key, text);
-    } else if (key == "max_cpu_seconds") {
-      o.max_cpu_seconds = ParseDouble(key, text);
-    } else if (key == "path_penalty") {
-      o.path_penalty = ParseDouble(key, text);
-    } else if (key == "regularization") {
-      o.regularization = ParseDouble(key, text);
-    } else if (key == "armijo_prefilter") {
-      o.armijo_prefilter = ParseBool(key, text);
-    } else {
-      throw std::invalid_argument("hamiltonian: unknown option '" + key +
-                                  "' (valid: " + kValidKeys + ")");
-    }
-  }
-  std::string error;
-  if (!o.IsValid(&error)) throw std::invalid_argument("hamiltonian option " + error);
-  return o;
+const OptionSchema& HamiltonianDescent::Schema() { return DescentBinding().schema(); }
+
+HamiltonianDescent::Options HamiltonianDescent::ApplyOptions(const OptionMap& options,
+                                                             const Options& base) {
+  return DescentBinding().ApplyValidated(options, base);
 }
 
 SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& request) const {
   // ---- the request (throws) ------------------------------------------------------------
-  const Options opt = ParseOptions(request.options, options_);
+  const Options opt = ApplyOptions(request.options, options_);
   const TimeGrid& grid = request.grid;
   if (grid.size() < 2) throw std::invalid_argument("hamiltonian: the request's grid is empty");
   const Ocp& ocp = original;  // the request is checked against the problem as given

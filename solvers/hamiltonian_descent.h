@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/discrete_ocp.h"
+#include "core/option_schema.h"
 #include "solvers/solver.h"
 
 namespace ocpb {
@@ -40,7 +41,7 @@ struct HamiltonianDescentOptions {
   /// When Ocp::HasAffineDynamics(), x_N is affine in the controls and one states-only simulation
   /// per iteration (of U + d) gives x_N of every trial.
   /// The accepted exponents and iterates are exactly those without it (tested); it only saves
-  /// time. Option string "armijo_prefilter" = 1 / 0.
+  /// time.
   bool armijo_prefilter = true;
 
   /// False, with a one-line reason in *error, when a field violates its rule above.
@@ -117,13 +118,13 @@ class HamiltonianDescent final : public Solver {
   HamiltonianDescent() = default;
   explicit HamiltonianDescent(const Options& options);
 
-  /// Parses solver options given as strings (keys: alpha, beta, max_iterations,
-  /// max_armijo_exponent, theta_tolerance, max_cpu_seconds, path_penalty, regularization,
-  /// armijo_prefilter) over `base`. Throws
-  /// std::invalid_argument naming the key and its rule (and listing the valid keys for an
-  /// unknown one).
-  static Options ParseOptions(const std::map<std::string, std::string>& options,
-                              const Options& base = Options());
+  /// The solver's options: every key (alpha, beta, max_iterations, max_armijo_exponent,
+  /// theta_tolerance, max_cpu_seconds, path_penalty, regularization, armijo_prefilter) with its
+  /// default (HamiltonianDescentOptions') and rule.
+  static const OptionSchema& Schema();
+  /// `base` with `options` applied: each value resolved by Schema() (unknown keys refused with
+  /// the valid ones, values converted and checked), then IsValid. Throws std::invalid_argument.
+  static Options ApplyOptions(const OptionMap& options, const Options& base = Options());
 
   /// Step 2 of the algorithm on `docp`'s grid: fills D (nu x N) with d_k = u*_k - u_k, u*_k =
   /// argmin_{u in U} H(t_k, x_k, u, lambda_{k+1}), and returns

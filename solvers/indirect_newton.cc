@@ -16,7 +16,9 @@
 
 #include "core/control_set.h"
 #include "core/evaluator.h"
+#include "core/option_binding.h"
 #include "core/timer.h"
+#include "solvers/hamiltonian_descent.h"
 #include "solvers/pmp_residual.h"
 #include "solvers/registry.h"
 
@@ -24,37 +26,7 @@ namespace ocpb {
 namespace {
 
 constexpr const char* kName = "indirect-newton";
-constexpr const char* kValidKeys =
-    "max_iterations, tolerance, sufficient_decrease, backtrack, min_step, linear_solver, "
-    "warm_start, costates, path_penalty, regularization, hamiltonian.<key>";
-constexpr const char* kWarmPrefix = "hamiltonian.";
-
-[[noreturn]] void BadOption(const std::string& key, const std::string& rule) {
-  throw std::invalid_argument(std::string(kName) + " option '" + key + "': " + rule);
-}
-
-double ParseDouble(const std::string& key, const std::string& text) {
-  size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || std::isnan(v))
-    BadOption(key, "'" + text + "' is not a number");
-  return v;
-}
-
-int ParseInt(const std::string& key, const std::string& text) {
-  const double v = ParseDouble(key, text);
-  if (!std::isfinite(v) || v != std::round(v) || std::abs(v) > 1e9) {
-    BadOption(key, "'" + text + "' is not an integer");
-  }
-  return static_cast<int>(v);
-}
-
-std::string Format(double v) {
+std::string NewtonNumber(double v) {
   std::ostringstream os;
   os.precision(3);
   os << v;
@@ -206,13 +178,6 @@ Vec FitTerminalCostate(const Ocp& ocp,
   return q.allFinite() ? q : q0;
 }
 
-std::string FormatExact(double v) {
-  std::ostringstream os;
-  os.precision(17);
-  os << v;
-  return os.str();
-}
-
 // The problem the method solves: the problem's Hamiltonian reformulation when it offers one.
 struct Target {
   std::unique_ptr<Ocp> reformulated;
@@ -266,43 +231,132 @@ struct NewtonRun {
 };
 
 // Newton's method from (X, P, nu); fills everything of `r` that Newton knows.
-void RunNewton(const NewtonRun& run, const Mat& X0, const Mat& P0, const Vec* nu0, SolveResult* r) {
-  const Ocp& ocp = run.ocp;
-  const IndirectNewtonOptions& o = run.options;
-  const TimeGrid& grid = run.request.grid;
-  const double newton_cpu0 = CpuSeconds();
-  PmpResidual pmp(ocp, grid, run.request.terminal);
-  const int N = grid.intervals();
-  if (X0.rows() != ocp.nx() || X0.cols() != N + 1 || P0.rows() != ocp.nx() || P0.cols() != N + 1) {
-    throw std::invalid_argument(std::string(kName) +
-                                ": the start X and P must be nx x (N+1) on the request's grid");
-  }
-  Vec nu;
-  if (pmp.num_multipliers() > 0) {
-    if (nu0) {
-      if (nu0->size() != pmp.num_multipliers()) {
-        throw std::invalid_argument(std::string(kName) + ": the start nu must have size npsi");
+// Newton's method with backtracking on the residual of one PmpResidual: the unknowns z, the
+// residual F at z, and the work counters every record reports.
+class NewtonIteration {
+ public:
+  NewtonIteration(const NewtonRun& run, PmpResidual& pmp)
+      : run_(run),
+        pmp_(pmp),
+        lu_(MakeLu(run.options.linear_solver)),
+        lu_name_(ToString(run.options.linear_solver)) {}
+
+  // z from the start (X0, P0 and the terminal multipliers nu0, or their estimate).
+  void Start(const Mat& X0, const Mat& P0, const Vec* nu0) {
+    const Ocp& ocp = run_.ocp;
+    const int N = run_.request.grid.intervals();
+    if (X0.rows() != ocp.nx() || X0.cols() != N + 1 || P0.rows() != ocp.nx() ||
+        P0.cols() != N + 1) {
+      throw std::invalid_argument(std::string(kName) +
+                                  ": the start X and P must be nx x (N+1) on the request's grid");
+    }
+    Vec nu;
+    if (pmp_.num_multipliers() > 0) {
+      if (nu0) {
+        if (nu0->size() != pmp_.num_multipliers()) {
+          throw std::invalid_argument(std::string(kName) + ": the start nu must have size npsi");
+        }
+        nu = *nu0;
+      } else {
+        nu = EstimateMultipliers(ocp, X0.col(N), P0.col(N));
       }
-      nu = *nu0;
-    } else {
-      nu = EstimateMultipliers(ocp, X0.col(N), P0.col(N));
+    }
+    z_ = pmp_.Pack(X0, P0, nu);
+    const int n = pmp_.size();
+    F_.resize(n);
+    F_trial_.resize(n);
+    d_.resize(n);
+    z_trial_.resize(n);
+    rhs_.resize(n);
+  }
+
+  // Iterates until convergence or a stop; the history rows go to r.
+  void Run(SolveResult* r) {
+    if (!Evaluate(z_, &F_, &J_, false)) {
+      Stop(SolveStatus::kNumericalFailure,
+           FailureStatus(),
+           "at the start: " + pmp_.FailureMessage());
+      J_ = -1.0;  // not computed
+      r->history.push_back({0, J_, NAN, -1, NAN, NAN, run_.watch.cpu()});
+      return;
+    }
+    const IndirectNewtonOptions& o = run_.options;
+    bool have_jacobian = false;
+    for (;;) {
+      const double residual = F_.lpNorm<Eigen::Infinity>();
+      IterationRecord rec;
+      rec.iteration = iterations_;
+      rec.J = J_;
+      rec.armijo_j = backtracks_;
+      rec.primal_inf = residual;
+      rec.cpu_seconds = run_.watch.cpu();
+      r->history.push_back(rec);
+      if (residual <= o.tolerance) {
+        Stop(SolveStatus::kConverged,
+             "converged",
+             "||F||_inf = " + NewtonNumber(residual) + " <= " + NewtonNumber(o.tolerance) +
+                 " after " + std::to_string(iterations_) + " Newton steps (" + lu_name_ + ")");
+        return;
+      }
+      if (iterations_ >= o.max_iterations) {
+        Stop(SolveStatus::kMaxIterations,
+             "max_iterations",
+             "||F||_inf = " + NewtonNumber(residual) +
+                 " after max_iterations = " + std::to_string(o.max_iterations) + " Newton steps");
+        return;
+      }
+      if (!have_jacobian && !Evaluate(z_, &F_, &J_, true)) {
+        Stop(SolveStatus::kNumericalFailure,
+             FailureStatus(),
+             "Jacobian at iterate " + std::to_string(iterations_) + ": " + pmp_.FailureMessage());
+        return;
+      }
+      if (!Direction()) return;
+      if (!LineSearch(residual, &have_jacobian)) return;
+      ++iterations_;
     }
   }
-  Vec z = pmp.Pack(X0, P0, nu);
-  const int n = pmp.size();
-  Vec F(n), F_trial(n), d(n), z_trial(n), rhs(n);
-  double J = 0.0, J_trial = 0.0;
-  double assembly = 0.0, factorization = 0.0, solve = 0.0;
-  int residual_evaluations = 0, jacobian_evaluations = 0;
-  auto evaluate = [&](const Vec& at, Vec* out, double* cost, bool with_jacobian) {
+
+  // The result's fields and the work counters.
+  void Finish(double newton_cpu0, SolveResult* r) {
+    const double final_time = pmp_.FinalTime(z_);
+    Mat X, P;
+    pmp_.Unpack(z_, &X, &P, nullptr);
+    const TimeGrid solution_grid = pmp_.GridOf(z_);
+    r->status = status_;
+    r->solver_status = solver_status_;
+    r->message = r->message.empty() ? message_ : r->message + "; Newton: " + message_;
+    r->controls = ControlTrajectory::PiecewiseLinear(solution_grid, pmp_.Controls(z_));
+    r->state_grid = solution_grid;
+    r->states = std::move(X);
+    r->costates = std::move(P);
+    r->objective = J_;
+    r->iterations = iterations_;
+    r->cpu_seconds = run_.watch.cpu();
+    r->wall_seconds = run_.watch.wall();
+    auto& s = r->solver_stats;
+    s["assembly_seconds"] = assembly_;
+    s["factorization_seconds"] = factorization_;
+    s["solve_seconds"] = solve_;
+    s["newton_cpu_seconds"] = CpuSeconds() - newton_cpu0;
+    s["residual_inf"] = r->history.back().primal_inf;
+    if (pmp_.free_final_time()) s["final_time"] = final_time;
+    s["unknowns"] = pmp_.size();
+    s["jacobian_nonzeros"] = static_cast<double>(pmp_.jacobian().nonZeros());
+    s["residual_evaluations"] = residual_evaluations_;
+    s["jacobian_evaluations"] = jacobian_evaluations_;
+  }
+
+ private:
+  bool Evaluate(const Vec& at, Vec* out, double* cost, bool with_jacobian) {
     const double t0 = CpuSeconds();
-    const bool ok = pmp.Evaluate(at, *out, cost, with_jacobian);
-    assembly += CpuSeconds() - t0;
-    ++(with_jacobian ? jacobian_evaluations : residual_evaluations);
+    const bool ok = pmp_.Evaluate(at, *out, cost, with_jacobian);
+    assembly_ += CpuSeconds() - t0;
+    ++(with_jacobian ? jacobian_evaluations_ : residual_evaluations_);
     return ok;
-  };
-  auto failure_status = [&]() {
-    switch (pmp.failure()) {
+  }
+  const char* FailureStatus() const {
+    switch (pmp_.failure()) {
       case PmpResidual::Failure::kSingularMinimizer:
         return "singular_minimizer";
       case PmpResidual::Failure::kBadFinalTime:
@@ -310,143 +364,98 @@ void RunNewton(const NewtonRun& run, const Mat& X0, const Mat& P0, const Vec* nu
       default:
         return "nonfinite_residual";
     }
-  };
-  std::unique_ptr<SparseLu> lu = MakeLu(o.linear_solver);
-  const char* lu_name = ToString(o.linear_solver);
-
-  SolveStatus status = SolveStatus::kError;
-  std::string solver_status, message;
-  int iterations = 0;
-  int backtracks = -1;
-  if (!evaluate(z, &F, &J, false)) {
-    status = SolveStatus::kNumericalFailure;
-    solver_status = failure_status();
-    message = "at the start: " + pmp.FailureMessage();
-    J = -1.0;  // not computed
-    r->history.push_back({0, J, NAN, -1, NAN, NAN, run.watch.cpu()});
-  } else {
-    bool have_jacobian = false;
-    for (;;) {
-      const double residual = F.lpNorm<Eigen::Infinity>();
-      IterationRecord rec;
-      rec.iteration = iterations;
-      rec.J = J;
-      rec.armijo_j = backtracks;
-      rec.primal_inf = residual;
-      rec.cpu_seconds = run.watch.cpu();
-      r->history.push_back(rec);
-      if (residual <= o.tolerance) {
-        status = SolveStatus::kConverged;
-        solver_status = "converged";
-        message = "||F||_inf = " + Format(residual) + " <= " + Format(o.tolerance) + " after " +
-                  std::to_string(iterations) + " Newton steps (" + lu_name + ")";
-        break;
-      }
-      if (iterations >= o.max_iterations) {
-        status = SolveStatus::kMaxIterations;
-        solver_status = "max_iterations";
-        message = "||F||_inf = " + Format(residual) +
-                  " after max_iterations = " + std::to_string(o.max_iterations) + " Newton steps";
-        break;
-      }
-      if (!have_jacobian) {
-        if (!evaluate(z, &F, &J, true)) {
-          status = SolveStatus::kNumericalFailure;
-          solver_status = failure_status();
-          message =
-              "Jacobian at iterate " + std::to_string(iterations) + ": " + pmp.FailureMessage();
-          break;
-        }
-      }
-      double t0 = CpuSeconds();
-      bool factored = true;
-      if (iterations == 0) factored = lu->Analyze(pmp.jacobian());
-      factored = factored && lu->Factorize(pmp.jacobian());
-      factorization += CpuSeconds() - t0;
-      if (!factored) {
-        status = SolveStatus::kNumericalFailure;
-        solver_status = "singular_jacobian";
-        message = std::string(lu_name) + " reports the Newton matrix singular at iterate " +
-                  std::to_string(iterations);
-        break;
-      }
-      t0 = CpuSeconds();
-      rhs = -F;
-      lu->Solve(rhs, &d);
-      solve += CpuSeconds() - t0;
-      if (!d.allFinite()) {
-        status = SolveStatus::kNumericalFailure;
-        solver_status = "nonfinite_step";
-        message = std::string(lu_name) + " returned a non-finite Newton step at iterate " +
-                  std::to_string(iterations);
-        break;
-      }
-      // Backtracking on 1/2 |F|^2. A full step after a full step is tried with the Jacobian
-      // (usually accepted near the solution, which saves an evaluation).
-      const double merit = 0.5 * F.squaredNorm();
-      double step = 1.0;
-      int j = 0;
-      bool accepted = false;
-      have_jacobian = false;
-      while (step >= o.min_step) {
-        z_trial = z + step * d;
-        const bool with_jacobian = j == 0 && backtracks <= 0;
-        bool ok = evaluate(z_trial, &F_trial, &J_trial, with_jacobian);
-        bool trial_jacobian = ok && with_jacobian;
-        if (!ok && with_jacobian && pmp.failure() == PmpResidual::Failure::kSingularMinimizer) {
-          ok = evaluate(z_trial, &F_trial, &J_trial, false);
-        }
-        if (ok &&
-            0.5 * F_trial.squaredNorm() <= (1.0 - 2.0 * o.sufficient_decrease * step) * merit) {
-          accepted = true;
-          have_jacobian = trial_jacobian;
-          break;
-        }
-        step *= o.backtrack;
-        ++j;
-      }
-      if (!accepted) {
-        status = SolveStatus::kStepTooSmall;
-        solver_status = "line_search_failed";
-        message = "no step >= min_step = " + Format(o.min_step) +
-                  " decreased 1/2 ||F||^2 enough at iterate " + std::to_string(iterations) +
-                  " (||F||_inf = " + Format(residual) + ")";
-        break;
-      }
-      z.swap(z_trial);
-      F.swap(F_trial);
-      J = J_trial;
-      backtracks = j;
-      ++iterations;
-    }
+  }
+  void Stop(SolveStatus status, const char* code, std::string message) {
+    status_ = status;
+    solver_status_ = code;
+    message_ = std::move(message);
   }
 
-  const double final_time = pmp.FinalTime(z);
-  Mat X, P;
-  pmp.Unpack(z, &X, &P, nullptr);
-  const TimeGrid solution_grid = pmp.GridOf(z);
-  r->status = status;
-  r->solver_status = solver_status;
-  r->message = r->message.empty() ? message : r->message + "; Newton: " + message;
-  r->controls = ControlTrajectory::PiecewiseLinear(solution_grid, pmp.Controls(z));
-  r->state_grid = solution_grid;
-  r->states = std::move(X);
-  r->costates = std::move(P);
-  r->objective = J;
-  r->iterations = iterations;
-  r->cpu_seconds = run.watch.cpu();
-  r->wall_seconds = run.watch.wall();
-  auto& s = r->solver_stats;
-  s["assembly_seconds"] = assembly;
-  s["factorization_seconds"] = factorization;
-  s["solve_seconds"] = solve;
-  s["newton_cpu_seconds"] = CpuSeconds() - newton_cpu0;
-  s["residual_inf"] = r->history.back().primal_inf;
-  if (pmp.free_final_time()) s["final_time"] = final_time;
-  s["unknowns"] = n;
-  s["jacobian_nonzeros"] = static_cast<double>(pmp.jacobian().nonZeros());
-  s["residual_evaluations"] = residual_evaluations;
-  s["jacobian_evaluations"] = jacobian_evaluations;
+  // The Newton step d from J(z) d = -F(z) (the Jacobian evaluated at z); false after a stop.
+  bool Direction() {
+    double t0 = CpuSeconds();
+    bool factored = true;
+    if (iterations_ == 0) factored = lu_->Analyze(pmp_.jacobian());
+    factored = factored && lu_->Factorize(pmp_.jacobian());
+    factorization_ += CpuSeconds() - t0;
+    if (!factored) {
+      Stop(SolveStatus::kNumericalFailure,
+           "singular_jacobian",
+           std::string(lu_name_) + " reports the Newton matrix singular at iterate " +
+               std::to_string(iterations_));
+      return false;
+    }
+    t0 = CpuSeconds();
+    rhs_ = -F_;
+    lu_->Solve(rhs_, &d_);
+    solve_ += CpuSeconds() - t0;
+    if (!d_.allFinite()) {
+      Stop(SolveStatus::kNumericalFailure,
+           "nonfinite_step",
+           std::string(lu_name_) + " returned a non-finite Newton step at iterate " +
+               std::to_string(iterations_));
+      return false;
+    }
+    return true;
+  }
+
+  // Backtracking on 1/2 |F|^2 along d; moves z on success, false after a stop. A full step after
+  // a full step is tried with the Jacobian (usually accepted near the solution, which saves an
+  // evaluation); *have_jacobian says whether the accepted point's Jacobian is already there.
+  bool LineSearch(double residual, bool* have_jacobian) {
+    const IndirectNewtonOptions& o = run_.options;
+    const double merit = 0.5 * F_.squaredNorm();
+    double step = 1.0;
+    int j = 0;
+    *have_jacobian = false;
+    while (step >= o.min_step) {
+      z_trial_ = z_ + step * d_;
+      const bool with_jacobian = j == 0 && backtracks_ <= 0;
+      bool ok = Evaluate(z_trial_, &F_trial_, &J_trial_, with_jacobian);
+      const bool trial_jacobian = ok && with_jacobian;
+      if (!ok && with_jacobian && pmp_.failure() == PmpResidual::Failure::kSingularMinimizer) {
+        ok = Evaluate(z_trial_, &F_trial_, &J_trial_, false);
+      }
+      if (ok &&
+          0.5 * F_trial_.squaredNorm() <= (1.0 - 2.0 * o.sufficient_decrease * step) * merit) {
+        *have_jacobian = trial_jacobian;
+        z_.swap(z_trial_);
+        F_.swap(F_trial_);
+        J_ = J_trial_;
+        backtracks_ = j;
+        return true;
+      }
+      step *= o.backtrack;
+      ++j;
+    }
+    Stop(SolveStatus::kStepTooSmall,
+         "line_search_failed",
+         "no step >= min_step = " + NewtonNumber(o.min_step) +
+             " decreased 1/2 ||F||^2 enough at iterate " + std::to_string(iterations_) +
+             " (||F||_inf = " + NewtonNumber(residual) + ")");
+    return false;
+  }
+
+  const NewtonRun& run_;
+  PmpResidual& pmp_;
+  std::unique_ptr<SparseLu> lu_;
+  const char* lu_name_;
+  Vec z_, F_, F_trial_, d_, z_trial_, rhs_;
+  double J_ = 0.0, J_trial_ = 0.0;
+  double assembly_ = 0.0, factorization_ = 0.0, solve_ = 0.0;
+  int residual_evaluations_ = 0, jacobian_evaluations_ = 0;
+  int iterations_ = 0, backtracks_ = -1;
+  SolveStatus status_ = SolveStatus::kError;
+  std::string solver_status_, message_;
+};
+
+void RunNewton(const NewtonRun& run, const Mat& X0, const Mat& P0, const Vec* nu0, SolveResult* r) {
+  const double newton_cpu0 = CpuSeconds();
+  PmpResidual pmp(run.ocp, run.request.grid, run.request.terminal);
+  NewtonIteration newton(run, pmp);
+  newton.Start(X0, P0, nu0);
+  newton.Run(r);
+  newton.Finish(newton_cpu0, r);
 }
 
 }  // namespace
@@ -479,105 +488,82 @@ const char* ToString(IndirectNewtonOptions::Costates costates) {
   return "default";
 }
 
+namespace {
+
+const OptionBinding<IndirectNewtonOptions>& NewtonBinding() {
+  static const OptionBinding<IndirectNewtonOptions> table = [] {
+    using O = IndirectNewtonOptions;
+    OptionBinding<O> t(kName);
+    t.Integer(
+        "max_iterations", &O::max_iterations, "Newton steps at most", OptionBounds::AtLeast(0));
+    t.Number(
+        "tolerance", &O::tolerance, "converged when ||F||_inf <= this", OptionBounds::Above(0));
+    t.Number("sufficient_decrease",
+             &O::sufficient_decrease,
+             "Armijo constant c of the merit 1/2 ||F||^2",
+             OptionBounds::Open(0, 0.5));
+    t.Number("backtrack", &O::backtrack, "step reduction factor", OptionBounds::Open(0, 1));
+    t.Number("min_step",
+             &O::min_step,
+             "smallest step tried (else line_search_failed)",
+             OptionBounds::OpenClosed(0, 1));
+    t.Enum("linear_solver",
+           &O::linear_solver,
+           {{"umfpack", O::LinearSolver::kUmfpack}, {"klu", O::LinearSolver::kKlu}},
+           "sparse LU of the Newton matrix");
+    t.Enum("warm_start",
+           &O::warm_start,
+           {{"none", O::WarmStart::kNone},
+            {"hamiltonian", O::WarmStart::kHamiltonian},
+            {"ipopt", O::WarmStart::kIpopt}},
+           "where Newton starts: the request's controls, the descent's solution, Ipopt's");
+    t.Enum("costates",
+           &O::costates,
+           {{"default", O::Costates::kDefault},
+            {"fit", O::Costates::kFit},
+            {"adjoint", O::Costates::kAdjoint}},
+           "how the start's costates are made (default: adjoint after ipopt, else fit)");
+    t.OptionalNumber("path_penalty",
+                     &O::path_penalty,
+                     "rho of the reformulation's path penalty rho max(0, c)^2",
+                     OptionBounds::Above(0),
+                     "the problem's own default");
+    t.OptionalNumber("regularization",
+                     &O::regularization,
+                     "eps of the reformulation's control regularization eps |u|^2",
+                     OptionBounds::Above(0),
+                     "the problem's own default");
+    t.Nested("hamiltonian",
+             &O::warm_start_options,
+             HamiltonianDescent::Schema(),
+             "options of the warm start's hamiltonian solver (needs warm_start = hamiltonian)");
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
 bool IndirectNewtonOptions::IsValid(std::string* error) const {
-  auto fail = [&](const std::string& why) {
-    if (error) *error = why;
-    return false;
-  };
-  if (max_iterations < 0) return fail("max_iterations must be >= 0");
-  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
-    return fail("tolerance must be finite and > 0");
-  if (!(sufficient_decrease > 0.0 && sufficient_decrease < 0.5)) {
-    return fail("sufficient_decrease must lie in (0, 0.5)");
-  }
-  if (!(backtrack > 0.0 && backtrack < 1.0)) return fail("backtrack must lie in (0, 1)");
-  if (!(min_step > 0.0 && min_step <= 1.0)) return fail("min_step must lie in (0, 1]");
-  if (path_penalty && !(*path_penalty > 0.0 && std::isfinite(*path_penalty))) {
-    return fail("path_penalty must be finite and > 0");
-  }
-  if (regularization && !(*regularization > 0.0 && std::isfinite(*regularization))) {
-    return fail("regularization must be finite and > 0");
-  }
+  if (!NewtonBinding().Check(*this, error)) return false;
   if (warm_start != WarmStart::kHamiltonian && !warm_start_options.empty()) {
-    return fail("hamiltonian.<key> options need warm_start = hamiltonian");
+    if (error)
+      *error = std::string(kName) + ": hamiltonian.<key> options need warm_start = hamiltonian";
+    return false;
   }
   return true;
 }
 
 IndirectNewton::IndirectNewton(const Options& options) : options_(options) {
   std::string error;
-  if (!options_.IsValid(&error)) throw std::invalid_argument(std::string(kName) + ": " + error);
+  if (!options_.IsValid(&error)) throw std::invalid_argument(error);
 }
 
-IndirectNewton::Options IndirectNewton::ParseOptions(
-    const std::map<std::string, std::string>& options, const Options& base) {
-  Options o = base;
-  for (const auto& [key, value] : options) {
-    if (key == "max_iterations") {
-      o.max_iterations = ParseInt(key, value);
-      if (o.max_iterations < 0) BadOption(key, "must be an integer >= 0");
-    } else if (key == "tolerance") {
-      o.tolerance = ParseDouble(key, value);
-      if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance))
-        BadOption(key, "must be finite and > 0");
-    } else if (key == "sufficient_decrease") {
-      o.sufficient_decrease = ParseDouble(key, value);
-      if (!(o.sufficient_decrease > 0.0 && o.sufficient_decrease < 0.5)) {
-        BadOption(key, "must lie in (0, 0.5)");
-      }
-    } else if (key == "backtrack") {
-      o.backtrack = ParseDouble(key, value);
-      if (!(o.backtrack > 0.0 && o.backtrack < 1.0)) BadOption(key, "must lie in (0, 1)");
-    } else if (key == "min_step") {
-      o.min_step = ParseDouble(key, value);
-      if (!(o.min_step > 0.0 && o.min_step <= 1.0)) BadOption(key, "must lie in (0, 1]");
-    } else if (key == "linear_solver") {
-      if (value == "umfpack") {
-        o.linear_solver = Options::LinearSolver::kUmfpack;
-      } else if (value == "klu") {
-        o.linear_solver = Options::LinearSolver::kKlu;
-      } else {
-        BadOption(key, "'" + value + "' is not one of umfpack, klu");
-      }
-    } else if (key == "warm_start") {
-      if (value == "none") {
-        o.warm_start = Options::WarmStart::kNone;
-      } else if (value == "hamiltonian") {
-        o.warm_start = Options::WarmStart::kHamiltonian;
-      } else if (value == "ipopt") {
-        o.warm_start = Options::WarmStart::kIpopt;
-      } else {
-        BadOption(key, "'" + value + "' is not one of none, hamiltonian, ipopt");
-      }
-    } else if (key == "costates") {
-      if (value == "fit") {
-        o.costates = Options::Costates::kFit;
-      } else if (value == "adjoint") {
-        o.costates = Options::Costates::kAdjoint;
-      } else if (value == "default") {
-        o.costates = Options::Costates::kDefault;
-      } else {
-        BadOption(key, "'" + value + "' is not one of fit, adjoint, default");
-      }
-    } else if (key == "path_penalty") {
-      o.path_penalty = ParseDouble(key, value);
-      if (!(*o.path_penalty > 0.0) || !std::isfinite(*o.path_penalty)) {
-        BadOption(key, "must be finite and > 0");
-      }
-    } else if (key == "regularization") {
-      o.regularization = ParseDouble(key, value);
-      if (!(*o.regularization > 0.0) || !std::isfinite(*o.regularization)) {
-        BadOption(key, "must be finite and > 0");
-      }
-    } else if (key.rfind(kWarmPrefix, 0) == 0 && key.size() > std::string(kWarmPrefix).size()) {
-      o.warm_start_options[key.substr(std::string(kWarmPrefix).size())] = value;
-    } else {
-      BadOption(key, std::string("unknown key (valid: ") + kValidKeys + ")");
-    }
-  }
-  std::string error;
-  if (!o.IsValid(&error)) throw std::invalid_argument(std::string(kName) + " options: " + error);
-  return o;
+const OptionSchema& IndirectNewton::Schema() { return NewtonBinding().schema(); }
+
+IndirectNewton::Options IndirectNewton::ApplyOptions(const OptionMap& options,
+                                                     const Options& base) {
+  return NewtonBinding().ApplyValidated(options, base);
 }
 
 void IndirectNewton::StartFromControls(const Ocp& ocp,
@@ -637,7 +623,7 @@ void IndirectNewton::CostatesFromControls(const Ocp& ocp,
 
 SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& request) const {
   const Stopwatch watch;
-  const Options o = ParseOptions(request.options, options_);
+  const Options o = ApplyOptions(request.options, options_);
   Target target = Resolve(original, o);
   if (target.not_applicable) return *target.not_applicable;
   const Ocp& ocp = *target.ocp;
@@ -659,17 +645,18 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
       warm.terminal = TerminalMode::kPenalty;
       warm.options = o.warm_start_options;
       // The descent reformulates the problem itself; give it the same reformulation.
-      if (o.path_penalty && !warm.options.count("path_penalty")) {
-        warm.options["path_penalty"] = FormatExact(*o.path_penalty);
+      if (o.path_penalty && !warm.options.Has("path_penalty")) {
+        warm.options.Set("path_penalty", *o.path_penalty);
       }
-      if (o.regularization && !warm.options.count("regularization")) {
-        warm.options["regularization"] = FormatExact(*o.regularization);
+      if (o.regularization && !warm.options.Has("regularization")) {
+        warm.options.Set("regularization", *o.regularization);
       }
     } else {
       // Ipopt's defaults on the trapezoid transcription of the same grid and terminal form:
       // the NLP whose KKT conditions are closest to this trapezoidal BVP.
       warm.transcription = "trapezoid";
-      warm.options.clear();
+      warm.options = OptionMap();
+      warm.transcription_options = OptionMap();
     }
     const double cpu0 = CpuSeconds();
     const Stopwatch warm_watch;
@@ -680,7 +667,7 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
     r.solver_stats["warm_start_objective"] = start.objective;
     const std::string summary = "warm start: " + warm_name + " " + start.solver_status + " after " +
                                 std::to_string(start.iterations) +
-                                " iterations, J = " + Format(start.objective);
+                                " iterations, J = " + NewtonNumber(start.objective);
     const int N = request.grid.intervals();
     if (start.states.rows() != ocp.nx() || start.states.cols() != N + 1 ||
         start.state_grid.size() != N + 1 || !ocp.AdmitsFinalTime(start.state_grid.tf()) ||
@@ -730,7 +717,7 @@ SolveResult IndirectNewton::SolveFrom(const Ocp& original,
                                       const Mat& P,
                                       const Vec* nu) const {
   const Stopwatch watch;
-  const Options o = ParseOptions(request.options, options_);
+  const Options o = ApplyOptions(request.options, options_);
   Target target = Resolve(original, o);
   if (target.not_applicable) return *target.not_applicable;
   SolveResult r;

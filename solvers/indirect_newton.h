@@ -2,12 +2,12 @@
 // "indirect-newton").
 #pragma once
 
-#include <map>
 #include <optional>
 #include <string>
 
 #include "core/control_trajectory.h"
 #include "core/ocp.h"
+#include "core/option_schema.h"
 #include "core/time_grid.h"
 #include "solvers/solver.h"
 
@@ -72,10 +72,10 @@ struct IndirectNewtonOptions {
     if (costates != Costates::kDefault) return costates;
     return warm_start == WarmStart::kIpopt ? Costates::kAdjoint : Costates::kFit;
   }
-  /// Options handed verbatim to the "hamiltonian" solver (it validates them); only allowed with
-  /// warm_start = kHamiltonian. path_penalty and regularization below are passed on to it unless
-  /// given here.
-  std::map<std::string, std::string> warm_start_options;
+  /// Options handed to the "hamiltonian" solver (keys "hamiltonian.<key>", resolved by its
+  /// schema); only allowed with warm_start = kHamiltonian. path_penalty and regularization
+  /// below are passed on to it unless given here.
+  OptionMap warm_start_options;
   /// Passed to Ocp::HamiltonianReformulation: rho > 0 of a path-constraint penalty and eps > 0 of
   /// a control regularization, for problems that need a reformulation (unset: the problem's own
   /// default, stated in its header). Keys "path_penalty", "regularization".
@@ -163,13 +163,13 @@ class IndirectNewton final : public Solver {
   /// Throws std::invalid_argument when !options.IsValid().
   explicit IndirectNewton(const Options& options);
 
-  /// Parses string options over `base` (keys: max_iterations, tolerance, sufficient_decrease,
-  /// backtrack, min_step, linear_solver, warm_start, costates, path_penalty, regularization,
-  /// hamiltonian.<key>). Throws
-  /// std::invalid_argument naming the key and its rule (and listing the valid keys for an
-  /// unknown one).
-  static Options ParseOptions(const std::map<std::string, std::string>& options,
-                              const Options& base = Options());
+  /// The solver's options (max_iterations, tolerance, sufficient_decrease, backtrack,
+  /// min_step, linear_solver, warm_start, costates, path_penalty, regularization,
+  /// hamiltonian.<key>), with defaults (IndirectNewtonOptions') and rules.
+  static const OptionSchema& Schema();
+  /// `base` with `options` applied (resolved by Schema()), then IsValid. Throws
+  /// std::invalid_argument naming the key and its rule.
+  static Options ApplyOptions(const OptionMap& options, const Options& base = Options());
 
   /// A start from controls: X by RK4 simulation of `controls` on `grid` (core Evaluate), P by
   /// CostatesFromControls(..., how).

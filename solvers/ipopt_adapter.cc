@@ -157,46 +157,6 @@ std::vector<IpoptOptionSpec> BuildTable() {
   };
 }
 
-const char* TypeName(IpoptOptionType type) {
-  switch (type) {
-    case IpoptOptionType::kNumber:
-      return "a number";
-    case IpoptOptionType::kInteger:
-      return "an integer";
-    case IpoptOptionType::kString:
-      return "a string";
-  }
-  return "?";
-}
-
-std::string Join(const std::vector<std::string>& items) {
-  std::string out;
-  for (const std::string& s : items) out += (out.empty() ? "" : ", ") + s;
-  return out;
-}
-
-double ParseNumber(const std::string& key, const std::string& text) {
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v)) {
-    throw std::invalid_argument("ipopt option '" + key + "': '" + text +
-                                "' is not a finite number");
-  }
-  return v;
-}
-
-int ParseInteger(const std::string& key, const std::string& text) {
-  errno = 0;
-  char* end = nullptr;
-  const long v = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE ||
-      v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) {
-    throw std::invalid_argument("ipopt option '" + key + "': '" + text + "' is not an integer");
-  }
-  return static_cast<int>(v);
-}
-
 // ---- the TNLP -------------------------------------------------------------------------
 
 // Ipopt's view of an ocpb::Nlp. Structure (sizes, triplets) is read once from the Nlp; values are
@@ -509,122 +469,6 @@ bool IpoptOptionTableMatchesIpopt(std::string* error) {
   return problems.empty();
 }
 
-bool IpoptOptions::IsValid(std::string* error) const {
-  auto fail = [&](const std::string& why) {
-    if (error) *error = why;
-    return false;
-  };
-  if (!(tol > 0.0)) return fail("tol must be > 0");
-  if (max_iter < 0) return fail("max_iter must be >= 0");
-  if (!(acceptable_tol > 0.0)) return fail("acceptable_tol must be > 0");
-  if (acceptable_iter < 0) return fail("acceptable_iter must be >= 0");
-  if (!(max_cpu_time > 0.0)) return fail("max_cpu_time must be > 0");
-  if (mu_strategy != "monotone" && mu_strategy != "adaptive") {
-    return fail("mu_strategy must be one of: monotone, adaptive");
-  }
-  if (hessian_approximation != "auto" && hessian_approximation != "exact" &&
-      hessian_approximation != "limited-memory") {
-    return fail("hessian_approximation must be one of: auto, exact, limited-memory");
-  }
-  if (linear_solver != "mumps") return fail("linear_solver must be mumps (the only one built in)");
-  if (nlp_scaling_method != "none" && nlp_scaling_method != "gradient-based") {
-    return fail("nlp_scaling_method must be one of: none, gradient-based");
-  }
-  if (!(obj_scaling_factor != 0.0) || !std::isfinite(obj_scaling_factor)) {
-    return fail("obj_scaling_factor must be finite and nonzero");
-  }
-  if (!(nlp_scaling_max_gradient > 0.0)) return fail("nlp_scaling_max_gradient must be > 0");
-  if (print_level < 0 || print_level > 12) return fail("print_level must be in 0..12");
-  for (const IpoptOptionValue& v : extra) {
-    const IpoptOptionSpec* spec = FindIpoptOption(v.name);
-    if (spec == nullptr) return fail("extra option '" + v.name + "' is not in the Ipopt table");
-    if (spec->type != v.type) {
-      return fail("extra option '" + v.name + "' must be " + TypeName(spec->type));
-    }
-    if (v.type == IpoptOptionType::kString && !spec->values.empty() &&
-        std::find(spec->values.begin(), spec->values.end(), v.text) == spec->values.end()) {
-      return fail("extra option '" + v.name + "' must be one of: " + Join(spec->values));
-    }
-  }
-  return true;
-}
-
-IpoptOptions IpoptOptions::FromStrings(const std::map<std::string, std::string>& strings,
-                                       IpoptOptions base) {
-  IpoptOptions o = std::move(base);
-  for (const auto& [key, text] : strings) {
-    if (key == "hessian_approximation" && text == "auto") {
-      o.hessian_approximation = text;
-      continue;
-    }
-    const IpoptOptionSpec* spec = FindIpoptOption(key);
-    if (spec == nullptr) {
-      std::vector<std::string> names;
-      for (const IpoptOptionSpec& s : IpoptOptionTable()) names.push_back(s.name);
-      std::sort(names.begin(), names.end());
-      throw std::invalid_argument("unknown ipopt option '" + key + "' (valid: " + Join(names) +
-                                  "; and the transcription's objective_scale, state_scale, "
-                                  "control_scale)");
-    }
-    IpoptOptionValue v;
-    v.name = key;
-    v.type = spec->type;
-    switch (spec->type) {
-      case IpoptOptionType::kNumber:
-        v.number = ParseNumber(key, text);
-        break;
-      case IpoptOptionType::kInteger:
-        v.integer = ParseInteger(key, text);
-        break;
-      case IpoptOptionType::kString:
-        if (!spec->values.empty() &&
-            std::find(spec->values.begin(), spec->values.end(), text) == spec->values.end()) {
-          std::vector<std::string> valid = spec->values;
-          if (key == "hessian_approximation") valid.insert(valid.begin(), "auto");
-          throw std::invalid_argument("ipopt option '" + key + "': '" + text +
-                                      "' is not one of: " + Join(valid));
-        }
-        v.text = text;
-        break;
-    }
-    // Named fields are set directly; everything else goes through `extra` (last one wins).
-    if (key == "tol") {
-      o.tol = v.number;
-    } else if (key == "max_iter") {
-      o.max_iter = v.integer;
-    } else if (key == "acceptable_tol") {
-      o.acceptable_tol = v.number;
-    } else if (key == "acceptable_iter") {
-      o.acceptable_iter = v.integer;
-    } else if (key == "max_cpu_time") {
-      o.max_cpu_time = v.number;
-    } else if (key == "mu_strategy") {
-      o.mu_strategy = v.text;
-    } else if (key == "hessian_approximation") {
-      o.hessian_approximation = v.text;
-    } else if (key == "linear_solver") {
-      o.linear_solver = v.text;
-    } else if (key == "nlp_scaling_method") {
-      o.nlp_scaling_method = v.text;
-    } else if (key == "obj_scaling_factor") {
-      o.obj_scaling_factor = v.number;
-    } else if (key == "nlp_scaling_max_gradient") {
-      o.nlp_scaling_max_gradient = v.number;
-    } else if (key == "print_level") {
-      o.print_level = v.integer;
-    } else {
-      o.extra.erase(std::remove_if(o.extra.begin(),
-                                   o.extra.end(),
-                                   [&v](const IpoptOptionValue& e) { return e.name == v.name; }),
-                    o.extra.end());
-      o.extra.push_back(v);
-    }
-  }
-  std::string error;
-  if (!o.IsValid(&error)) throw std::invalid_argument("ipopt options: " + error);
-  return o;
-}
-
 // ---- status ------------------------------------------------------------------------------
 
 std::string IpoptStatusName(int code) {
@@ -763,6 +607,8 @@ NlpSolution SolveNlpWithIpopt(const Nlp& nlp, const Vec& z0, const IpoptOptions&
       NumberOption("max_cpu_time", options.max_cpu_time),
       TextOption("mu_strategy", options.mu_strategy),
       TextOption("linear_solver", options.linear_solver),
+      IntegerOption("mumps_pivot_order",
+                    options.mumps_pivot_order >= 0 ? options.mumps_pivot_order : (exact ? 0 : 7)),
       TextOption("nlp_scaling_method", options.nlp_scaling_method),
       NumberOption("obj_scaling_factor", options.obj_scaling_factor),
       NumberOption("nlp_scaling_max_gradient", options.nlp_scaling_max_gradient),

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/nlp.h"
+#include "core/option_schema.h"
 #include "core/solve_result.h"
 #include "solvers/nlp_solve.h"
 
@@ -67,6 +68,14 @@ struct IpoptOptions {
   std::string hessian_approximation = "auto";
   /// Only "mumps" is available in OCPBench's build (no HSL).
   std::string linear_solver = "mumps";
+  /// MUMPS' fill-reducing ordering (Ipopt's mumps_pivot_order, ICNTL(7): 0 AMD, 2 AMF, 3 SCOTCH,
+  /// 4 PORD, 5 METIS, 6 QAMD, 7 MUMPS' automatic choice, Ipopt's default). -1 (OCPBench's
+  /// default) chooses by problem class, as measured (solvers/README-nlp.md, "MUMPS ordering"):
+  /// 0 (AMD) when the NLP has an exact Hessian (the collocation transcriptions: on comm-path2d
+  /// at N = 400, 12-21 % fewer MUMPS instructions than 7 with the same iterates), 7 otherwise
+  /// (limited-memory, single shooting: not measured, Ipopt's default kept).
+  /// `--option mumps_pivot_order=K` overrides it (applied after this field).
+  int mumps_pivot_order = -1;
   // ---- scaling ------------------------------------------------------------------
   /// "gradient-based" (Ipopt default: scale f and each g_i so their gradient at the start has
   /// max-norm <= nlp_scaling_max_gradient), "none", or "equilibration-based" (needs MC19, absent).
@@ -81,14 +90,16 @@ struct IpoptOptions {
   /// Any other option from IpoptOptionTable(), applied after the fields above.
   std::vector<IpoptOptionValue> extra;
 
-  /// True when every field is in range (tol > 0, max_iter >= 0, ...) and every extra option is
-  /// in the table with its type; otherwise false with a one-line reason in `error`.
+  /// True when every field is in range (Schema()'s rules: tol > 0, max_iter >= 0, ...,
+  /// obj_scaling_factor finite and nonzero) and every extra option is in the table with its
+  /// type; otherwise false with a one-line reason in `error`.
   bool IsValid(std::string* error) const;
-  /// `base` with `strings` applied: each key is a field name above or an option of
-  /// IpoptOptionTable(), parsed by its type (double, int, or one of the listed strings). Throws
-  /// std::invalid_argument naming the key and the rule, listing the valid keys for an unknown one.
-  static IpoptOptions FromStrings(const std::map<std::string, std::string>& strings,
-                                  IpoptOptions base);
+  /// Every key a request may set: the fields above by name and every option of
+  /// IpoptOptionTable() (unset: Ipopt's own default), with types and rules.
+  static const OptionSchema& Schema();
+  /// `base` with `options` applied (resolved by Schema(): unknown keys refused listing the
+  /// valid ones, values by type), then IsValid. Throws std::invalid_argument.
+  static IpoptOptions Apply(const OptionMap& options, IpoptOptions base);
 };
 
 /// Ipopt's name for an ApplicationReturnStatus value ("Solve_Succeeded", "Restoration_Failed",

@@ -8,14 +8,18 @@ namespace ocpb {
 
 IpoptSolver::IpoptSolver(Options options) : options_(std::move(options)) {
   std::string error;
-  if (!options_.IsValid(&error)) throw std::invalid_argument("ipopt options: " + error);
+  if (!options_.IsValid(&error)) throw std::invalid_argument(error);
+}
+
+const OptionSchema& IpoptSolver::Schema() { return Options::Schema(); }
+
+IpoptSolver::Options IpoptSolver::ApplyOptions(const OptionMap& options, const Options& base) {
+  return Options::Apply(options, base);
 }
 
 SolveResult IpoptSolver::Solve(const Ocp& ocp, const SolveRequest& request) const {
-  NlpScaling scaling;
-  const Options options =
-      Options::FromStrings(ExtractScalingOptions(request.options, &scaling), options_);
-  return SolveTranscribed(name(), ocp, request, scaling, [&](const TranscribedNlp& nlp) {
+  const Options options = ApplyOptions(request.options, options_);
+  return SolveTranscribed(name(), ocp, request, [&](const TranscribedNlp& nlp) {
     return SolveNlpWithIpopt(nlp, nlp.StartingPoint(), options);
   });
 }

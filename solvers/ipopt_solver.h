@@ -19,12 +19,16 @@ namespace ocpb {
 /// status verbatim with its grouping (MapIpoptStatus), one history row per Ipopt iteration,
 /// Ipopt's own iteration count and CPU time (solver_stats "ipopt_cpu_seconds"), and the whole
 /// solve's CPU/wall time (transcription included) in cpu_seconds / wall_seconds.
-/// SolveRequest::options are Ipopt options (IpoptOptions::FromStrings) over the constructor's;
-/// the keys objective_scale, state_scale and control_scale set the transcription's NlpScaling.
+/// SolveRequest::options are Ipopt options (IpoptOptions::Schema()) over the constructor's;
+/// SolveRequest::transcription_options are the transcription's (scaling, LGR's degree).
 class IpoptSolver final : public Solver {
  public:
   using Options = IpoptOptions;
   explicit IpoptSolver(Options options = Options());
+  /// Its options (Options::Schema()) and their application over `base` (throws
+  /// std::invalid_argument naming the key and the rule).
+  static const OptionSchema& Schema();
+  static Options ApplyOptions(const OptionMap& options, const Options& base = Options());
   std::string name() const override { return "ipopt"; }
   /// Throws std::invalid_argument for an unknown option or transcription, or a request the
   /// transcription rejects; every numerical outcome is the result's status.

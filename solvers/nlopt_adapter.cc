@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/option_binding.h"
 #include "core/timer.h"
 #include "solvers/nlp_stationarity.h"
 
@@ -46,34 +47,6 @@ const AlgorithmInfo* FindAlgorithm(const std::string& name) {
 }
 
 bool IsAuglag(const std::string& name) { return name == "AUGLAG" || name == "AUGLAG_EQ"; }
-
-std::string Join(const std::vector<std::string>& items) {
-  std::string out;
-  for (const std::string& s : items) out += (out.empty() ? "" : ", ") + s;
-  return out;
-}
-
-double ParseNumber(const std::string& key, const std::string& text) {
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v)) {
-    throw std::invalid_argument("nlopt option '" + key + "': '" + text +
-                                "' is not a finite number");
-  }
-  return v;
-}
-
-int ParseInteger(const std::string& key, const std::string& text) {
-  errno = 0;
-  char* end = nullptr;
-  const long v = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE ||
-      v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) {
-    throw std::invalid_argument("nlopt option '" + key + "': '" + text + "' is not an integer");
-  }
-  return static_cast<int>(v);
-}
 
 // The NLP as NLopt sees it: constraint rows split into equalities and one-sided inequalities,
 // one-entry caches for g and the Jacobian (NLopt evaluates both constraint functions and the
@@ -300,90 +273,80 @@ std::vector<std::string> NloptAlgorithmNames() {
   return names;
 }
 
-bool NloptOptions::IsValid(std::string* error) const {
-  auto fail = [&](const std::string& why) {
-    if (error) *error = why;
-    return false;
-  };
-  if (FindAlgorithm(algorithm) == nullptr) {
-    return fail("algorithm must be one of: " + Join(NloptAlgorithmNames()));
+namespace {
+
+std::vector<std::string> LocalAlgorithmNames() {
+  std::vector<std::string> names;
+  for (const std::string& n : NloptAlgorithmNames()) {
+    if (!IsAuglag(n)) names.push_back(n);
   }
-  if (FindAlgorithm(local_algorithm) == nullptr || IsAuglag(local_algorithm)) {
-    return fail("local_algorithm must be one of: LD_LBFGS, LD_MMA, LD_CCSAQ, LD_SLSQP");
-  }
-  if (!std::isfinite(ftol_rel) || !std::isfinite(xtol_rel)) {
-    return fail("ftol_rel and xtol_rel must be finite (<= 0 disables a test)");
-  }
-  if (!std::isfinite(local_ftol_rel) || !std::isfinite(local_xtol_rel)) {
-    return fail("local_ftol_rel and local_xtol_rel must be finite (<= 0 disables a test)");
-  }
-  if (maxeval < 1) return fail("maxeval must be >= 1");
-  if (local_maxeval < 1) return fail("local_maxeval must be >= 1");
-  if (!(maxtime > 0.0)) return fail("maxtime must be > 0");
-  if (!(constraint_tol >= 0.0) || !std::isfinite(constraint_tol)) {
-    return fail("constraint_tol must be finite and >= 0");
-  }
-  if (!(feasibility_tol > 0.0)) return fail("feasibility_tol must be > 0");
-  if (!(stationarity_tol > 0.0)) return fail("stationarity_tol must be > 0");
-  if (!(max_dense_jacobian > 0.0)) return fail("max_dense_jacobian must be > 0");
-  if (slsqp_max_variables < 1) return fail("slsqp_max_variables must be >= 1");
-  if (mma_max_inequalities < 0) return fail("mma_max_inequalities must be >= 0");
-  return true;
+  return names;
 }
 
-NloptOptions NloptOptions::FromStrings(const std::map<std::string, std::string>& strings,
-                                       NloptOptions base) {
-  NloptOptions o = std::move(base);
-  const std::map<std::string, double*> numbers = {
-      {"ftol_rel", &o.ftol_rel},
-      {"xtol_rel", &o.xtol_rel},
-      {"maxtime", &o.maxtime},
-      {"local_ftol_rel", &o.local_ftol_rel},
-      {"local_xtol_rel", &o.local_xtol_rel},
-      {"constraint_tol", &o.constraint_tol},
-      {"feasibility_tol", &o.feasibility_tol},
-      {"stationarity_tol", &o.stationarity_tol},
-      {"max_dense_jacobian", &o.max_dense_jacobian},
-  };
-  const std::map<std::string, int*> integers = {
-      {"maxeval", &o.maxeval},
-      {"local_maxeval", &o.local_maxeval},
-      {"slsqp_max_variables", &o.slsqp_max_variables},
-      {"mma_max_inequalities", &o.mma_max_inequalities},
-  };
-  for (const auto& [key, text] : strings) {
-    if (auto it = numbers.find(key); it != numbers.end()) {
-      *it->second = ParseNumber(key, text);
-    } else if (auto jt = integers.find(key); jt != integers.end()) {
-      *jt->second = ParseInteger(key, text);
-    } else if (key == "algorithm" || key == "local_algorithm") {
-      if (FindAlgorithm(text) == nullptr) {
-        throw std::invalid_argument("nlopt option '" + key + "': '" + text +
-                                    "' is not one of: " + Join(NloptAlgorithmNames()));
-      }
-      (key == "algorithm" ? o.algorithm : o.local_algorithm) = text;
-    } else if (key == "record_history") {
-      if (text == "1" || text == "true") {
-        o.record_history = true;
-      } else if (text == "0" || text == "false") {
-        o.record_history = false;
-      } else {
-        throw std::invalid_argument("nlopt option 'record_history': '" + text +
-                                    "' is not one of: 0, 1, true, false");
-      }
-    } else {
-      std::vector<std::string> names = {"algorithm", "local_algorithm", "record_history"};
-      for (const auto& kv : numbers) names.push_back(kv.first);
-      for (const auto& kv : integers) names.push_back(kv.first);
-      std::sort(names.begin(), names.end());
-      throw std::invalid_argument("unknown nlopt option '" + key + "' (valid: " + Join(names) +
-                                  "; and the transcription's objective_scale, state_scale, "
-                                  "control_scale)");
-    }
-  }
-  std::string error;
-  if (!o.IsValid(&error)) throw std::invalid_argument("nlopt options: " + error);
-  return o;
+const OptionBinding<NloptOptions>& NloptBinding() {
+  static const OptionBinding<NloptOptions> table = [] {
+    using O = NloptOptions;
+    OptionBinding<O> t("nlopt");
+    t.Text("algorithm",
+           &O::algorithm,
+           "the NLopt algorithm (also --algorithm)",
+           NloptAlgorithmNames());
+    t.Text("local_algorithm",
+           &O::local_algorithm,
+           "AUGLAG / AUGLAG_EQ's subsidiary algorithm",
+           LocalAlgorithmNames());
+    const std::string disables = " (<= 0 disables the test)";
+    t.Number(
+        "ftol_rel", &O::ftol_rel, "stop when f changes by less than this times |f|" + disables);
+    t.Number("xtol_rel", &O::xtol_rel, "stop when every z_i changes by less than this" + disables);
+    t.Integer("maxeval", &O::maxeval, "objective evaluations at most", OptionBounds::AtLeast(1));
+    t.Number("maxtime", &O::maxtime, "wall-time limit, s", OptionBounds::Above(0));
+    t.Number(
+        "local_ftol_rel", &O::local_ftol_rel, "ftol_rel of the subsidiary algorithm" + disables);
+    t.Number(
+        "local_xtol_rel", &O::local_xtol_rel, "xtol_rel of the subsidiary algorithm" + disables);
+    t.Integer("local_maxeval",
+              &O::local_maxeval,
+              "maxeval of the subsidiary algorithm",
+              OptionBounds::AtLeast(1));
+    t.Number("constraint_tol",
+             &O::constraint_tol,
+             "NLopt's per-constraint tolerance",
+             OptionBounds::AtLeast(0));
+    t.Number("feasibility_tol",
+             &O::feasibility_tol,
+             "a converged point violating constraints by more is reported infeasible",
+             OptionBounds::Above(0));
+    t.Number("stationarity_tol",
+             &O::stationarity_tol,
+             "an FTOL/XTOL stop above this relative KKT residual is step_too_small",
+             OptionBounds::Above(0));
+    t.Number("max_dense_jacobian",
+             &O::max_dense_jacobian,
+             "refuse when the dense constraint Jacobian has more entries",
+             OptionBounds::Above(0));
+    t.Integer("slsqp_max_variables",
+              &O::slsqp_max_variables,
+              "LD_SLSQP: refuse beyond this many variables",
+              OptionBounds::AtLeast(1));
+    t.Integer("mma_max_inequalities",
+              &O::mma_max_inequalities,
+              "LD_MMA / LD_CCSAQ: refuse beyond this many inequality rows",
+              OptionBounds::AtLeast(0));
+    t.Bool("record_history", &O::record_history, "a history row per objective evaluation");
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
+bool NloptOptions::IsValid(std::string* error) const { return NloptBinding().Check(*this, error); }
+
+const OptionSchema& NloptOptions::Schema() { return NloptBinding().schema(); }
+
+NloptOptions NloptOptions::Apply(const OptionMap& options, NloptOptions base) {
+  return NloptBinding().ApplyValidated(options, std::move(base));
 }
 
 std::string NloptResultName(int code) {

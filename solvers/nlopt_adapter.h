@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/nlp.h"
+#include "core/option_schema.h"
 #include "core/solve_result.h"
 #include "solvers/nlp_solve.h"
 
@@ -79,13 +80,15 @@ struct NloptOptions {
   /// Record a history row per objective evaluation.
   bool record_history = true;
 
+  /// True when every field satisfies Schema()'s rule; else false with the reason in *error.
   bool IsValid(std::string* error) const;
-  /// `base` with `strings` applied (keys are the field names above; "algorithm" and
-  /// "local_algorithm" must be names of NloptAlgorithmNames(); record_history is 0/1/true/false).
-  /// Throws std::invalid_argument naming the key and the rule, listing the valid keys for an
-  /// unknown one.
-  static NloptOptions FromStrings(const std::map<std::string, std::string>& strings,
-                                  NloptOptions base);
+  /// Every key (the field names above), with its default and rule ("algorithm" and
+  /// "local_algorithm" are names of NloptAlgorithmNames()).
+  static const OptionSchema& Schema();
+  /// `base` with `options` applied (resolved by Schema()), then IsValid. Throws
+  /// std::invalid_argument naming the key and the rule, listing the valid keys for an unknown
+  /// one.
+  static NloptOptions Apply(const OptionMap& options, NloptOptions base);
 };
 
 /// The algorithm names NloptOptions accepts.

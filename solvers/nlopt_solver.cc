@@ -8,15 +8,18 @@ namespace ocpb {
 
 NloptSolver::NloptSolver(Options options) : options_(std::move(options)) {
   std::string error;
-  if (!options_.IsValid(&error)) throw std::invalid_argument("nlopt options: " + error);
+  if (!options_.IsValid(&error)) throw std::invalid_argument(error);
+}
+
+const OptionSchema& NloptSolver::Schema() { return Options::Schema(); }
+
+NloptSolver::Options NloptSolver::ApplyOptions(const OptionMap& options, const Options& base) {
+  return Options::Apply(options, base);
 }
 
 SolveResult NloptSolver::Solve(const Ocp& ocp, const SolveRequest& request) const {
-  NlpScaling scaling;
-  std::map<std::string, std::string> strings = ExtractScalingOptions(request.options, &scaling);
-  if (!request.algorithm.empty()) strings["algorithm"] = request.algorithm;
-  const Options options = Options::FromStrings(strings, options_);
-  return SolveTranscribed(name(), ocp, request, scaling, [&](const TranscribedNlp& nlp) {
+  const Options options = ApplyOptions(request.options, options_);
+  return SolveTranscribed(name(), ocp, request, [&](const TranscribedNlp& nlp) {
     return SolveNlpWithNlopt(nlp, nlp.StartingPoint(), options);
   });
 }

@@ -6,39 +6,32 @@
 #include <stdexcept>
 
 #include "core/timer.h"
-#include "solvers/registry.h"
-#include "transcriptions/single_shooting.h"
+#include "transcriptions/registry.h"
 
 namespace ocpb {
 
-std::map<std::string, std::string> ExtractScalingOptions(
-    const std::map<std::string, std::string>& options, NlpScaling* scaling) {
-  std::map<std::string, std::string> rest;
-  for (const auto& [key, value] : options) {
-    if (!ParseNlpScalingOption(key, value, scaling)) rest[key] = value;
-  }
-  return rest;
-}
-
-std::unique_ptr<TranscribedNlp> TranscribeRequest(const Ocp& ocp,
-                                                  const SolveRequest& request,
-                                                  const NlpScaling& scaling) {
+const TranscriptionInfo& RequestTranscription(const SolveRequest& request) {
   if (request.transcription.empty()) {
     std::string names;
     for (const TranscriptionInfo& t : Transcriptions())
       names += (names.empty() ? "" : ", ") + t.name;
     throw std::invalid_argument("an NLP solver needs a transcription (valid: " + names + ")");
   }
-  TranscriptionOptions options;
+  return FindTranscription(request.transcription);
+}
+
+TranscriptionOptions TranscriptionOptionsFor(const SolveRequest& request) {
+  TranscriptionOptions options =
+      RequestTranscription(request).Configure(request.transcription_options);
   options.grid = request.grid;
   options.terminal = request.terminal;
   options.initial_guess = request.initial_guess;
-  options.degree = request.degree;
-  options.scaling = scaling;
-  if (request.transcription == SingleShooting::kName) {
-    return SingleShooting(request.integrator).Transcribe(ocp, options);
-  }
-  return FindTranscription(request.transcription).make()->Transcribe(ocp, options);
+  options.integrator = request.integrator;
+  return options;
+}
+
+std::unique_ptr<TranscribedNlp> TranscribeRequest(const Ocp& ocp, const SolveRequest& request) {
+  return RequestTranscription(request).make()->Transcribe(ocp, TranscriptionOptionsFor(request));
 }
 
 double NlpViolation(const Nlp& nlp, ConstVecRef z) {
@@ -59,16 +52,17 @@ double NlpViolation(const Nlp& nlp, ConstVecRef z) {
 SolveResult SolveTranscribed(const std::string& solver_name,
                              const Ocp& ocp,
                              const SolveRequest& request,
-                             const NlpScaling& scaling,
                              const std::function<NlpSolution(const TranscribedNlp& nlp)>& backend) {
-  // Single shooting keeps the horizon fixed; the collocation transcriptions make T a variable.
-  if (request.transcription == "single-shooting") {
-    if (auto refused = FreeFinalTimeNotApplicable(ocp, solver_name + " + single-shooting")) {
+  const TranscriptionInfo& info = RequestTranscription(request);
+  if (!info.takes_free_final_time) {
+    if (auto refused = FreeFinalTimeNotApplicable(ocp, solver_name + " + " + info.name)) {
       return *refused;
     }
   }
   const Stopwatch watch;
-  const std::unique_ptr<TranscribedNlp> nlp = TranscribeRequest(ocp, request, scaling);
+  const TranscriptionOptions options = TranscriptionOptionsFor(request);
+  const NlpScaling& scaling = options.scaling;
+  const std::unique_ptr<TranscribedNlp> nlp = info.make()->Transcribe(ocp, options);
   NlpSolution sol = backend(*nlp);
 
   SolveResult result;

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <functional>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -42,34 +41,29 @@ struct NlpSolution {
   std::map<std::string, double> stats;
 };
 
-/// Splits solver option strings into the transcription's scaling keys (objective_scale,
-/// state_scale, control_scale: ParseNlpScalingOption, which throws std::invalid_argument on a bad
-/// value) and the rest, which is returned for the solver's own parser.
-std::map<std::string, std::string> ExtractScalingOptions(
-    const std::map<std::string, std::string>& options, NlpScaling* scaling);
+/// The transcription options of `request`: FindTranscription(request.transcription)'s defaults
+/// with request.transcription_options applied (TranscriptionInfo::Configure), and the request's
+/// grid, terminal form, initial guess and integrator. Throws std::invalid_argument for an empty
+/// or unknown transcription name or a bad option.
+TranscriptionOptions TranscriptionOptionsFor(const SolveRequest& request);
 
-/// Builds the NLP for `request`: FindTranscription(request.transcription)->make()->Transcribe with
-/// the request's grid, terminal mode, initial guess and LGR degree, and `scaling`.
-/// "single-shooting" is built with request.integrator (Euler by default, RK4 with
-/// Integrator::kRk4), since its objective is a simulation. Throws std::invalid_argument for an
-/// unknown or empty transcription name, or when the transcription rejects the request.
-std::unique_ptr<TranscribedNlp> TranscribeRequest(const Ocp& ocp,
-                                                  const SolveRequest& request,
-                                                  const NlpScaling& scaling = NlpScaling());
+/// Builds the NLP for `request` (TranscriptionOptionsFor, then the transcription's Transcribe).
+/// Throws std::invalid_argument for an unknown or empty transcription name, a bad option, or
+/// when the transcription rejects the request.
+std::unique_ptr<TranscribedNlp> TranscribeRequest(const Ocp& ocp, const SolveRequest& request);
 
-/// The shared driver of the NLP solvers: times the whole solve (transcription included, with
-/// `scaling`), runs
+/// The shared driver of the NLP solvers: times the whole solve (transcription included), runs
 /// `backend` on the transcribed NLP from its starting point, and fills a SolveResult:
 /// controls = nlp.Controls(z) (what the evaluator judges), states and costates (from the
-/// multipliers, when the backend returns them) on nlp.StateGrid(z) (stretched to T for a free final
-/// time), objective = the NLP objective re-evaluated at z, and the backend's status, history and
-/// statistics verbatim. `objective` and the history's J are in the problem's units (divided by
-/// scaling.objective). std::invalid_argument from the transcription propagates (an invalid
-/// request).
+/// multipliers, when the backend returns them) on nlp.StateGrid(z) (stretched to T for a free
+/// final time), objective = the NLP objective re-evaluated at z, and the backend's status,
+/// history and statistics verbatim. `objective` and the history's J are in the problem's units
+/// (divided by the transcription's objective scale). A free final time on a transcription that
+/// does not take one (TranscriptionInfo::takes_free_final_time) is kNotApplicable.
+/// std::invalid_argument from the transcription propagates (an invalid request).
 SolveResult SolveTranscribed(const std::string& solver_name,
                              const Ocp& ocp,
                              const SolveRequest& request,
-                             const NlpScaling& scaling,
                              const std::function<NlpSolution(const TranscribedNlp& nlp)>& backend);
 
 /// max over constraints and bounds of the distance-like violation at z:

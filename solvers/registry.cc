@@ -2,95 +2,88 @@
 
 #include <stdexcept>
 
+#include "core/named_registry.h"
 #include "solvers/hamiltonian_descent.h"
 #include "solvers/indirect_newton.h"
 #include "solvers/ipopt_solver.h"
 #include "solvers/nlopt_solver.h"
-#include "transcriptions/single_shooting.h"
-#include "transcriptions/euler.h"
-#include "transcriptions/hermite_simpson.h"
-#include "transcriptions/lgr.h"
-#include "transcriptions/trapezoid.h"
 
 namespace ocpb {
 namespace {
 
 std::vector<SolverInfo> BuildSolvers() {
   std::vector<SolverInfo> list;
-  // [solvers] one push_back per solver, in the order `ocpbench list solvers` prints them.
-  list.push_back({"hamiltonian",
-                  "Hamiltonian-based descent with Armijo steps on the discrete penalized cost "
-                  "(Ali, Cai, Mostofi, Wardi, ACC 2016, Sec. II.C)",
-                  [] { return std::make_unique<HamiltonianDescent>(); },
-                  false});
-  list.push_back({"indirect-newton",
-                  "indirect method: semismooth Newton on the trapezoidal maximum-principle BVP "
-                  "(states, costates), sparse LU by UMFPACK/KLU; warm_start=hamiltonian polishes "
-                  "the descent",
-                  [] { return std::make_unique<IndirectNewton>(); },
-                  false});
-  list.push_back({"ipopt",
-                  "Ipopt 3.11 (interior point, MUMPS) on a transcription (--transcription)",
-                  [] { return std::make_unique<IpoptSolver>(); },
-                  true});
-  list.push_back({"nlopt",
-                  "NLopt 2.7 dense algorithms (LD_SLSQP, LD_MMA, LD_CCSAQ, LD_LBFGS, AUGLAG, "
-                  "AUGLAG_EQ) on a transcription; refuses sizes beyond its limits",
-                  [] { return std::make_unique<NloptSolver>(); },
-                  true});
-  return list;
-}
-
-std::vector<TranscriptionInfo> BuildTranscriptions() {
-  std::vector<TranscriptionInfo> list;
-  // [transcriptions] one push_back per transcription.
-  list.push_back({"euler",
-                  "forward Euler: x_k and piecewise-constant u_k as variables, the Hamiltonian "
-                  "descent's discrete problem (order 1)",
-                  [] { return std::make_unique<EulerTranscription>(); }});
-  list.push_back({"trapezoid",
-                  "trapezoidal collocation, piecewise-linear controls (order 2)",
-                  [] { return std::make_unique<TrapezoidTranscription>(); }});
-  list.push_back({"hermite-simpson",
-                  "Hermite-Simpson collocation, separated form, quadratic controls (order 4)",
-                  [] { return std::make_unique<HermiteSimpsonTranscription>(); }});
-  list.push_back({"lgr",
-                  "Legendre-Gauss-Radau collocation, --degree points per interval (order 2K-1)",
-                  [] { return std::make_unique<LgrTranscription>(); }});
-  list.push_back({"single-shooting",
-                  "controls only, piecewise constant; cost by forward Euler simulation, gradient "
-                  "by the discrete adjoint (RK4 with --integrator rk4)",
-                  [] { return std::make_unique<SingleShooting>(); }});
-  return list;
-}
-
-template <class Info>
-const Info& FindByName(const std::vector<Info>& list, const std::string& name, const char* what) {
-  std::string names;
-  for (const Info& i : list) {
-    if (i.name == name) return i;
-    names += (names.empty() ? "" : ", ") + i.name;
+  // [solvers] one entry per solver, in the order `ocpbench list solvers` prints them.
+  {
+    SolverInfo s;
+    s.name = "hamiltonian";
+    s.description =
+        "Hamiltonian-based descent with Armijo steps on the discrete penalized cost (Ali, Cai, "
+        "Mostofi, Wardi, ACC 2016, Sec. II.C)";
+    s.make = [] { return std::make_unique<HamiltonianDescent>(); };
+    s.options = HamiltonianDescent::Schema();
+    s.check_options = [](const OptionMap& resolved) { HamiltonianDescent::ApplyOptions(resolved); };
+    // The paper's re-plans take "under 50 iterations" (Sec. IV).
+    s.replan_defaults = {{"max_iterations", 50}};
+    list.push_back(std::move(s));
   }
-  throw std::invalid_argument(std::string("unknown ") + what + " '" + name + "' (valid: " +
-                              (names.empty() ? "none" : names) + ")");
+  {
+    SolverInfo s;
+    s.name = "indirect-newton";
+    s.description =
+        "indirect method: semismooth Newton on the trapezoidal maximum-principle BVP (states, "
+        "costates), sparse LU by UMFPACK/KLU; warm_start=hamiltonian polishes the descent";
+    s.make = [] { return std::make_unique<IndirectNewton>(); };
+    s.options = IndirectNewton::Schema();
+    s.check_options = [](const OptionMap& resolved) { IndirectNewton::ApplyOptions(resolved); };
+    s.factorizes_sparse_matrices = true;
+    list.push_back(std::move(s));
+  }
+  {
+    SolverInfo s;
+    s.name = "ipopt";
+    s.description = "Ipopt 3.11 (interior point, MUMPS) on a transcription (--transcription)";
+    s.make = [] { return std::make_unique<IpoptSolver>(); };
+    s.uses_transcription = true;
+    s.options = IpoptSolver::Schema();
+    s.check_options = [](const OptionMap& resolved) { IpoptSolver::ApplyOptions(resolved); };
+    // A warm start near the optimum: a small initial barrier parameter saves iterations
+    // (online re-planning, seed 1: 8-12 instead of 11-14 per re-plan).
+    s.replan_defaults = {{"mu_init", 1e-4}};
+    s.factorizes_sparse_matrices = true;
+    list.push_back(std::move(s));
+  }
+  {
+    SolverInfo s;
+    s.name = "nlopt";
+    s.description =
+        "NLopt 2.7 dense algorithms (LD_SLSQP, LD_MMA, LD_CCSAQ, LD_LBFGS, AUGLAG, AUGLAG_EQ) on a "
+        "transcription; refuses sizes beyond its limits";
+    s.make = [] { return std::make_unique<NloptSolver>(); };
+    s.uses_transcription = true;
+    s.options = NloptSolver::Schema();
+    s.check_options = [](const OptionMap& resolved) { NloptSolver::ApplyOptions(resolved); };
+    list.push_back(std::move(s));
+  }
+  return list;
+}
+
+NamedRegistry<SolverInfo>& Registry() {
+  static NamedRegistry<SolverInfo> registry("solver", BuildSolvers);
+  return registry;
 }
 
 }  // namespace
 
-const std::vector<SolverInfo>& Solvers() {
-  static const std::vector<SolverInfo> list = BuildSolvers();
-  return list;
-}
+const std::vector<SolverInfo>& Solvers() { return Registry().All(); }
 
-const std::vector<TranscriptionInfo>& Transcriptions() {
-  static const std::vector<TranscriptionInfo> list = BuildTranscriptions();
-  return list;
-}
+const SolverInfo& FindSolver(const std::string& name) { return Registry().Find(name); }
 
-const SolverInfo& FindSolver(const std::string& name) { return FindByName(Solvers(), name, "solver"); }
-
-const TranscriptionInfo& FindTranscription(const std::string& name) {
-  return FindByName(Transcriptions(), name, "transcription");
+void RegisterSolver(SolverInfo info) {
+  Registry().Add("RegisterSolver", std::move(info), [](const SolverInfo& s) {
+    if (!s.make)
+      throw std::invalid_argument("RegisterSolver: '" + s.name + "' has no make function");
+  });
 }
 
 }  // namespace ocpb

@@ -1,31 +1,37 @@
 // The interface every method implements, and what a solve is asked to do.
 #pragma once
 
-#include <map>
 #include <optional>
 #include <string>
 
 #include "core/control_trajectory.h"
 #include "core/integrator.h"
 #include "core/ocp.h"
+#include "core/option_value.h"
 #include "core/solve_result.h"
 #include "core/time_grid.h"
 
 namespace ocpb {
 
-/// One solve request. Solver-specific options come as strings ("max_iter" -> "500"); each
-/// solver parses them into its typed Options struct and rejects unknown keys or bad values with
-/// std::invalid_argument naming the key and the rule.
+/// One solve request. A solver's own options and its transcription's options come as typed
+/// values by name (OptionMap); each owner's OptionSchema (SolverInfo::options,
+/// TranscriptionInfo::options) states the keys, defaults and rules, and the solver resolves
+/// them before any work, throwing std::invalid_argument naming the key and the rule (unknown
+/// keys list the valid ones). Text values ("500") are read by the one option grammar.
 struct SolveRequest {
   TimeGrid grid;                                   ///< the method's grid on [t0, tf]
   TerminalMode terminal = TerminalMode::kPenalty;  ///< penalty (paper) or hard psi = 0
-  Integrator integrator = Integrator::kEuler;      ///< for methods that simulate (Hamiltonian)
-  std::string transcription;                       ///< NLP solvers: "euler", "trapezoid", ...
-  std::string algorithm;                           ///< NLopt: "LD_SLSQP", ...
-  int degree = 3;                                  ///< LGR collocation degree
+  /// For methods that simulate: the Hamiltonian descent's integrator, single shooting's.
+  Integrator integrator = Integrator::kEuler;
+  std::string transcription;  ///< NLP solvers: "euler", "trapezoid", ... (TranscriptionInfo)
+  /// The transcription's options (LGR: "degree"; every collocation scheme: "objective_scale",
+  /// "state_scale", "control_scale"); see `ocpbench describe transcription NAME`.
+  OptionMap transcription_options;
   std::optional<ControlTrajectory>
       initial_guess;  ///< default: Ocp::NominalControl() projected onto U
-  std::map<std::string, std::string> options;
+  /// The solver's options (NLopt's algorithm is its option "algorithm"); see `ocpbench
+  /// describe solver NAME`.
+  OptionMap options;
 };
 
 /// A method. Solve() never throws for numerical trouble: that is the result's status. It throws

@@ -40,12 +40,4 @@ struct NlpScaling {
   bool IsIdentity() const;
 };
 
-/// The string keys a solver may accept for NlpScaling (for SolveRequest::options):
-///   "objective_scale" = positive number,
-///   "state_scale"     = comma-separated positive numbers (one per state component),
-///   "control_scale"   = comma-separated positive numbers (one per control component).
-/// Returns false when `key` is not one of these (the caller then tries its own keys); throws
-/// std::invalid_argument naming the key and the rule when the value is bad.
-bool ParseNlpScalingOption(const std::string& key, const std::string& value, NlpScaling* scaling);
-
 }  // namespace ocpb

@@ -341,7 +341,7 @@ std::unique_ptr<TranscribedNlp> SingleShooting::Transcribe(
                                 "' has a free final time, which single shooting does not take "
                                 "(use a collocation transcription)");
   }
-  return std::make_unique<SingleShootingNlp>(ocp, options, integrator_);
+  return std::make_unique<SingleShootingNlp>(ocp, options, options.integrator);
 }
 
 }  // namespace ocpb

@@ -58,7 +58,8 @@ class SingleShootingNlp final : public TranscribedNlp {
   int num_variables() const override { return nu_ * N_; }
   int num_constraints() const override { return m_; }
   void Bounds(Vec* z_lower, Vec* z_upper, Vec* g_lower, Vec* g_upper) const override;
-  /// The initial guess sampled on the grid's intervals (default Ocp::NominalControl()), each u_k projected onto U.
+  /// The initial guess sampled on the grid's intervals (default Ocp::NominalControl()), each u_k
+  /// projected onto U.
   Vec StartingPoint() const override;
 
   bool Objective(ConstVecRef z, double* f) const override;
@@ -118,20 +119,17 @@ class SingleShootingNlp final : public TranscribedNlp {
   mutable Cache cache_;
 };
 
-/// The single-shooting transcription, registered as "single-shooting". Euler by default; build it
-/// with Integrator::kRk4 (SingleShooting(Integrator::kRk4), or SolveRequest::integrator = kRk4
-/// through the NLP solvers) for RK4 steps. RK4's objective is then not the evaluator's Euler cost
+/// The single-shooting transcription, registered as "single-shooting". Euler by default;
+/// TranscriptionOptions::integrator = kRk4 (SolveRequest::integrator = kRk4 through the NLP
+/// solvers) for RK4 steps. RK4's objective is then not the evaluator's Euler cost
 /// on the same grid; it is its RK4 cost.
 class SingleShooting final : public Transcription {
  public:
   static constexpr const char* kName = "single-shooting";
-  explicit SingleShooting(Integrator integrator = Integrator::kEuler) : integrator_(integrator) {}
   std::string name() const override { return kName; }
+  /// Simulates with options.integrator.
   std::unique_ptr<TranscribedNlp> Transcribe(const Ocp& ocp,
                                              const TranscriptionOptions& options) const override;
-
- private:
-  Integrator integrator_;
 };
 
 }  // namespace ocpb

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/control_trajectory.h"
+#include "core/integrator.h"
 #include "core/nlp.h"
 #include "core/ocp.h"
 #include "core/time_grid.h"
@@ -43,6 +44,9 @@ struct TranscriptionOptions {
                                                    ///< simulation); nu >= 1, covering the grid
   int degree = 3;      ///< LGR: collocation points per interval, 1..kMaxRadauPoints (60)
   NlpScaling scaling;  ///< default: none (see nlp_scaling.h)
+  /// Schemes whose objective is a simulation (single shooting): forward Euler (the
+  /// Hamiltonian descent's discrete problem) or RK4.
+  Integrator integrator = Integrator::kEuler;
 
   /// True when every field satisfies its rule above on its own (sizes are checked against a
   /// problem by IsValidFor); otherwise false with a one-line reason in *error (may be null).

@@ -7,19 +7,33 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bench/cli/channel_command.h"
-#include "bench/cli/online_command.h"
+#include "bench/cli/main.h"
 #include "bench/cli/version.h"
 
 namespace ocpb {
 namespace {
 bool g_some_failed = false;
+bool g_incomplete = false;
 }  // namespace
 
 void ReportSomeFailed() { g_some_failed = true; }
+void ReportIncomplete() { g_incomplete = true; }
 
-int RunOcpbench(int argc, char** argv) {
+OptionMap ParseKeyValues(const std::vector<std::string>& items, const std::string& flag) {
+  OptionMap out;
+  for (const std::string& item : items) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw std::invalid_argument("malformed " + flag + " '" + item + "': expected key=value");
+    }
+    out.Set(item.substr(0, eq), item.substr(eq + 1));
+  }
+  return out;
+}
+
+int Main(int argc, char** argv) {
   g_some_failed = false;
+  g_incomplete = false;
   CLI::App app{
       "OCPBench: optimal-control problems solved by Hamiltonian descent and by sparse NLPs",
       "ocpbench"};
@@ -28,8 +42,10 @@ int RunOcpbench(int argc, char** argv) {
   AddListCommand(app);
   AddSolveCommand(app);
   AddRunCommand(app);
+  AddMergeCommand(app);
   AddChannelCommand(app);
   AddOnlineCommand(app);
+  AddCompareCommand(app);
   try {
     // Name an unknown command plainly (CLI11 alone would say "A subcommand is required").
     if (argc >= 2 && argv[1][0] != '-') {
@@ -61,6 +77,7 @@ int RunOcpbench(int argc, char** argv) {
     std::cerr << "ocpbench: error: " << e.what() << "\n";
     return kExitInternalError;
   }
+  if (g_incomplete) return kExitIncomplete;
   return g_some_failed ? kExitSomeFailed : kExitOk;
 }
 

@@ -1,5 +1,5 @@
 // `ocpbench channel simulate|predict`.
-#include "bench/cli/channel_command.h"
+#include "bench/cli/app.h"
 
 #include <algorithm>
 #include <bit>
@@ -201,7 +201,8 @@ void RunSimulate(const CommonArgs& a) {
             << (a.no_files ? "\n" : ", wrote " + Join(a.out, "true_gain_db.npy") + "\n");
 }
 
-void RunPredict(const CommonArgs& a, const PredictArgs& p) {
+// The channel options of `predict`, every value checked.
+PaperChannelOptions PredictOptions(const CommonArgs& a, const PredictArgs& p) {
   PaperChannelOptions o = ToOptions(a);
   o.estimate = !p.oracle;
   o.estimation.method = EstimationMethodFromString(p.estimator);
@@ -222,30 +223,26 @@ void RunPredict(const CommonArgs& a, const PredictArgs& p) {
   std::string error;
   if (!o.IsValid(&error)) throw std::invalid_argument(error);
   if (p.check_points < 0) throw std::invalid_argument("--check-points must be >= 0");
-
-  // Measurements from a file are read and checked before anything is simulated.
-  MeasurementSet from_file;
-  if (!p.measurements_csv.empty()) {
-    from_file = LoadMeasurementsCsv(p.measurements_csv);
-    const GridSpec& grid = o.simulation.grid;
-    CheckMeasurementsInside(from_file,
-                            Eigen::Vector2d(grid.x_min, grid.y_min),
-                            Eigen::Vector2d(grid.x_max(), grid.y_max()),
-                            p.measurements_csv);
+  if (p.measurements_csv.empty() && p.samples < 3) {
+    throw std::invalid_argument("--samples must be >= 3, got " + std::to_string(p.samples));
   }
+  return o;
+}
 
-  // Simulation, measurements, estimation and the exact predictor.
+// Simulation, measurements (drawn, or `from_file`), estimation and the exact predictor; then
+// the grid prediction and its map.
+PaperChannel BuildChannel(std::uint64_t seed,
+                          const PaperChannelOptions& o,
+                          const PredictArgs& p,
+                          MeasurementSet from_file) {
   PaperChannel c;
   if (p.measurements_csv.empty()) {
-    if (p.samples < 3) {
-      throw std::invalid_argument("--samples must be >= 3, got " + std::to_string(p.samples));
-    }
-    c = MakePaperChannel(a.seed, p.samples, o);
+    c = MakePaperChannel(seed, p.samples, o);
   } else {
-    c.seed = a.seed;
+    c.seed = seed;
     c.options = o;
     Stopwatch watch;
-    c.truth = SimulateChannel(o.truth, o.simulation, a.seed);
+    c.truth = SimulateChannel(o.truth, o.simulation, seed);
     c.simulate_seconds = watch.wall();
     c.measurements = std::move(from_file);
     const Stopwatch est_watch;
@@ -259,8 +256,15 @@ void RunPredict(const CommonArgs& a, const PredictArgs& p) {
   }
   c.options.build_map = true;
   c.RefreshMap();
-  const GridPrediction& g = c.grid;
+  return c;
+}
 
+// What `predict` writes: the estimate, the prediction's timings and ranges, the units.
+nlohmann::json PredictJson(const CommonArgs& a,
+                           const PredictArgs& p,
+                           const PaperChannelOptions& o,
+                           const PaperChannel& c) {
+  const GridPrediction& g = c.grid;
   nlohmann::json j = CommonJson(a, o, c.truth, c.simulate_seconds);
   j["command"] = "channel predict";
   j["samples"] = c.predictor->num_measurements();
@@ -303,64 +307,74 @@ void RunPredict(const CommonArgs& a, const PredictArgs& p) {
   j["s_max"] = g.s.maxCoeff();
   j["variance_min"] = g.variance_db2.minCoeff();
   j["variance_max"] = g.variance_db2.maxCoeff();
+  return j;
+}
 
-  if (p.check_points > 0) {
-    // Grid prediction and map against the exact predictor at random grid points and at random
-    // points between grid points.
-    std::mt19937_64 rng(a.seed);
-    std::uniform_int_distribution<int> ui(0, g.grid.nx - 1), uj(0, g.grid.ny - 1);
-    std::uniform_real_distribution<double> ux(g.grid.Point(0, 0).x(),
-                                              g.grid.Point(g.grid.nx - 1, 0).x());
-    std::uniform_real_distribution<double> uy(g.grid.Point(0, 0).y(),
-                                              g.grid.Point(0, g.grid.ny - 1).y());
-    double max_dmean = 0.0, max_dvar = 0.0, max_grid_rel = 0.0;
-    std::vector<double> map_rel;
-    for (int k = 0; k < p.check_points; ++k) {
-      const int i = ui(rng), jj = uj(rng);
-      PointPrediction pp;
-      c.predictor->Predict(g.grid.Point(i, jj), 0, &pp);
-      max_dmean = std::max(max_dmean, std::abs(pp.mean_db - g.mean_db(i, jj)));
-      max_dvar = std::max(max_dvar, std::abs(pp.variance_db2 - g.variance_db2(i, jj)));
-      const double s_exact = ExpectedInverseCnr(pp.mean_db, pp.variance_db2, o.predictor.units);
-      max_grid_rel = std::max(max_grid_rel, std::abs(g.s(i, jj) / s_exact - 1.0));
-      const Eigen::Vector2d q(ux(rng), uy(rng));
-      double se, sm;
-      c.predictor->Evaluate(q, &se, nullptr, nullptr);
-      c.map->Evaluate(q, &sm, nullptr, nullptr);
-      map_rel.push_back(std::abs(sm / se - 1.0));
-    }
-    std::sort(map_rel.begin(), map_rel.end());
-    j["check"] = {{"points", p.check_points},
-                  {"grid_max_abs_mean_error_db", max_dmean},
-                  {"grid_max_abs_variance_error_db2", max_dvar},
-                  {"grid_max_rel_s_error", max_grid_rel},
-                  {"map_median_rel_s_error", map_rel[map_rel.size() / 2]},
-                  {"map_p99_rel_s_error", map_rel[map_rel.size() * 99 / 100]},
-                  {"map_max_rel_s_error", map_rel.back()}};
+// The grid prediction and the map against the exact predictor at `points` random grid points
+// and random points between grid points.
+nlohmann::json CheckAgainstExact(std::uint64_t seed,
+                                 int points,
+                                 const PaperChannelOptions& o,
+                                 const PaperChannel& c) {
+  const GridPrediction& g = c.grid;
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<int> ui(0, g.grid.nx - 1), uj(0, g.grid.ny - 1);
+  std::uniform_real_distribution<double> ux(g.grid.Point(0, 0).x(),
+                                            g.grid.Point(g.grid.nx - 1, 0).x());
+  std::uniform_real_distribution<double> uy(g.grid.Point(0, 0).y(),
+                                            g.grid.Point(0, g.grid.ny - 1).y());
+  double max_dmean = 0.0, max_dvar = 0.0, max_grid_rel = 0.0;
+  std::vector<double> map_rel;
+  for (int k = 0; k < points; ++k) {
+    const int i = ui(rng), jj = uj(rng);
+    PointPrediction pp;
+    c.predictor->Predict(g.grid.Point(i, jj), 0, &pp);
+    max_dmean = std::max(max_dmean, std::abs(pp.mean_db - g.mean_db(i, jj)));
+    max_dvar = std::max(max_dvar, std::abs(pp.variance_db2 - g.variance_db2(i, jj)));
+    const double s_exact = ExpectedInverseCnr(pp.mean_db, pp.variance_db2, o.predictor.units);
+    max_grid_rel = std::max(max_grid_rel, std::abs(g.s(i, jj) / s_exact - 1.0));
+    const Eigen::Vector2d q(ux(rng), uy(rng));
+    double se, sm;
+    c.predictor->Evaluate(q, &se, nullptr, nullptr);
+    c.map->Evaluate(q, &sm, nullptr, nullptr);
+    map_rel.push_back(std::abs(sm / se - 1.0));
   }
+  std::sort(map_rel.begin(), map_rel.end());
+  return {{"points", points},
+          {"grid_max_abs_mean_error_db", max_dmean},
+          {"grid_max_abs_variance_error_db2", max_dvar},
+          {"grid_max_rel_s_error", max_grid_rel},
+          {"map_median_rel_s_error", map_rel[map_rel.size() / 2]},
+          {"map_p99_rel_s_error", map_rel[map_rel.size() * 99 / 100]},
+          {"map_max_rel_s_error", map_rel.back()}};
+}
 
-  if (!a.no_files) {
-    WriteField(Join(a.out, "true_gain_db.npy"), c.truth.gain_db);
-    WriteField(Join(a.out, "predicted_mean_db.npy"), g.mean_db);
-    WriteField(Join(a.out, "predicted_variance_db2.npy"), g.variance_db2);
-    WriteField(Join(a.out, "s_map.npy"), g.s);
-    std::vector<double> m;
-    const Eigen::Matrix2Xd& q = c.predictor->positions();
-    for (int k = 0; k < c.predictor->num_measurements(); ++k) {
-      m.push_back(q(0, k));
-      m.push_back(q(1, k));
-      m.push_back(c.predictor->values()[k]);
-    }
-    WriteFileAtomically(Join(a.out, "measurements.npy"),
-                        Npy(m, {static_cast<long>(c.predictor->num_measurements()), 3L}));
-    j["files"] = {{"true_gain_db", "true_gain_db.npy"},
-                  {"predicted_mean_db", "predicted_mean_db.npy"},
-                  {"predicted_variance_db2", "predicted_variance_db2.npy"},
-                  {"s_map", "s_map.npy"},
-                  {"measurements", "measurements.npy (float64, m x 3: x, y, gain_db)"}};
-    WriteFileAtomically(Join(a.out, "predict.json"), j.dump(1) + "\n");
+// The maps (.npy), the measurements and predict.json in `dir`; the files' names into `j`.
+void WritePredictFiles(const std::string& dir, const PaperChannel& c, nlohmann::json* j) {
+  const GridPrediction& g = c.grid;
+  WriteField(Join(dir, "true_gain_db.npy"), c.truth.gain_db);
+  WriteField(Join(dir, "predicted_mean_db.npy"), g.mean_db);
+  WriteField(Join(dir, "predicted_variance_db2.npy"), g.variance_db2);
+  WriteField(Join(dir, "s_map.npy"), g.s);
+  std::vector<double> m;
+  const Eigen::Matrix2Xd& q = c.predictor->positions();
+  for (int k = 0; k < c.predictor->num_measurements(); ++k) {
+    m.push_back(q(0, k));
+    m.push_back(q(1, k));
+    m.push_back(c.predictor->values()[k]);
   }
-  if (!a.json_path.empty()) WriteFileAtomically(a.json_path, j.dump(1) + "\n");
+  WriteFileAtomically(Join(dir, "measurements.npy"),
+                      Npy(m, {static_cast<long>(c.predictor->num_measurements()), 3L}));
+  (*j)["files"] = {{"true_gain_db", "true_gain_db.npy"},
+                   {"predicted_mean_db", "predicted_mean_db.npy"},
+                   {"predicted_variance_db2", "predicted_variance_db2.npy"},
+                   {"s_map", "s_map.npy"},
+                   {"measurements", "measurements.npy (float64, m x 3: x, y, gain_db)"}};
+  WriteFileAtomically(Join(dir, "predict.json"), j->dump(1) + "\n");
+}
+
+void PrintPredictReport(const CommonArgs& a, const PaperChannelOptions& o, const PaperChannel& c) {
+  const GridPrediction& g = c.grid;
   std::cout << fmt::format(
       "channel predict: seed {}, {} samples, {} points\n"
       "  estimated K_PL {:.2f} n_PL {:.3f} xi {:.2f} eta {:.2f} rho {:.2f} (true {} {} {} {} {})\n"
@@ -384,6 +398,26 @@ void RunPredict(const CommonArgs& a, const PredictArgs& p) {
       g.s.minCoeff(),
       g.s.maxCoeff());
   if (!a.no_files) std::cout << "  wrote " << Join(a.out, "predict.json") << " and maps\n";
+}
+
+void RunPredict(const CommonArgs& a, const PredictArgs& p) {
+  const PaperChannelOptions o = PredictOptions(a, p);
+  // Measurements from a file are read and checked before anything is simulated.
+  MeasurementSet from_file;
+  if (!p.measurements_csv.empty()) {
+    from_file = LoadMeasurementsCsv(p.measurements_csv);
+    const GridSpec& grid = o.simulation.grid;
+    CheckMeasurementsInside(from_file,
+                            Eigen::Vector2d(grid.x_min, grid.y_min),
+                            Eigen::Vector2d(grid.x_max(), grid.y_max()),
+                            p.measurements_csv);
+  }
+  const PaperChannel c = BuildChannel(a.seed, o, p, std::move(from_file));
+  nlohmann::json j = PredictJson(a, p, o, c);
+  if (p.check_points > 0) j["check"] = CheckAgainstExact(a.seed, p.check_points, o, c);
+  if (!a.no_files) WritePredictFiles(a.out, c, &j);
+  if (!a.json_path.empty()) WriteFileAtomically(a.json_path, j.dump(1) + "\n");
+  PrintPredictReport(a, o, c);
 }
 
 }  // namespace

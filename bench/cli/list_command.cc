@@ -1,13 +1,55 @@
+// `ocpbench list` (names, one per line: scripts read it) and `ocpbench describe` (what a
+// problem, solver or transcription accepts: every option with its default and rule).
 #include <iostream>
 #include <memory>
 
 #include <CLI/CLI.hpp>
 
 #include "bench/cli/app.h"
+#include "bench/cli/compare.h"
+#include "core/parameters.h"
+#include "drivers/online/online_scenario.h"
 #include "problems/registry.h"
 #include "solvers/registry.h"
 
 namespace ocpb {
+namespace {
+
+void DescribeProblem(const std::string& name) {
+  const ProblemInfo& p = FindProblem(name);
+  OptionSchema parameters("parameters of " + p.name);
+  for (const ParameterSpec& spec : p.parameters) parameters.Add(ToOptionSpec(spec));
+  std::cout << "problem " << p.name << ": " << p.description << "\n";
+  std::cout << "default grid: N = " << p.default_intervals
+            << (p.uses_seed ? "; --seed picks the channel realization" : "") << "\n";
+  if (p.reference_value) {
+    std::cout << "reference " << p.reference_quantity << " = " << *p.reference_value << " ("
+              << p.reference_source << "; " << p.reference_scheme << ")\n";
+  }
+  std::cout << "parameters (--set key=value, suite \"set\"):\n" << parameters.Describe();
+}
+
+void DescribeSolver(const std::string& name) {
+  const SolverInfo& s = FindSolver(name);
+  std::cout << "solver " << s.name << ": " << s.description << "\n";
+  std::cout << (s.uses_transcription ? "needs a transcription (--transcription)\n"
+                                     : "takes no transcription\n");
+  std::cout << "options (--option key=value, suite \"options\"):\n" << s.options.Describe();
+  if (!s.replan_defaults.empty()) {
+    std::cout << "re-plan defaults (online re-planning):";
+    for (const auto& [k, v] : s.replan_defaults) std::cout << " " << k << "=" << v.ToText();
+    std::cout << "\n";
+  }
+}
+
+void DescribeTranscription(const std::string& name) {
+  const TranscriptionInfo& t = FindTranscription(name);
+  std::cout << "transcription " << t.name << ": " << t.description << "\n";
+  std::cout << "options (--option key=value with an NLP solver; LGR's degree also --degree):\n"
+            << t.options.Describe();
+}
+
+}  // namespace
 
 void AddListCommand(CLI::App& app) {
   CLI::App* list = app.add_subcommand("list", "List registered names, one per line");
@@ -23,6 +65,35 @@ void AddListCommand(CLI::App& app) {
       for (const SolverInfo& s : Solvers()) std::cout << s.name << "\n";
     } else {
       for (const TranscriptionInfo& t : Transcriptions()) std::cout << t.name << "\n";
+    }
+  });
+
+  CLI::App* describe = app.add_subcommand(
+      "describe", "Every option of a problem, solver or transcription, with default and rule");
+  auto kind = std::make_shared<std::string>();
+  auto name = std::make_shared<std::string>();
+  describe->add_option("what", *kind, "problem | solver | transcription | online | compare")
+      ->required()
+      ->check(CLI::IsMember({"problem", "solver", "transcription", "online", "compare"}));
+  describe->add_option("name", *name, "its registered name (not for online, compare)");
+  describe->callback([kind, name]() {
+    if (*kind == "online") {
+      std::cout << "online scenario settings (suite \"online\"; ocpbench online flags):\n"
+                << OnlineScenarioSchema().Describe();
+      return;
+    }
+    if (*kind == "compare") {
+      std::cout << "thresholds of ocpbench compare (flags --NAME, '_' written '-'):\n"
+                << CompareThresholdSchema().Describe();
+      return;
+    }
+    if (name->empty()) throw std::invalid_argument("describe " + *kind + ": a name is required");
+    if (*kind == "problem") {
+      DescribeProblem(*name);
+    } else if (*kind == "solver") {
+      DescribeSolver(*name);
+    } else {
+      DescribeTranscription(*name);
     }
   });
 }

@@ -1,9 +1,11 @@
 // `ocpbench solve`: one problem, one method, one JSON record.
+#include <cmath>
 #include <iostream>
 #include <memory>
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "bench/cli/app.h"
 #include "bench/cli/case_runner.h"
@@ -22,36 +24,32 @@ struct SolveArgs {
   bool no_trajectory = false;
 };
 
-std::string Fmt(const nlohmann::json& v) {
-  return v.is_number() ? fmt::format("{:.10g}", v.get<double>()) : std::string("n/a");
-}
+std::string Fmt(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "n/a"; }
 
-void PrintReport(const nlohmann::json& r) {
+void PrintReport(const Record& r) {
   std::cout << fmt::format("{} / {}{}: status {} ({})\n",
-                           r["problem"].get<std::string>(),
-                           r["solver"].get<std::string>(),
-                           r["transcription"].get<std::string>().empty()
-                               ? ""
-                               : " + " + r["transcription"].get<std::string>(),
-                           r["status"].get<std::string>(),
-                           r["solver_status"].get<std::string>());
+                           r.problem,
+                           r.solver,
+                           r.transcription.empty() ? "" : " + " + r.transcription,
+                           r.status,
+                           r.solver_status);
   std::cout << fmt::format("  J = {}   Jbar = {}   terminal violation = {}\n",
-                           Fmt(r["J"]),
-                           Fmt(r["Jbar"]),
-                           Fmt(r["terminal_violation"]));
+                           Fmt(r.J),
+                           Fmt(r.Jbar),
+                           Fmt(r.terminal_violation));
   std::cout << fmt::format("  fine RK4: J = {}   Jbar = {}   re-simulation defect = {}\n",
-                           Fmt(r["J_fine"]),
-                           Fmt(r["Jbar_fine"]),
-                           Fmt(r["resimulation_defect"]));
+                           Fmt(r.J_fine),
+                           Fmt(r.Jbar_fine),
+                           Fmt(r.resimulation_defect));
   std::cout << fmt::format("  iterations = {}   CPU = {} s   N = {}   final time = {}\n",
-                           r["iterations"].dump(),
-                           Fmt(r["cpu_seconds"]),
-                           r["N"].dump(),
-                           Fmt(r["final_time"]));
-  if (!r["final_state"].empty()) std::cout << "  final state = " << r["final_state"].dump() << "\n";
-  if (!r["message"].get<std::string>().empty()) {
-    std::cout << "  message: " << r["message"].get<std::string>() << "\n";
+                           r.iterations,
+                           Fmt(r.cpu_seconds),
+                           r.N,
+                           Fmt(r.final_time));
+  if (!r.final_state.empty()) {
+    std::cout << "  final state = " << nlohmann::json(r.final_state).dump() << "\n";
   }
+  if (!r.message.empty()) std::cout << "  message: " << r.message << "\n";
 }
 
 }  // namespace
@@ -94,25 +92,21 @@ void AddSolveCommand(CLI::App& app) {
     if (n_option->count() > 0 && spec.intervals < 1) {
       throw std::invalid_argument("N: must be >= 1 (or omitted for the problem's default)");
     }
-    spec.terminal = args->terminal == "hard" ? TerminalMode::kHard
-                    : args->terminal == "penalty"
-                        ? TerminalMode::kPenalty
-                        : throw std::invalid_argument("--terminal: unknown form '" +
-                                                      args->terminal + "' (valid: penalty, hard)");
+    try {
+      spec.terminal = ParseTerminal(args->terminal);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("--") + e.what());
+    }
     spec.integrator = ParseIntegrator(args->integrator);
     spec.evaluate_with = ParseIntegrator(args->evaluate_with);
     spec.keep_trajectory = !args->no_trajectory;
-    for (const std::string& o : args->options) {
-      const auto eq = o.find('=');
-      if (eq == std::string::npos || eq == 0) {
-        throw std::invalid_argument("malformed --option '" + o + "': expected key=value");
-      }
-      spec.options[o.substr(0, eq)] = o.substr(eq + 1);
-    }
-    const nlohmann::json record = RunCase(spec);
+    spec.options = ParseKeyValues(args->options, "--option");
+    const Record record = RunCase(spec);
     PrintReport(record);
-    if (!args->json_path.empty()) WriteFileAtomically(args->json_path, record.dump(1) + "\n");
-    if (IsFailure(record["status"].get<std::string>())) ReportSomeFailed();
+    if (!args->json_path.empty()) {
+      WriteFileAtomically(args->json_path, record.ToJson().dump(1) + "\n");
+    }
+    if (IsFailure(record.status)) ReportSomeFailed();
   });
 }
 

@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "bench/cli/json_values.h"
+
 namespace ocpb {
 
 using nlohmann::json;
@@ -19,46 +21,40 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kTargetTolerance = 0.01;  // "within 1% of the best"
 constexpr double kFeasibleHistory = 1e-6;  // primal_inf of a history entry that may count
 
-double Num(const json& r, const char* key) {
-  if (!r.contains(key) || !r[key].is_number()) return kNaN;
-  return r[key].get<double>();
-}
-
-std::string Str(const json& r, const char* key) {
-  return r.contains(key) && r[key].is_string() ? r[key].get<std::string>() : std::string();
-}
-
-std::string MethodLabel(const json& r) {
-  std::string label = Str(r, "solver");
-  if (!Str(r, "transcription").empty()) label += " + " + Str(r, "transcription");
-  if (!Str(r, "algorithm").empty()) label += " (" + Str(r, "algorithm") + ")";
-  if (r.contains("degree")) label += fmt::format(" deg {}", r["degree"].get<int>());
-  label += ", " + Str(r, "terminal");
-  if (Str(r, "solver") == "hamiltonian" && Str(r, "integrator") != "euler") {
-    label += ", " + Str(r, "integrator");
+// A method's row label. The integrator names a row only where it is not the default Euler: for
+// every method that uses one (the descent, single shooting), which the solver options cannot
+// tell apart otherwise.
+std::string RowMethodLabel(const Record& r) {
+  std::string label = r.solver;
+  if (!r.transcription.empty()) label += " + " + r.transcription;
+  if (!r.algorithm.empty()) label += " (" + r.algorithm + ")";
+  if (r.degree) label += fmt::format(" deg {}", *r.degree);
+  label += ", " + r.terminal;
+  if (r.transcription.empty() && r.integrator != "euler") label += ", " + r.integrator;
+  if (!r.evaluated_with.empty() && r.evaluated_with != "euler") {
+    label += ", judged with " + r.evaluated_with;
   }
-  const std::string evaluated = Str(r, "evaluated_with");
-  if (!evaluated.empty() && evaluated != "euler") label += ", judged with " + evaluated;
-  return label + fmt::format(", N={}", r.value("N", 0));
+  return label + fmt::format(", N={}", r.N);
 }
 
-std::string OptionsText(const json& r) {
+std::string OptionsText(const Record& r) {
   std::string text;
-  if (r.contains("options") && r["options"].is_object()) {
-    for (const auto& [key, value] : r["options"].items()) {
-      text += (text.empty() ? "" : ", ") + key + "=" +
-              (value.is_string() ? value.get<std::string>() : value.dump());
-    }
-  }
+  for (const auto& [key, value] : r.options) text += (text.empty() ? "" : ", ") + key + "=" + value;
   return text;
 }
 
-std::string GroupKey(const json& r) {
-  return fmt::format("{}|seed={}|{}|{}",
-                     Str(r, "problem"),
-                     r.value("seed", 0),
-                     r.contains("parameters") ? r["parameters"].dump() : "",
-                     Str(r, "terminal"));
+std::string ParameterText(const std::vector<double>& v) {
+  return v.size() == 1 ? json(v[0]).dump() : json(v).dump();
+}
+
+std::string ParametersText(const Record& r) {
+  json p = json::object();
+  for (const auto& [k, v] : r.parameters) p[k] = v.size() == 1 ? json(v[0]) : json(v);
+  return p.dump();
+}
+
+std::string GroupKey(const Record& r) {
+  return fmt::format("{}|seed={}|{}|{}", r.problem, r.seed, ParametersText(r), r.terminal);
 }
 
 // The section (table) and row label of every record. A problem's table splits by the
@@ -69,15 +65,13 @@ struct Labels {
   std::vector<std::string> section, row;
 };
 
-Labels LabelRecords(const std::vector<json>& records) {
+Labels LabelRecords(const std::vector<Record>& records) {
   std::map<std::string, std::map<std::string, std::set<std::string>>> values;
   std::map<std::string, std::set<std::string>> options_of;
-  for (const json& r : records) {
-    options_of[MethodLabel(r)].insert(OptionsText(r));
-    if (!r.contains("parameters") || !r["parameters"].is_object()) continue;
-    for (const auto& [key, value] : r["parameters"].items()) {
-      values[Str(r, "problem")][key].insert(value.dump());
-    }
+  for (const Record& r : records) {
+    options_of[RowMethodLabel(r)].insert(OptionsText(r));
+    for (const auto& [key, value] : r.parameters)
+      values[r.problem][key].insert(ParameterText(value));
   }
   std::map<std::string, std::set<std::string>> varying;  // problem -> parameters that vary
   for (const auto& [problem, keys] : values) {
@@ -86,17 +80,15 @@ Labels LabelRecords(const std::vector<json>& records) {
     }
   }
   Labels labels;
-  for (const json& r : records) {
+  for (const Record& r : records) {
     std::string setting;
-    for (const std::string& key : varying[Str(r, "problem")]) {
-      const std::string v = r.contains("parameters") && r["parameters"].contains(key)
-                                ? r["parameters"][key].dump()
-                                : std::string("default");
+    for (const std::string& key : varying[r.problem]) {
+      const auto it = r.parameters.find(key);
+      const std::string v = it != r.parameters.end() ? ParameterText(it->second) : "default";
       setting += (setting.empty() ? "" : ", ") + key + " = " + v;
     }
-    labels.section.push_back(setting.empty() ? Str(r, "problem")
-                                             : Str(r, "problem") + " (" + setting + ")");
-    std::string row = MethodLabel(r);
+    labels.section.push_back(setting.empty() ? r.problem : r.problem + " (" + setting + ")");
+    std::string row = RowMethodLabel(r);
     if (options_of[row].size() > 1) {
       const std::string o = OptionsText(r);
       row += o.empty() ? ", default options" : ", " + o;
@@ -106,29 +98,19 @@ Labels LabelRecords(const std::vector<json>& records) {
   return labels;
 }
 
-double FinalValue(const json& r) {
-  const double fine = Num(r, "J_fine");
-  if (std::isfinite(fine)) return fine;
-  const double J = Num(r, "J");
-  return std::isfinite(J) ? J : kNaN;
+double FinalValue(const Record& r) {
+  if (std::isfinite(r.J_fine)) return r.J_fine;
+  return std::isfinite(r.J) ? r.J : kNaN;
 }
 
 bool WithinTarget(double value, double best) {
   return std::isfinite(value) && std::abs(value - best) <= kTargetTolerance * std::abs(best);
 }
 
-std::string G(double v) {
+std::string SummaryNumber(double v) {
   if (std::isnan(v)) return "-";
   if (std::isinf(v)) return "inf";
   return fmt::format("{:.6g}", v);
-}
-
-double Median(std::vector<double> v) {
-  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return std::isnan(x); }), v.end());
-  if (v.empty()) return kNaN;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 std::string Spread(const std::vector<double>& v) {
@@ -140,13 +122,13 @@ std::string Spread(const std::vector<double>& v) {
   double mean = 0.0;
   for (double x : f) mean += x;
   mean /= f.size();
-  if (f.size() == 1) return G(mean);
+  if (f.size() == 1) return SummaryNumber(mean);
   const auto [lo, hi] = std::minmax_element(f.begin(), f.end());
-  return fmt::format("{} [{}, {}]", G(mean), G(*lo), G(*hi));
+  return fmt::format("{} [{}, {}]", SummaryNumber(mean), SummaryNumber(*lo), SummaryNumber(*hi));
 }
 
 // The worst case of a row (NaN where no case has a value, e.g. not applicable).
-double Worst(const std::vector<double>& v) {
+double WorstOf(const std::vector<double>& v) {
   double w = kNaN;
   for (double x : v) {
     if (!std::isnan(x)) w = std::isnan(w) ? x : std::max(w, x);
@@ -158,87 +140,113 @@ double Worst(const std::vector<double>& v) {
 // continuous-time cost of any method's controls, or an optimum of one discrete NLP (COPS: a scheme
 // at a grid), comparable only with a record that solved that very NLP. Records written before the
 // reference carried its scheme are compared with nothing.
-bool IsContinuous(const json& ref) { return Str(ref, "scheme") == "continuous"; }
+bool IsContinuous(const RecordReference& ref) { return ref.scheme == "continuous"; }
 
-std::string ReferenceNote(const json& ref) {
+std::string ReferenceNote(const RecordReference& ref) {
   const std::string head = fmt::format("Reference {} = {} ({}).",
-                                       ref.value("quantity", std::string("J")),
-                                       G(Num(ref, "value")),
-                                       ref.value("source", std::string("no source given")));
+                                       ref.quantity,
+                                       SummaryNumber(ref.value),
+                                       ref.source.empty() ? "no source given" : ref.source);
   if (IsContinuous(ref)) {
     return head +
            " A continuous optimum: rel. error = |Jbar fine - reference| / |reference| for every "
            "row (the continuous-time cost of the method's controls; see terminal viol. fine for "
            "how well they meet the terminal conditions).";
   }
-  if (!Str(ref, "scheme").empty()) {
+  if (!ref.scheme.empty()) {
     return head + fmt::format(
                       " An optimum of the discrete NLP of the {} scheme at N = {}: rel. error = "
                       "|objective - reference| / |reference| (the NLP's own objective) only for "
                       "rows that solve that NLP (that transcription and N, hard terminal form).",
-                      Str(ref, "scheme"),
-                      ref.value("N", 0));
+                      ref.scheme,
+                      ref.N);
   }
   return head +
          " The records do not say which problem the value is an optimum of (continuous or "
          "a scheme and grid): the error column stays empty.";
 }
 
-double ReferenceError(const json& r, const json& ref) {
-  const double value = Num(ref, "value");
+double ReferenceError(const Record& r, const RecordReference& ref) {
+  const double value = ref.value;
   if (!std::isfinite(value) || value == 0.0) return kNaN;
-  if (IsContinuous(ref)) return std::abs(Num(r, "Jbar_fine") - value) / std::abs(value);
-  const std::string scheme = Str(ref, "scheme");
-  if (scheme.empty() || Str(r, "transcription") != scheme || Str(r, "terminal") != "hard" ||
-      r.value("N", -1) != ref.value("N", -2)) {
+  if (IsContinuous(ref)) return std::abs(r.Jbar_fine - value) / std::abs(value);
+  if (ref.scheme.empty() || r.transcription != ref.scheme || r.terminal != "hard" || r.N != ref.N) {
     return kNaN;
   }
-  return std::abs(Num(r, "objective") - value) / std::abs(value);
+  return std::abs(r.objective - value) / std::abs(value);
 }
 
 }  // namespace
 
-void DeriveTargets(std::vector<json>* records) {
-  const Labels labels = LabelRecords(*records);
+std::vector<DerivedFields> DeriveTargets(const std::vector<Record>& records) {
+  const Labels labels = LabelRecords(records);
+  std::vector<DerivedFields> derived(records.size());
   std::map<std::string, double> best;
-  for (size_t i = 0; i < records->size(); ++i) {
-    json& r = (*records)[i];
-    r["group"] = GroupKey(r);
-    r["section"] = labels.section[i];
-    r["method_label"] = labels.row[i];
-    const double v = FinalValue(r);
-    r["final_J"] = std::isfinite(v) ? json(v) : json(nullptr);
-    if (!std::isfinite(v)) continue;
+  for (size_t i = 0; i < records.size(); ++i) {
+    const Record& r = records[i];
+    DerivedFields& d = derived[i];
+    d.group = GroupKey(r);
+    d.section = labels.section[i];
+    d.method_label = labels.row[i];
+    d.final_J = FinalValue(r);
+    if (!std::isfinite(d.final_J)) continue;
     // A hard-form record that did not converge may sit below every feasible answer.
-    if (Str(r, "terminal") == "hard" && Str(r, "status") != "converged") continue;
-    const std::string g = r["group"];
-    if (!best.count(g) || v < best[g]) best[g] = v;
+    if (r.terminal == "hard" && r.status != "converged") continue;
+    if (!best.count(d.group) || d.final_J < best[d.group]) best[d.group] = d.final_J;
   }
-  for (json& r : *records) {
-    const auto it = best.find(r["group"].get<std::string>());
-    r["best_J"] = it == best.end() ? json(nullptr) : json(it->second);
-    r["reached_target"] = it != best.end() && WithinTarget(FinalValue(r), it->second);
-    r["time_to_target"] = nullptr;
-    if (!r["reached_target"].get<bool>()) continue;
-    const double b = it->second;
-    if (r.contains("history") && r["history"].is_array()) {
-      for (const json& h : r["history"]) {
-        const double primal = Num(h, "primal_inf");
-        if (WithinTarget(Num(h, "J"), b) && !(primal > kFeasibleHistory)) {
-          r["time_to_target"] = Num(h, "cpu_seconds");
-          break;
-        }
+  for (size_t i = 0; i < records.size(); ++i) {
+    const Record& r = records[i];
+    DerivedFields& d = derived[i];
+    const auto it = best.find(d.group);
+    if (it == best.end()) continue;
+    d.best_J = it->second;
+    d.reached_target = WithinTarget(d.final_J, d.best_J);
+    if (!d.reached_target) continue;
+    for (const IterationRecord& h : r.history) {
+      if (WithinTarget(h.J, d.best_J) && !(h.primal_inf > kFeasibleHistory)) {
+        d.time_to_target = h.cpu_seconds;
+        break;
       }
     }
     // The final answer reached it although no recorded iterate did (the history holds the
     // method's own objective, which differs from J_fine by its discretization error).
-    if (r["time_to_target"].is_null()) r["time_to_target"] = Num(r, "cpu_seconds");
+    if (std::isnan(d.time_to_target)) d.time_to_target = r.cpu_seconds;
   }
+  return derived;
 }
 
-std::string SummaryMarkdown(const std::string& suite_name, const std::vector<json>& records) {
+std::vector<json> DerivedRecordsJson(const std::vector<Record>& records) {
+  const std::vector<DerivedFields> derived = DeriveTargets(records);
+  std::vector<json> out;
+  out.reserve(records.size());
+  for (size_t i = 0; i < records.size(); ++i) {
+    json j = records[i].ToJson();
+    const DerivedFields& d = derived[i];
+    j["group"] = d.group;
+    j["section"] = d.section;
+    j["method_label"] = d.method_label;
+    j["final_J"] = JsonNumber(d.final_J);
+    j["best_J"] = JsonNumber(d.best_J);
+    j["reached_target"] = d.reached_target;
+    j["time_to_target"] = JsonNumber(d.time_to_target);
+    out.push_back(std::move(j));
+  }
+  return out;
+}
+
+std::string SummaryMarkdown(const std::string& suite_name,
+                            const std::vector<Record>& records,
+                            size_t expected_cases) {
   std::ostringstream md;
   md << "# Suite `" << suite_name << "`\n\n";
+  if (expected_cases > 0 && records.size() < expected_cases) {
+    md << fmt::format(
+        "**Partial: {} of the suite's {} cases are recorded** (the others are missing: a run "
+        "or shard that has not finished, or was not merged). Every mean, median and best below "
+        "covers the recorded cases only.\n\n",
+        records.size(),
+        expected_cases);
+  }
   md << "Generated by `ocpbench run` from `records.jsonl`; do not edit. J, Jbar and violations "
         "come from the common evaluator on each method's grid (forward Euler unless the row says "
         "otherwise; J is penalized, Jbar is not); \"fine\" is RK4 on a 10x finer grid, the "
@@ -254,6 +262,7 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
         "reports one) at most 1e-6, or its total CPU time if no iterate qualifies; otherwise "
         "never. n/m = reached in n of m cases.\n\n";
   const Labels labels = LabelRecords(records);
+  const std::vector<DerivedFields> derived = DeriveTargets(records);
   std::vector<std::string> sections;
   for (const std::string& s : labels.section) {
     if (std::find(sections.begin(), sections.end(), s) == sections.end()) sections.push_back(s);
@@ -261,18 +270,17 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
   for (const std::string& section : sections) {
     md << "## " << section << "\n\n";
     std::vector<std::string> methods;
-    std::map<std::string, std::vector<const json*>> by_method;
-    const json* reference = nullptr;
+    std::map<std::string, std::vector<size_t>> by_method;
+    const RecordReference* reference = nullptr;
     bool free_time = false;  // a free final time: the table says each method's T
     for (size_t i = 0; i < records.size(); ++i) {
       if (labels.section[i] != section) continue;
-      const json& r = records[i];
-      free_time = free_time || r.value("final_time_free", false);
+      const Record& r = records[i];
+      free_time = free_time || r.final_time_free;
       if (!by_method.count(labels.row[i])) methods.push_back(labels.row[i]);
-      by_method[labels.row[i]].push_back(&r);
-      if (!reference && r.contains("reference") && r["reference"].is_object() &&
-          std::isfinite(Num(r["reference"], "value"))) {
-        reference = &r["reference"];
+      by_method[labels.row[i]].push_back(i);
+      if (!reference && r.reference && std::isfinite(r.reference->value)) {
+        reference = &*r.reference;
       }
     }
     if (reference) md << ReferenceNote(*reference) << "\n\n";
@@ -288,26 +296,27 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
       std::map<std::string, int> statuses;
       std::vector<double> J, Jbar, Jf, Jbarf, tv, tvf, cv, pv, defect, it, cpu, ttt, rel, T;
       int reached = 0;
-      for (const json* r : rs) {
-        statuses[Str(*r, "status")]++;
-        J.push_back(Num(*r, "J"));
-        Jbar.push_back(Num(*r, "Jbar"));
-        Jf.push_back(Num(*r, "J_fine"));
-        Jbarf.push_back(Num(*r, "Jbar_fine"));
-        tv.push_back(Num(*r, "terminal_violation"));
-        tvf.push_back(Num(*r, "terminal_violation_fine"));
-        cv.push_back(Num(*r, "control_violation"));
-        pv.push_back(Num(*r, "path_violation"));
-        defect.push_back(Num(*r, "resimulation_defect"));
-        it.push_back(Num(*r, "iterations"));
-        cpu.push_back(Num(*r, "cpu_seconds"));
-        T.push_back(Num(*r, "final_time"));
-        const double t = Num(*r, "time_to_target");
+      for (const size_t i : rs) {
+        const Record& r = records[i];
+        statuses[r.status]++;
+        J.push_back(r.J);
+        Jbar.push_back(r.Jbar);
+        Jf.push_back(r.J_fine);
+        Jbarf.push_back(r.Jbar_fine);
+        tv.push_back(r.terminal_violation);
+        tvf.push_back(r.terminal_violation_fine);
+        cv.push_back(r.control_violation);
+        pv.push_back(r.path_violation);
+        defect.push_back(r.resimulation_defect);
+        it.push_back(r.iterations >= 0 ? r.iterations : kNaN);
+        cpu.push_back(r.cpu_seconds);
+        T.push_back(r.final_time);
+        const double t = derived[i].time_to_target;
         if (std::isfinite(t)) {
           ttt.push_back(t);
           ++reached;
         }
-        if (reference) rel.push_back(ReferenceError(*r, *reference));
+        if (reference) rel.push_back(ReferenceError(r, *reference));
       }
       std::string st;
       for (const auto& [s, n] : statuses)
@@ -321,14 +330,14 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
           Spread(Jbar),
           Spread(Jf),
           Spread(Jbarf),
-          G(Worst(tv)),
-          G(Worst(tvf)),
-          G(Worst(cv)),
-          G(Worst(pv)),
-          G(Worst(defect)),
-          G(Median(it)),
-          G(Median(cpu)),
-          G(Median(ttt)),
+          SummaryNumber(WorstOf(tv)),
+          SummaryNumber(WorstOf(tvf)),
+          SummaryNumber(WorstOf(cv)),
+          SummaryNumber(WorstOf(pv)),
+          SummaryNumber(WorstOf(defect)),
+          SummaryNumber(Median(it)),
+          SummaryNumber(Median(cpu)),
+          SummaryNumber(Median(ttt)),
           reached,
           rs.size());
       if (free_time) md << " " << Spread(T) << " |";
@@ -340,7 +349,7 @@ std::string SummaryMarkdown(const std::string& suite_name, const std::vector<jso
   return md.str();
 }
 
-std::string RecordsCsv(const std::vector<json>& records) {
+std::string RecordsCsv(const std::vector<Record>& records) {
   static const char* kColumns[] = {"problem",
                                    "seed",
                                    "solver",
@@ -375,16 +384,16 @@ std::string RecordsCsv(const std::vector<json>& records) {
     first = false;
   }
   csv << "\n";
-  for (const json& r : records) {
+  for (const json& r : DerivedRecordsJson(records)) {
     first = true;
     for (const char* c : kColumns) {
       csv << (first ? "" : ",");
       first = false;
       if (!r.contains(c) || r[c].is_null()) continue;
       if (r[c].is_string()) {
-        std::string s = r[c].get<std::string>();
         std::string q = "\"";
-        for (char ch : s) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+        for (char ch : r[c].get<std::string>())
+          q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
         csv << q << "\"";
       } else {
         csv << r[c].dump();

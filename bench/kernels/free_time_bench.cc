@@ -30,7 +30,7 @@ void BM_FreeFinalTime(benchmark::State& state) {
   request.terminal = TerminalMode::kHard;
   std::string solver = "indirect-newton";
   if (state.range(2) == 0) {
-    if (brachistochrone) request.options["warm_start"] = "ipopt";
+    if (brachistochrone) request.options.Set("warm_start", "ipopt");
   } else {
     solver = "ipopt";
     request.transcription = state.range(2) == 1 ? "trapezoid" : "hermite-simpson";

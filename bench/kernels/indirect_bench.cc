@@ -44,7 +44,7 @@ void BM_IndirectDoubleIntegrator(benchmark::State& state) {
   SolveRequest request;
   request.grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), N);
   request.terminal = bounded ? TerminalMode::kHard : TerminalMode::kPenalty;
-  request.options["linear_solver"] = LinearSolverName(state.range(1));
+  request.options.Set("linear_solver", LinearSolverName(state.range(1)));
   const IndirectNewton solver;
   SolveResult r;
   for (auto _ : state) {
@@ -79,7 +79,7 @@ void BM_IndirectCommPath2d(benchmark::State& state) {
   static const SolveResult coarse = [] {
     SolveRequest request;
     request.grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 200);
-    request.options["warm_start"] = "hamiltonian";
+    request.options.Set("warm_start", "hamiltonian");
     return IndirectNewton().Solve(*ocp, request);
   }();
   if (coarse.status != SolveStatus::kConverged) {
@@ -89,7 +89,7 @@ void BM_IndirectCommPath2d(benchmark::State& state) {
   const int N = static_cast<int>(state.range(0));
   SolveRequest request;
   request.grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), N);
-  request.options["linear_solver"] = LinearSolverName(state.range(1));
+  request.options.Set("linear_solver", LinearSolverName(state.range(1)));
   const Mat X = Interpolate(coarse.states, N), P = Interpolate(coarse.costates, N);
   const IndirectNewton solver;
   SolveResult r;

@@ -264,7 +264,7 @@ void BM_NloptSingleShootingScaling(benchmark::State& state) {
   if (!ocp) return;
   const int N = static_cast<int>(state.range(1));
   SolveRequest request = Request(*ocp, "single-shooting", N, TerminalMode::kPenalty);
-  request.algorithm = kNloptAlgorithms[state.range(0)];
+  request.options.Set("algorithm", kNloptAlgorithms[state.range(0)]);
   request.options = {{"maxtime", std::to_string(state.range(2))},
                      {"slsqp_max_variables", "100000"},
                      {"mma_max_inequalities", "100000"},

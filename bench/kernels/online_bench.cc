@@ -11,7 +11,7 @@
 #include <string>
 
 #include "core/timer.h"
-#include "problems/online/online_replanning.h"
+#include "drivers/online/online_replanning.h"
 #include "solvers/registry.h"
 
 namespace ocpb {

@@ -28,30 +28,59 @@ std::string ErrorOf(const CaseSpec& spec) {
   return "(valid)";
 }
 
-TEST(ValidateCase, RunsTheSolversOptionParsers) {
+TEST(ValidateCase, ResolvesTheMethodsOptionsByTheirSchemas) {
   CaseSpec spec = Spec("double-integrator", "hamiltonian");
   EXPECT_EQ(ErrorOf(spec), "(valid)");
-  spec.options["bogus"] = "1";
-  EXPECT_EQ(ErrorOf(spec).rfind("hamiltonian: unknown option 'bogus'", 0), 0u) << ErrorOf(spec);
+  spec.options.Set("bogus", "1");
+  EXPECT_EQ(ErrorOf(spec).rfind("options: hamiltonian: unknown option 'bogus' (valid: alpha, ", 0),
+            0u)
+      << ErrorOf(spec);
   spec = Spec("double-integrator", "ipopt");
   spec.transcription = "euler";
-  spec.options["max_iter"] = "many";
-  EXPECT_EQ(ErrorOf(spec), "ipopt option 'max_iter': 'many' is not an integer");
+  spec.options.Set("max_iter", "many");
+  EXPECT_EQ(ErrorOf(spec),
+            "options: ipopt option 'max_iter': must be an integer >= 0 (got 'many')");
   spec.options = {{"state_scale", "-1,1"}};  // the transcription's scaling keys are checked too
-  EXPECT_NE(ErrorOf(spec).find("state_scale"), std::string::npos) << ErrorOf(spec);
+  EXPECT_NE(ErrorOf(spec).find("euler option 'state_scale'"), std::string::npos) << ErrorOf(spec);
+  spec.options = {{"nonsense", 1}};  // unknown to both: both lists are named
+  EXPECT_NE(ErrorOf(spec).find("transcription euler: objective_scale"), std::string::npos)
+      << ErrorOf(spec);
   spec = Spec("double-integrator", "nlopt");
   spec.transcription = "single-shooting";
   spec.algorithm = "NOPE";
-  EXPECT_EQ(ErrorOf(spec).rfind("nlopt option 'algorithm': 'NOPE' is not one of: ", 0), 0u)
+  EXPECT_EQ(ErrorOf(spec).rfind("algorithm: nlopt option 'algorithm': must be one of: ", 0), 0u)
       << ErrorOf(spec);
   spec.algorithm = "LD_MMA";
   EXPECT_EQ(ErrorOf(spec), "(valid)");
+  spec.options = {{"algorithm", "LD_SLSQP"}};  // the case field and the option disagree
+  EXPECT_NE(ErrorOf(spec).find("disagrees"), std::string::npos) << ErrorOf(spec);
   spec = Spec("double-integrator", "indirect-newton");
   spec.options = {{"warm_start", "hamiltonian"}, {"hamiltonian.alpah", "0.5"}};
-  EXPECT_EQ(ErrorOf(spec).rfind("hamiltonian: unknown option 'alpah'", 0), 0u) << ErrorOf(spec);
+  EXPECT_EQ(ErrorOf(spec).rfind("options: indirect-newton: unknown option 'hamiltonian.alpah'", 0),
+            0u)
+      << ErrorOf(spec);
+  spec.options = {{"hamiltonian.alpha", "0.5"}};  // a cross-field rule of the solver's
+  EXPECT_NE(ErrorOf(spec).find("need warm_start = hamiltonian"), std::string::npos)
+      << ErrorOf(spec);
   spec = Spec("double-integrator", "hamiltonian");
   spec.algorithm = "LD_MMA";
-  EXPECT_EQ(ErrorOf(spec), "algorithm: only the nlopt solver takes one (solver 'hamiltonian')");
+  EXPECT_EQ(ErrorOf(spec),
+            "algorithm: solver 'hamiltonian' has no option 'algorithm' (it takes none)");
+}
+
+TEST(ResolveCase, GivesTypedValuesAndCanonicalKeys) {
+  CaseSpec a = Spec("double-integrator", "ipopt");
+  a.transcription = "lgr";
+  a.options = {{"tol", "0.00000001"}, {"max_iter", "1e3"}};
+  CaseSpec b = a;
+  b.options = {{"tol", 1e-8}, {"max_iter", 1000}};
+  EXPECT_EQ(ResolveCase(a).Key(), ResolveCase(b).Key());
+  EXPECT_NE(ResolveCase(a).Key().find("|opt:max_iter=1000|opt:tol=1e-08"), std::string::npos)
+      << ResolveCase(a).Key();
+  EXPECT_EQ(ResolveCase(a).options.Find("max_iter")->integer(), 1000);
+  const MethodOptions m = ResolveMethodOptions(a);
+  EXPECT_EQ(m.transcription.Find("degree")->integer(), 3);  // LGR's degree from the case field
+  EXPECT_FALSE(m.solver.Has("degree"));
 }
 
 TEST(ValidateCase, RunsTheProblemsOwnChecksWithoutBuildingItsChannel) {
@@ -87,21 +116,49 @@ TEST(MemoryEstimate, GrowsWithTheGridAndTheSparseSolvers) {
 
 TEST(RunCaseRecordingFailures, AnyExceptionBecomesTheCasesRecord) {
   const CaseSpec spec = Spec("double-integrator", "hamiltonian");
-  const json error = RunCaseRecordingFailures(
-      spec, [](const CaseSpec&) -> json { throw std::runtime_error("the channel went away"); });
-  EXPECT_EQ(error["status"], "error");
-  EXPECT_EQ(error["solver_status"], "exception");
-  EXPECT_EQ(error["message"], "the channel went away");
-  EXPECT_EQ(error["key"], spec.Key());
-  EXPECT_TRUE(IsFailure(error["status"].get<std::string>()));
-  const json invalid = RunCaseRecordingFailures(
-      spec, [](const CaseSpec&) -> json { throw std::invalid_argument("bad once built"); });
-  EXPECT_EQ(invalid["status"], "invalid_input");
-  EXPECT_EQ(invalid["message"], "bad once built");
-  const json fine = RunCaseRecordingFailures(spec, [](const CaseSpec&) {
-    return json{{"status", "converged"}};
+  const Record error = RunCaseRecordingFailures(
+      spec, [](const CaseSpec&) -> Record { throw std::runtime_error("the channel went away"); });
+  EXPECT_EQ(error.status, "error");
+  EXPECT_EQ(error.solver_status, "exception");
+  EXPECT_EQ(error.message, "the channel went away");
+  EXPECT_EQ(error.key, spec.Key());
+  EXPECT_TRUE(IsFailure(error.status));
+  const Record invalid = RunCaseRecordingFailures(
+      spec, [](const CaseSpec&) -> Record { throw std::invalid_argument("bad once built"); });
+  EXPECT_EQ(invalid.status, "invalid_input");
+  EXPECT_EQ(invalid.message, "bad once built");
+  const Record fine = RunCaseRecordingFailures(spec, [](const CaseSpec&) {
+    Record r;
+    r.status = "converged";
+    return r;
   });
-  EXPECT_EQ(fine, (json{{"status", "converged"}}));
+  EXPECT_EQ(fine.status, "converged");
+}
+
+TEST(Record, RoundTripsThroughJsonAndNamesTheFieldOfAWrongType) {
+  CaseSpec spec = Spec("double-integrator", "hamiltonian");
+  spec.intervals = 20;
+  spec.options = {{"max_iterations", 5}};
+  const Record r = RunCase(spec);
+  EXPECT_EQ(r.schema_version, kRecordSchemaVersion);
+  EXPECT_EQ(r.solver_options.at("max_iterations"), 5);
+  EXPECT_EQ(r.solver_options.at("alpha"), 0.1);  // defaults are listed too
+  const json j = r.ToJson();
+  EXPECT_EQ(Record::FromJson(j).ToJson(), j);
+  json bad = j;
+  bad["J_fine"] = "low";
+  try {
+    Record::FromJson(bad);
+    ADD_FAILURE() << "accepted a text J_fine";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "J_fine: must be a number or null");
+  }
+  bad = j;
+  bad["schema_version"] = kRecordSchemaVersion + 1;
+  EXPECT_THROW(Record::FromJson(bad), std::invalid_argument);
+  json old = j;  // a record from before the typed record: no schema_version
+  old.erase("schema_version");
+  EXPECT_EQ(Record::FromJson(old).schema_version, 1);
 }
 
 TEST(IsFailure, StatusNamesMatchTheEnum) {

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 namespace ocpb::testing {
 namespace {
@@ -19,7 +20,9 @@ std::string Slurp(const std::string& path) {
   return ss.str();
 }
 
-pid_t Spawn(const std::vector<std::string>& args, const std::string& cwd, const std::string& out,
+pid_t Spawn(const std::vector<std::string>& args,
+            const std::string& cwd,
+            const std::string& out,
             const std::string& err) {
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("fork failed");
@@ -43,6 +46,48 @@ pid_t Spawn(const std::vector<std::string>& args, const std::string& cwd, const 
   return pid;
 }
 
+// Copies the records the run just wrote (a --json file; the records files of the --out or merge
+// directory) to $OCPB_RECORD_SNAPSHOTS/<n>/, for the records_match_schema test that validates every
+// record the tests made ocpbench write against results/record.schema.json. A copy, so that a test
+// that damages a records file afterwards (resume tests) checks what ocpbench wrote, not what the
+// test did to it. Nothing when the variable is unset (a test binary run by hand).
+void SnapshotRecords(const std::vector<std::string>& args, const std::string& cwd) {
+  const char* root = std::getenv("OCPB_RECORD_SNAPSHOTS");
+  if (root == nullptr || args.empty()) return;
+  // compare --json writes a comparison, not a record, and reads the records it is given.
+  if (args[0] == "compare") return;
+  namespace fs = std::filesystem;
+  std::vector<fs::path> files;
+  auto in_cwd = [&cwd](const std::string& p) {
+    return cwd.empty() || fs::path(p).is_absolute() ? fs::path(p) : fs::path(cwd) / p;
+  };
+  for (size_t i = 0; i + 1 < args.size(); ++i) {
+    if (args[i] == "--json") files.push_back(in_cwd(args[i + 1]));
+  }
+  std::vector<fs::path> dirs;
+  for (size_t i = 0; i + 1 < args.size(); ++i) {
+    if (args[0] == "run" && args[i] == "--out") dirs.push_back(in_cwd(args[i + 1]));
+  }
+  if (args[0] == "merge" && args.size() >= 2) dirs.push_back(in_cwd(args[1]));
+  std::error_code ec;
+  for (const fs::path& d : dirs) {
+    for (const auto& e : fs::directory_iterator(d, ec)) {
+      const std::string name = e.path().filename().string();
+      if (name.rfind("records", 0) == 0 && e.path().extension() == ".jsonl") {
+        files.push_back(e.path());
+      }
+    }
+  }
+  static int counter = 0;
+  const fs::path target =
+      fs::path(root) / (std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  for (const fs::path& f : files) {
+    if (!fs::is_regular_file(f, ec)) continue;
+    fs::create_directories(target, ec);
+    fs::copy_file(f, target / f.filename(), fs::copy_options::overwrite_existing, ec);
+  }
+}
+
 }  // namespace
 
 std::string FreshDirectory(const std::string& name) {
@@ -64,6 +109,8 @@ ProgramRun RunOcpbenchProgram(const std::vector<std::string>& args, const std::s
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   run.out = Slurp(out);
   run.err = Slurp(err);
+  // Exit 2 writes nothing (invalid input): whatever is there is the test's own input.
+  if (run.exit_code != 2) SnapshotRecords(args, cwd);
   return run;
 }
 
@@ -71,9 +118,7 @@ int StartOcpbenchProgram(const std::vector<std::string>& args, const std::string
   return Spawn(args, cwd, cwd + "/bg.out", cwd + "/bg.err");
 }
 
-void WriteText(const std::string& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
+void WriteText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 std::string ReadText(const std::string& path) { return Slurp(path); }
 

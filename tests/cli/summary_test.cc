@@ -24,12 +24,12 @@ json History(std::vector<std::vector<double>> entries) {  // {J, cpu_seconds[, p
   return h;
 }
 
-json Record(const std::string& solver,
-            const std::string& transcription,
-            double J,
-            double J_fine,
-            const std::string& terminal = "penalty",
-            const std::string& status = "converged") {
+json MakeRecord(const std::string& solver,
+                const std::string& transcription,
+                double J,
+                double J_fine,
+                const std::string& terminal = "penalty",
+                const std::string& status = "converged") {
   return json{{"problem", "p"},
               {"seed", 1},
               {"parameters", {{"C", 10.0}}},
@@ -48,15 +48,25 @@ json Record(const std::string& solver,
               {"history", json::array()}};
 }
 
-std::vector<json> Derived(std::vector<json> records) {
-  DeriveTargets(&records);
-  return records;
+std::vector<Record> Typed(const std::vector<json>& records) {
+  std::vector<Record> out;
+  for (const json& r : records) out.push_back(Record::FromJson(r));
+  return out;
+}
+
+// The records as derived.jsonl holds them: each with its derived fields.
+std::vector<json> Derived(const std::vector<json>& records) {
+  return DerivedRecordsJson(Typed(records));
+}
+
+std::string SummaryMarkdown(const std::string& name, const std::vector<json>& records) {
+  return ocpb::SummaryMarkdown(name, Typed(records));
 }
 
 TEST(DeriveTargets, TheBestIsTheLowestJFineNotTheMethodGridJ) {
   // A collocation method: its J on the Euler grid is 1% above the Euler NLP's, its J_fine lower.
-  auto r =
-      Derived({Record("ipopt", "euler", 474.3, 474.4), Record("ipopt", "trapezoid", 479.6, 474.2)});
+  auto r = Derived(
+      {MakeRecord("ipopt", "euler", 474.3, 474.4), MakeRecord("ipopt", "trapezoid", 479.6, 474.2)});
   EXPECT_DOUBLE_EQ(r[0]["best_J"].get<double>(), 474.2);
   EXPECT_DOUBLE_EQ(r[1]["final_J"].get<double>(), 474.2);
   EXPECT_TRUE(r[0]["reached_target"].get<bool>());
@@ -64,37 +74,37 @@ TEST(DeriveTargets, TheBestIsTheLowestJFineNotTheMethodGridJ) {
 }
 
 TEST(DeriveTargets, JStandsInWhereJFineIsMissing) {
-  json a = Record("hamiltonian", "", 10.0, 0.0);
+  json a = MakeRecord("hamiltonian", "", 10.0, 0.0);
   a["J_fine"] = nullptr;
-  auto r = Derived({a, Record("ipopt", "euler", 12.0, 11.0)});
+  auto r = Derived({a, MakeRecord("ipopt", "euler", 12.0, 11.0)});
   EXPECT_DOUBLE_EQ(r[0]["final_J"].get<double>(), 10.0);
   EXPECT_DOUBLE_EQ(r[1]["best_J"].get<double>(), 10.0);
   EXPECT_FALSE(r[1]["reached_target"].get<bool>());
 }
 
 TEST(DeriveTargets, InTheHardFormOnlyConvergedRecordsSetTheBest) {
-  auto r = Derived({Record("ipopt", "euler", 100.0, 100.0, "hard"),
-                    Record("ipopt", "lgr", 50.0, 50.0, "hard", "max_iterations")});
+  auto r = Derived({MakeRecord("ipopt", "euler", 100.0, 100.0, "hard"),
+                    MakeRecord("ipopt", "lgr", 50.0, 50.0, "hard", "max_iterations")});
   EXPECT_DOUBLE_EQ(r[0]["best_J"].get<double>(), 100.0);
   // ... and a non-converged record far from the best (below it) has not reached it.
   EXPECT_FALSE(r[1]["reached_target"].get<bool>());
   EXPECT_TRUE(r[1]["time_to_target"].is_null());
   // In the penalty form every finite record counts.
-  auto p = Derived({Record("ipopt", "euler", 100.0, 100.0),
-                    Record("ipopt", "lgr", 50.0, 50.0, "penalty", "max_iterations")});
+  auto p = Derived({MakeRecord("ipopt", "euler", 100.0, 100.0),
+                    MakeRecord("ipopt", "lgr", 50.0, 50.0, "penalty", "max_iterations")});
   EXPECT_DOUBLE_EQ(p[0]["best_J"].get<double>(), 50.0);
 }
 
 TEST(DeriveTargets, AFinalJFineMoreThanOnePercentOffNeverReachesItWhateverTheHistory) {
-  json far = Record("ipopt", "lgr", 2470.0, 480.0);  // 1.2% above the best J_fine
+  json far = MakeRecord("ipopt", "lgr", 2470.0, 480.0);  // 1.2% above the best J_fine
   far["history"] = History({{500.0, 0.1}, {474.0, 0.2}});
-  auto r = Derived({Record("ipopt", "euler", 474.0, 474.0), far});
+  auto r = Derived({MakeRecord("ipopt", "euler", 474.0, 474.0), far});
   EXPECT_FALSE(r[1]["reached_target"].get<bool>());
   EXPECT_TRUE(r[1]["time_to_target"].is_null());
 }
 
 TEST(DeriveTargets, TheFirstFeasibleIterateWithinOnePercentGivesTheTime) {
-  json a = Record("ipopt", "euler", 474.0, 474.0);
+  json a = MakeRecord("ipopt", "euler", 474.0, 474.0);
   // Iterate 1 is within 1% but infeasible (primal_inf 3.9e-4), iterate 2 is too far, iterate 3
   // qualifies; the rule holds in the penalty form as well.
   a["history"] =
@@ -107,27 +117,27 @@ TEST(DeriveTargets, TheFirstFeasibleIterateWithinOnePercentGivesTheTime) {
 }
 
 TEST(DeriveTargets, AnIterateWithoutPrimalInfeasibilityCounts) {
-  json h = Record("hamiltonian", "", 474.0, 474.0);
+  json h = MakeRecord("hamiltonian", "", 474.0, 474.0);
   h["history"] = History({{900.0, 0.1}, {478.0, 0.25}, {474.0, 0.5}});
   EXPECT_DOUBLE_EQ(Derived({h})[0]["time_to_target"].get<double>(), 0.25);
 }
 
 TEST(DeriveTargets, WithoutAQualifyingIterateTheTotalCpuTimeCounts) {
   // The history holds the method's own objective (here its trapezoid quadrature, 1.1% above).
-  json t = Record("ipopt", "trapezoid", 479.6, 474.3);
+  json t = MakeRecord("ipopt", "trapezoid", 479.6, 474.3);
   t["history"] = History({{600.0, 0.1, 0.0}, {479.5, 0.3, 0.0}});
-  auto r = Derived({Record("ipopt", "euler", 474.2, 474.2), t});
+  auto r = Derived({MakeRecord("ipopt", "euler", 474.2, 474.2), t});
   EXPECT_TRUE(r[1]["reached_target"].get<bool>());
   EXPECT_DOUBLE_EQ(r[1]["time_to_target"].get<double>(), 2.0);
 }
 
 TEST(DeriveTargets, GroupsSplitBySeedParametersAndTerminalForm) {
-  json seed2 = Record("ipopt", "euler", 10.0, 10.0);
+  json seed2 = MakeRecord("ipopt", "euler", 10.0, 10.0);
   seed2["seed"] = 2;
-  json c500 = Record("ipopt", "euler", 20.0, 20.0);
+  json c500 = MakeRecord("ipopt", "euler", 20.0, 20.0);
   c500["parameters"]["C"] = 500.0;
-  json hard = Record("ipopt", "euler", 30.0, 30.0, "hard");
-  auto r = Derived({Record("ipopt", "euler", 40.0, 40.0), seed2, c500, hard});
+  json hard = MakeRecord("ipopt", "euler", 30.0, 30.0, "hard");
+  auto r = Derived({MakeRecord("ipopt", "euler", 40.0, 40.0), seed2, c500, hard});
   EXPECT_DOUBLE_EQ(r[0]["best_J"].get<double>(), 40.0);
   EXPECT_DOUBLE_EQ(r[1]["best_J"].get<double>(), 10.0);
   EXPECT_DOUBLE_EQ(r[2]["best_J"].get<double>(), 20.0);
@@ -136,7 +146,7 @@ TEST(DeriveTargets, GroupsSplitBySeedParametersAndTerminalForm) {
 }
 
 TEST(DeriveTargets, RecordsWithoutACostHaveNoTarget) {
-  json na = Record("hamiltonian", "", 0.0, 0.0, "penalty", "not_applicable");
+  json na = MakeRecord("hamiltonian", "", 0.0, 0.0, "penalty", "not_applicable");
   na["J"] = nullptr;
   na["J_fine"] = nullptr;
   auto r = Derived({na});
@@ -146,10 +156,10 @@ TEST(DeriveTargets, RecordsWithoutACostHaveNoTarget) {
 }
 
 TEST(DeriveTargets, OptionsNameRowsOnlyWhereTheyTellMethodsApart) {
-  json cold = Record("indirect-newton", "", 1.0, 1.0);
+  json cold = MakeRecord("indirect-newton", "", 1.0, 1.0);
   json warm = cold;
   warm["options"] = {{"warm_start", "hamiltonian"}};
-  auto r = Derived({cold, warm, Record("ipopt", "euler", 1.0, 1.0)});
+  auto r = Derived({cold, warm, MakeRecord("ipopt", "euler", 1.0, 1.0)});
   EXPECT_EQ(r[0]["method_label"], "indirect-newton, penalty, N=100, default options");
   EXPECT_EQ(r[1]["method_label"], "indirect-newton, penalty, N=100, warm_start=hamiltonian");
   EXPECT_EQ(r[2]["method_label"], "ipopt + euler, penalty, N=100");
@@ -178,20 +188,19 @@ std::string LastCell(const std::string& md, const std::string& label) {
 }
 
 TEST(SummaryMarkdown, AContinuousReferenceIsComparedWithEveryRowsJbarFine) {
-  json a = Record("ipopt", "euler", 2.5, 2.4, "hard");
+  json a = MakeRecord("ipopt", "euler", 2.5, 2.4, "hard");
   a["Jbar_fine"] = 2.2;
-  json b = Record("ipopt", "lgr", 2.5, 2.4, "hard");
+  json b = MakeRecord("ipopt", "lgr", 2.5, 2.4, "hard");
   b["Jbar_fine"] = 2.02;
   b["N"] = 25;
   std::vector<json> r = {WithReference(a, "continuous", 0), WithReference(b, "continuous", 0)};
-  DeriveTargets(&r);
   const std::string md = SummaryMarkdown("s", r);
   EXPECT_EQ(LastCell(md, "ipopt + euler, hard, N=100"), "0.1");
   EXPECT_EQ(LastCell(md, "ipopt + lgr, hard, N=25"), "0.01");
 }
 
 TEST(SummaryMarkdown, ADiscreteReferenceIsComparedOnlyAtItsSchemeGridAndHardForm) {
-  json at = Record("ipopt", "trapezoid", 2.5, 2.4, "hard");
+  json at = MakeRecord("ipopt", "trapezoid", 2.5, 2.4, "hard");
   at["objective"] = 2.002;
   at["Jbar_fine"] = 2.4;
   json other_scheme = at;
@@ -204,7 +213,6 @@ TEST(SummaryMarkdown, ADiscreteReferenceIsComparedOnlyAtItsSchemeGridAndHardForm
   for (const json& x : {at, other_scheme, other_grid, penalty}) {
     r.push_back(WithReference(x, "trapezoid", 100));
   }
-  DeriveTargets(&r);
   const std::string md = SummaryMarkdown("s", r);
   EXPECT_EQ(LastCell(md, "ipopt + trapezoid, hard, N=100"), "0.001");  // |objective - 2| / 2
   EXPECT_EQ(LastCell(md, "ipopt + hermite-simpson, hard, N=100"), "-");
@@ -213,14 +221,13 @@ TEST(SummaryMarkdown, ADiscreteReferenceIsComparedOnlyAtItsSchemeGridAndHardForm
 }
 
 TEST(SummaryMarkdown, AReferenceOfUnknownSchemeIsComparedWithNothing) {
-  std::vector<json> r = {WithReference(Record("ipopt", "euler", 2.5, 2.4, "hard"), "", 0)};
+  std::vector<json> r = {WithReference(MakeRecord("ipopt", "euler", 2.5, 2.4, "hard"), "", 0)};
   r[0]["Jbar_fine"] = 2.0;
-  DeriveTargets(&r);
   EXPECT_EQ(LastCell(SummaryMarkdown("s", r), "ipopt + euler, hard, N=100"), "-");
 }
 
 TEST(SummaryMarkdown, RowsShowJbarAndTheResimulationDefect) {
-  json a = Record("ipopt", "trapezoid", 3.0, 2.0);
+  json a = MakeRecord("ipopt", "trapezoid", 3.0, 2.0);
   a["Jbar"] = 2.75;
   a["resimulation_defect"] = 4.5e-5;
   json b = a;
@@ -228,7 +235,6 @@ TEST(SummaryMarkdown, RowsShowJbarAndTheResimulationDefect) {
   b["Jbar"] = 2.25;
   b["resimulation_defect"] = 1.5e-3;
   std::vector<json> r = {a, b};
-  DeriveTargets(&r);
   const std::string md = SummaryMarkdown("s", r);
   EXPECT_NE(md.find("| J | Jbar | J fine | Jbar fine |"), std::string::npos);
   EXPECT_NE(md.find("| resim. defect |"), std::string::npos);

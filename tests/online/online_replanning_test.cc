@@ -1,6 +1,6 @@
 // Online re-planning with channel updates: bookkeeping, controls, determinism, the new
 // comm-path2d initial conditions.
-#include "problems/online/online_replanning.h"
+#include "drivers/online/online_replanning.h"
 
 #include <cmath>
 #include <numeric>

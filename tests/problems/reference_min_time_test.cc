@@ -120,10 +120,10 @@ TEST(MinTimeProblems, DerivativesMatchFiniteDifferences) {
 // H(u*) must not be beaten by a scan of the admissible set: v = -r s/|s| (r on a grid, plus
 // random directions) and sigma on a grid; for the problem as stated r <= sigma (the cone), for the
 // reformulation r <= sigma_max with the penalty in H.
-void ExpectMinimizerIsExact(const Ocp& ocp,
-                            bool cone,
-                            std::mt19937_64* rng,
-                            const std::string& what) {
+void ExpectMinTimeMinimizerIsExact(const Ocp& ocp,
+                                   bool cone,
+                                   std::mt19937_64* rng,
+                                   const std::string& what) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   Vec lo, hi;
   ocp.control_set().BoundingBox(&lo, &hi);
@@ -164,63 +164,16 @@ TEST(MinTimeProblems, HamiltonianMinimizersAreExact) {
   std::mt19937_64 rng(23);
   for (const std::string& name : kMinTimeNames) {
     const auto ocp = MakeProblem(name, {"sigma_max=3"}, 0);
-    ExpectMinimizerIsExact(*ocp, true, &rng, name);
+    ExpectMinTimeMinimizerIsExact(*ocp, true, &rng, name);
     // A weak and a strong cone penalty (both branches of the piecewise minimizer).
     for (double rho : {0.3, 1e4}) {
       HamiltonianReformulationOptions o;
       o.path_penalty = rho;
-      ExpectMinimizerIsExact(
+      ExpectMinTimeMinimizerIsExact(
           *ocp->HamiltonianReformulation(o), false, &rng, name + " rho=" + std::to_string(rho));
     }
   }
 }
-
-struct MinTimeCase {
-  const char* problem;
-  const char* transcription;
-  int N;
-  double tolerance;  // on |J - tf*| / tf*: the measured error rounded up
-};
-
-class MinTimeIpopt : public ::testing::TestWithParam<MinTimeCase> {};
-
-// Hard terminal form, Ipopt at tol 1e-12 (its bound_relax_factor 1e-8 still loosens the cone
-// |v|^2 <= sigma^2, which shortens tf by about 7e-9 relative). Jbar on the transcription's own
-// discretization is J (no penalty), the value the scheme's optimum has.
-TEST_P(MinTimeIpopt, ReachesTheReferenceTime) {
-  const MinTimeCase c = GetParam();
-  const auto ocp = MakeProblem(c.problem, {}, 0);
-  const SolveResult r = SolveWith(
-      "ipopt", *ocp, Request(*ocp, c.N, TerminalMode::kHard, c.transcription, {{"tol", "1e-12"}}));
-  ASSERT_EQ(r.status, SolveStatus::kConverged) << r.solver_status << " " << r.message;
-  EXPECT_LT(RelativeError(r.objective, ReferenceOf(c.problem)), c.tolerance)
-      << "J = " << r.objective;
-}
-
-// Measured (relative errors): brachistochrone Euler N=100 3.7e-3, trapezoid N=100 6.2e-6,
-// Hermite-Simpson N=25 7e-9, LGR N=10 7e-9; zermelo Euler 4.7e-3, trapezoid 8.2e-5, HS 3e-10,
-// LGR 3e-10; steering Euler 1.8e-6, trapezoid 4.4e-5, HS 1e-8, LGR 1e-8.
-INSTANTIATE_TEST_SUITE_P(Transcriptions,
-                         MinTimeIpopt,
-                         ::testing::Values(MinTimeCase{"brachistochrone", "euler", 100, 4e-3},
-                                           MinTimeCase{"brachistochrone", "trapezoid", 100, 7e-6},
-                                           MinTimeCase{
-                                               "brachistochrone", "hermite-simpson", 25, 2e-8},
-                                           MinTimeCase{"brachistochrone", "lgr", 10, 2e-8},
-                                           MinTimeCase{"zermelo", "euler", 100, 5e-3},
-                                           MinTimeCase{"zermelo", "trapezoid", 100, 9e-5},
-                                           MinTimeCase{"zermelo", "hermite-simpson", 25, 2e-8},
-                                           MinTimeCase{"zermelo", "lgr", 10, 2e-8},
-                                           MinTimeCase{"steering", "euler", 100, 2e-6},
-                                           MinTimeCase{"steering", "trapezoid", 100, 5e-5},
-                                           MinTimeCase{"steering", "hermite-simpson", 25, 2e-8},
-                                           MinTimeCase{"steering", "lgr", 10, 2e-8}),
-                         [](const auto& info) {
-                           std::string n =
-                               std::string(info.param.problem) + "_" + info.param.transcription;
-                           for (char& ch : n) ch = ch == '-' ? '_' : ch;
-                           return n + "_N" + std::to_string(info.param.N);
-                         });
 
 // Forward Euler is first order: doubling N halves the error (measured ratios 2.0 and 2.0).
 TEST(MinTimeProblems, EulerErrorHalvesWhenNDoubles) {

@@ -1,6 +1,10 @@
 # CTest script: install OCPBench from the build tree into a fresh prefix, configure and build the
-# user example (problems/user_example/) as an outside project against that install, and run it
-# (it exits non-zero when a method misses the known optimum).
+# user example (problems/user_example/) as an outside project against that install, and run:
+#  - my_problem (exits non-zero when a method misses the known optimum);
+#  - my_ocpbench, a full `ocpbench` with the example's problem and solver registered: its solver
+#    is listed and described, a bad option of it is refused like a built-in's (exit 2, the valid
+#    keys listed), and the example suite mixing it with built-in methods runs, with its rows in
+#    summary.md and every record valid against results/record.schema.json.
 #   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DCXX=... -DFLAGS=... [-DLINK_FLAGS=...] -P this
 foreach(var BUILD_DIR SOURCE_DIR WORK_DIR CXX)
   if(NOT DEFINED ${var})
@@ -20,4 +24,33 @@ run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/problems/user_example -B ${WORK_DIR}/build
     -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS=${FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${FLAGS} ${LINK_FLAGS}")
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/my_problem)
+
+set(cli ${WORK_DIR}/build/my_ocpbench)
+function(expect_output what needle)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(FIND "${out}${err}" "${needle}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "user_example_installed: ${what}: '${needle}' not in the output of "
+                        "'${ARGN}' (exit ${rc}):\n${out}${err}")
+  endif()
+  set(last_rc ${rc} PARENT_SCOPE)
+endfunction()
+expect_output("list" "projected-gradient" ${cli} list solvers)
+expect_output("describe" "max_backtracks (integer, default 40)" ${cli} describe solver projected-gradient)
+expect_output("bad option" "projected-gradient: unknown option 'stepsize' (valid: step, "
+              ${cli} solve --problem my-lq --solver projected-gradient --option stepsize=2)
+if(NOT last_rc EQUAL 2)
+  message(FATAL_ERROR "user_example_installed: a bad option exited ${last_rc}, not 2")
+endif()
+run(${cli} run ${SOURCE_DIR}/problems/user_example/my_suite.json --out ${WORK_DIR}/results)
+file(READ ${WORK_DIR}/results/summary.md summary)
+foreach(row "| projected-gradient, penalty, N=50 | 1 | 1 converged |"
+            "| hamiltonian, penalty, N=50 |" "| ipopt + euler, penalty, N=50 |")
+  string(FIND "${summary}" "${row}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "user_example_installed: no row '${row}' in summary.md:\n${summary}")
+  endif()
+endforeach()
+run(/usr/bin/python3 ${SOURCE_DIR}/tests/tools/validate_records.py
+    --schema ${SOURCE_DIR}/results/record.schema.json --min-records 5 ${WORK_DIR}/results)
 file(REMOVE_RECURSE ${WORK_DIR})

@@ -85,8 +85,8 @@ TEST(HamiltonianDescentOptions, IsValidRejectsEachBadField) {
   EXPECT_THROW(HamiltonianDescent{bad}, std::invalid_argument);
 }
 
-TEST(HamiltonianDescentOptions, ParsesStringsAndRejectsUnknownKeysAndBadValues) {
-  const auto o = HamiltonianDescent::ParseOptions({{"alpha", "0.2"},
+TEST(HamiltonianDescentOptions, AppliesOptionsAndRejectsUnknownKeysAndBadValues) {
+  const auto o = HamiltonianDescent::ApplyOptions({{"alpha", "0.2"},
                                                    {"beta", "0.25"},
                                                    {"max_iterations", "7"},
                                                    {"max_armijo_exponent", "30"},
@@ -100,7 +100,7 @@ TEST(HamiltonianDescentOptions, ParsesStringsAndRejectsUnknownKeysAndBadValues) 
   EXPECT_TRUE(std::isinf(o.max_cpu_seconds));
   auto message = [](const std::map<std::string, std::string>& m) {
     try {
-      HamiltonianDescent::ParseOptions(m);
+      HamiltonianDescent::ApplyOptions(m);
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }
@@ -109,10 +109,17 @@ TEST(HamiltonianDescentOptions, ParsesStringsAndRejectsUnknownKeysAndBadValues) 
   EXPECT_NE(message({{"max_iter", "5"}}).find("valid: alpha, beta"), std::string::npos);
   EXPECT_NE(message({{"max_iterations", "2.5"}}).find("max_iterations"), std::string::npos);
   EXPECT_NE(message({{"alpha", "abc"}}).find("alpha"), std::string::npos);
-  EXPECT_NE(message({{"alpha", "1.5"}}).find("alpha must lie in (0, 1)"), std::string::npos);
+  EXPECT_NE(message({{"alpha", "1.5"}}).find("'alpha': must be a number in (0, 1)"),
+            std::string::npos)
+      << message({{"alpha", "1.5"}});
   EXPECT_NE(message({{"beta", "0.5x"}}).find("beta"), std::string::npos);
   EXPECT_NE(message({{"armijo_prefilter", "yes"}}).find("armijo_prefilter"), std::string::npos);
-  EXPECT_FALSE(HamiltonianDescent::ParseOptions({{"armijo_prefilter", "0"}}).armijo_prefilter);
+  EXPECT_FALSE(HamiltonianDescent::ApplyOptions({{"armijo_prefilter", "0"}}).armijo_prefilter);
+  // Typed values are taken as they are; an integral number is an integer.
+  const auto typed = HamiltonianDescent::ApplyOptions({{"max_iterations", 1e3}, {"alpha", 0.3}});
+  EXPECT_EQ(typed.max_iterations, 1000);
+  EXPECT_EQ(typed.alpha, 0.3);
+  EXPECT_NE(message({{"max_iterations", "1e10"}}).find("max_iterations"), std::string::npos);
 }
 
 TEST(HamiltonianDescent, IsRegisteredAsHamiltonian) {

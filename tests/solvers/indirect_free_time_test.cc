@@ -86,7 +86,7 @@ TEST(FreeFinalTimeProblems, MethodsThatKeepTheHorizonFixedReportNotApplicable) {
     SCOPED_TRACE(solver);
     SolveRequest request = Request(*ocp, 20);
     request.transcription = "single-shooting";
-    if (std::string(solver) == "nlopt") request.algorithm = "LD_SLSQP";
+    if (std::string(solver) == "nlopt") request.options.Set("algorithm", "LD_SLSQP");
     const SolveResult r = FindSolver(solver).make()->Solve(*ocp, request);
     EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
     EXPECT_EQ(r.solver_status, "not_applicable");
@@ -328,7 +328,7 @@ TEST(DirectFreeTime, NloptSlsqpSolvesTheFreeTimeDoubleIntegrator) {
   const auto ocp = DoubleIntegratorFreeTime();
   SolveRequest request = Request(*ocp, 10, TerminalMode::kHard);
   request.transcription = "hermite-simpson";
-  request.algorithm = "LD_SLSQP";
+  request.options.Set("algorithm", "LD_SLSQP");
   const SolveResult r = FindSolver("nlopt").make()->Solve(*ocp, request);
   EXPECT_TRUE(IsSuccess(r.status)) << r.solver_status << ": " << r.message;
   EXPECT_NEAR(r.state_grid.tf(), kT, 1e-5);

@@ -210,8 +210,8 @@ TEST(IndirectNewtonOptions, DefaultsAreValid) {
   EXPECT_EQ(from_ipopt.EffectiveCostates(), IndirectNewton::Options::Costates::kFit);
 }
 
-TEST(IndirectNewtonOptions, ParsesEveryKey) {
-  const auto o = IndirectNewton::ParseOptions({{"max_iterations", "7"},
+TEST(IndirectNewtonOptions, AppliesEveryKey) {
+  const auto o = IndirectNewton::ApplyOptions({{"max_iterations", "7"},
                                                {"tolerance", "1e-8"},
                                                {"sufficient_decrease", "0.01"},
                                                {"backtrack", "0.25"},
@@ -228,14 +228,15 @@ TEST(IndirectNewtonOptions, ParsesEveryKey) {
   EXPECT_EQ(o.linear_solver, IndirectNewton::Options::LinearSolver::kUmfpack);
   EXPECT_EQ(o.warm_start, IndirectNewton::Options::WarmStart::kHamiltonian);
   EXPECT_EQ(o.costates, IndirectNewton::Options::Costates::kAdjoint);
-  ASSERT_EQ(o.warm_start_options.count("max_iterations"), 1u);
-  EXPECT_EQ(o.warm_start_options.at("max_iterations"), "20");
+  // The nested key is resolved by the hamiltonian solver's schema: a typed integer.
+  ASSERT_NE(o.warm_start_options.Find("max_iterations"), nullptr);
+  EXPECT_EQ(o.warm_start_options.Find("max_iterations")->integer(), 20);
 }
 
 TEST(IndirectNewtonOptions, RejectsBadKeysAndValuesNamingThem) {
   auto message = [](std::map<std::string, std::string> o) -> std::string {
     try {
-      IndirectNewton::ParseOptions(o);
+      IndirectNewton::ApplyOptions(o);
     } catch (const std::invalid_argument& e) {
       return e.what();
     }
@@ -247,7 +248,8 @@ TEST(IndirectNewtonOptions, RejectsBadKeysAndValuesNamingThem) {
     EXPECT_NE(m.find("linear_solver"), std::string::npos) << m;  // lists the valid keys
   }
   EXPECT_NE(message({{"tolerance", "0"}}).find("tolerance"), std::string::npos);
-  EXPECT_NE(message({{"tolerance", "abc"}}).find("not a number"), std::string::npos);
+  EXPECT_NE(message({{"tolerance", "abc"}}).find("must be a number > 0"), std::string::npos);
+  EXPECT_NE(message({{"hamiltonian.alpha", "2"}}).find("'hamiltonian.alpha'"), std::string::npos);
   EXPECT_NE(message({{"max_iterations", "2.5"}}).find("integer"), std::string::npos);
   EXPECT_NE(message({{"max_iterations", "-1"}}).find(">= 0"), std::string::npos);
   EXPECT_NE(message({{"backtrack", "1"}}).find("(0, 1)"), std::string::npos);
@@ -255,7 +257,7 @@ TEST(IndirectNewtonOptions, RejectsBadKeysAndValuesNamingThem) {
   EXPECT_NE(message({{"min_step", "0"}}).find("(0, 1]"), std::string::npos);
   EXPECT_NE(message({{"linear_solver", "lu"}}).find("umfpack, klu"), std::string::npos);
   EXPECT_NE(message({{"warm_start", "nlopt"}}).find("none, hamiltonian, ipopt"), std::string::npos);
-  EXPECT_NE(message({{"costates", "exact"}}).find("fit, adjoint, default"), std::string::npos);
+  EXPECT_NE(message({{"costates", "exact"}}).find("default, fit, adjoint"), std::string::npos);
   EXPECT_NE(message({{"hamiltonian.alpha", "0.2"}}).find("warm_start"), std::string::npos);
   IndirectNewton::Options bad;
   bad.max_iterations = -1;
@@ -764,7 +766,7 @@ TEST(IndirectNewton, PolishesTheHamiltonianDescentOnCommPath2d) {
   request.integrator = Integrator::kRk4;  // the descent's integrator, and the evaluator's below
   request.options = {{"max_iterations", "200"}};  // the descent's (Newton's starts below are cheap)
   const SolveResult descent = FindSolver("hamiltonian").make()->Solve(*ocp, request);
-  request.options.clear();
+  request.options = OptionMap();
   ASSERT_EQ(descent.states.cols(), N + 1) << descent.message;
   ASSERT_EQ(descent.costates.cols(), N + 1) << descent.message;
 

@@ -211,15 +211,15 @@ TEST(IpoptOptions, DefaultsAreValidAndTheTableMatchesIpopt) {
 }
 
 TEST(IpoptOptions, ParsesEachTypeAndRejectsBadInput) {
-  const IpoptOptions o = IpoptOptions::FromStrings({{"tol", "1e-10"},
-                                                    {"max_iter", "77"},
-                                                    {"mu_strategy", "adaptive"},
-                                                    {"hessian_approximation", "limited-memory"},
-                                                    {"obj_scaling_factor", "0.01"},
-                                                    {"limited_memory_max_history", "12"},
-                                                    {"bound_push", "1e-3"},
-                                                    {"derivative_test", "first-order"}},
-                                                   IpoptOptions());
+  const IpoptOptions o = IpoptOptions::Apply({{"tol", "1e-10"},
+                                              {"max_iter", "77"},
+                                              {"mu_strategy", "adaptive"},
+                                              {"hessian_approximation", "limited-memory"},
+                                              {"obj_scaling_factor", "0.01"},
+                                              {"limited_memory_max_history", "12"},
+                                              {"bound_push", "1e-3"},
+                                              {"derivative_test", "first-order"}},
+                                             IpoptOptions());
   EXPECT_EQ(o.tol, 1e-10);
   EXPECT_EQ(o.max_iter, 77);
   EXPECT_EQ(o.mu_strategy, "adaptive");
@@ -240,7 +240,7 @@ TEST(IpoptOptions, ParsesEachTypeAndRejectsBadInput) {
   }
   auto message = [](const std::map<std::string, std::string>& m) {
     try {
-      IpoptOptions::FromStrings(m, IpoptOptions());
+      IpoptOptions::Apply(m, IpoptOptions());
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }
@@ -250,7 +250,7 @@ TEST(IpoptOptions, ParsesEachTypeAndRejectsBadInput) {
   EXPECT_NE(message({{"max_itr", "5"}}).find("max_iter"), std::string::npos);  // lists valid keys
   EXPECT_NE(message({{"max_iter", "1.5"}}).find("integer"), std::string::npos);
   EXPECT_NE(message({{"tol", "abc"}}).find("number"), std::string::npos);
-  EXPECT_NE(message({{"tol", "-1"}}).find("tol must be > 0"), std::string::npos);
+  EXPECT_NE(message({{"tol", "-1"}}).find("'tol': must be a number > 0"), std::string::npos);
   EXPECT_NE(message({{"mu_strategy", "fast"}}).find("monotone"), std::string::npos);
   EXPECT_NE(message({{"linear_solver", "ma27"}}).find("mumps"), std::string::npos);
   EXPECT_NE(message({{"print_level", "13"}}).find("print_level"), std::string::npos);
@@ -266,7 +266,7 @@ SolveRequest DoubleIntegratorRequest(const std::string& transcription, int N, Te
   return request;
 }
 
-bool Registered(const std::string& transcription) {
+bool TranscriptionRegistered(const std::string& transcription) {
   for (const TranscriptionInfo& t : Transcriptions()) {
     if (t.name == transcription) return true;
   }
@@ -285,7 +285,7 @@ class IpoptOnDoubleIntegrator : public ::testing::TestWithParam<SchemeCase> {};
 
 TEST_P(IpoptOnDoubleIntegrator, ReachesSixWithinTheSchemesAccuracy) {
   const SchemeCase c = GetParam();
-  if (!Registered(c.name)) GTEST_SKIP() << c.name << " is not registered";
+  if (!TranscriptionRegistered(c.name)) GTEST_SKIP() << c.name << " is not registered";
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   const SolveRequest request = DoubleIntegratorRequest(c.name, 20, TerminalMode::kHard);
   const SolveResult r = FindSolver("ipopt").make()->Solve(*ocp, request);
@@ -320,7 +320,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(IpoptSolver, SingleShootingAndTheEulerTranscriptionShareTheirOptimum) {
   // Single shooting (Euler) and the Euler transcription are the same discrete problem.
-  if (!Registered("euler")) GTEST_SKIP() << "euler is not registered";
+  if (!TranscriptionRegistered("euler")) GTEST_SKIP() << "euler is not registered";
   const auto ocp = MakeProblem("double-integrator-bounded", {}, 0);
   const IpoptSolver solver;
   SolveRequest request = DoubleIntegratorRequest("euler", 40, TerminalMode::kHard);
@@ -365,7 +365,7 @@ TEST(IpoptSolver, TranscriptionScalingKeepsResultsInProblemUnits) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   SolveRequest request = DoubleIntegratorRequest("single-shooting", 30, TerminalMode::kPenalty);
   const SolveResult plain = IpoptSolver().Solve(*ocp, request);
-  request.options = {{"objective_scale", "0.01"}, {"control_scale", "5"}};
+  request.transcription_options = {{"objective_scale", "0.01"}, {"control_scale", "5"}};
   const SolveResult scaled = IpoptSolver().Solve(*ocp, request);
   ASSERT_EQ(plain.status, SolveStatus::kConverged) << plain.message;
   ASSERT_EQ(scaled.status, SolveStatus::kConverged) << scaled.message;
@@ -391,7 +391,7 @@ TEST(IpoptSolver, StartsFromTheRequestsInitialGuess) {
   // With max_iter = 0 Ipopt returns its starting point: the guess (no bounds to push it from).
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   for (const std::string transcription : {"single-shooting", "euler"}) {
-    if (!Registered(transcription)) continue;
+    if (!TranscriptionRegistered(transcription)) continue;
     SolveRequest request = DoubleIntegratorRequest(transcription, 10, TerminalMode::kHard);
     Mat guess(1, 10);
     for (int k = 0; k < 10; ++k) guess(0, k) = 0.3 * k - 1.0;
@@ -404,6 +404,31 @@ TEST(IpoptSolver, StartsFromTheRequestsInitialGuess) {
   }
 }
 
+// The default ordering (-1: AMD for NLPs with an exact Hessian) and MUMPS' automatic choice
+// (7, Ipopt's default, through the request's options, which override the field) take the same
+// iterates on the paper's problem: same iteration count and objective to rounding.
+TEST(IpoptSolver, MumpsOrderingChangesNoIterate) {
+  const auto ocp = MakeProblem("comm-path2d", {"channel=0"}, 1);
+  for (const std::string scheme : {"euler", "trapezoid", "hermite-simpson", "lgr"}) {
+    SolveRequest request;
+    request.grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 60);
+    request.transcription = scheme;
+    const SolveResult amd = IpoptSolver().Solve(*ocp, request);
+    request.options = {{"mumps_pivot_order", "7"}};
+    const SolveResult automatic = IpoptSolver().Solve(*ocp, request);
+    ASSERT_EQ(amd.status, SolveStatus::kConverged) << scheme;
+    EXPECT_EQ(amd.iterations, automatic.iterations) << scheme;
+    EXPECT_NEAR(amd.objective, automatic.objective, 1e-10 * std::abs(automatic.objective))
+        << scheme;
+    request.options = {{"mumps_pivot_order", "8"}};  // applied: Ipopt's range is 0..7
+    EXPECT_EQ(IpoptSolver().Solve(*ocp, request).status, SolveStatus::kInvalidInput) << scheme;
+  }
+  IpoptOptions o;
+  EXPECT_EQ(o.mumps_pivot_order, -1);
+  o.mumps_pivot_order = 8;
+  EXPECT_FALSE(o.IsValid(nullptr));
+}
+
 TEST(IpoptSolver, RejectsInvalidRequests) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   const IpoptSolver solver;
@@ -414,9 +439,12 @@ TEST(IpoptSolver, RejectsInvalidRequests) {
   request.transcription = "single-shooting";
   request.options = {{"bogus", "1"}};
   EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
-  request.options = {{"objective_scale", "-1"}};
-  EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
   request.options = {};
+  request.transcription_options = {{"objective_scale", "-1"}};
+  EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
+  request.transcription_options = {{"objective_scale", "1"}, {"max_iter", "3"}};  // Ipopt's key
+  EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
+  request.transcription_options = {};
   request.grid = TimeGrid::Uniform(0.0, 2.0, 10);  // the horizon is [0, 1]
   EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
 }

@@ -211,21 +211,21 @@ TEST(NloptStatus, EveryResultCodeHasANameAndAGroup) {
   EXPECT_EQ(NloptResultName(99), "UNKNOWN_RESULT(99)");
 }
 
-TEST(NloptOptions, DefaultsAreValidAndStringsAreParsed) {
+TEST(NloptOptions, DefaultsAreValidAndOptionsAreResolvedBySchema) {
   std::string error;
   EXPECT_TRUE(NloptOptions().IsValid(&error)) << error;
-  const NloptOptions o = NloptOptions::FromStrings({{"algorithm", "LD_MMA"},
-                                                    {"ftol_rel", "1e-6"},
-                                                    {"maxeval", "50"},
-                                                    {"record_history", "false"}},
-                                                   NloptOptions());
+  const NloptOptions o = NloptOptions::Apply({{"algorithm", "LD_MMA"},
+                                              {"ftol_rel", "1e-6"},
+                                              {"maxeval", "50"},
+                                              {"record_history", "false"}},
+                                             NloptOptions());
   EXPECT_EQ(o.algorithm, "LD_MMA");
   EXPECT_EQ(o.ftol_rel, 1e-6);
   EXPECT_EQ(o.maxeval, 50);
   EXPECT_FALSE(o.record_history);
   auto message = [](const std::map<std::string, std::string>& m) {
     try {
-      NloptOptions::FromStrings(m, NloptOptions());
+      NloptOptions::Apply(m, NloptOptions());
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }
@@ -235,7 +235,12 @@ TEST(NloptOptions, DefaultsAreValidAndStringsAreParsed) {
   EXPECT_NE(message({{"max_eval", "5"}}).find("maxeval"), std::string::npos);
   EXPECT_NE(message({{"algorithm", "LN_COBYLA"}}).find("LD_SLSQP"), std::string::npos);
   EXPECT_NE(message({{"local_algorithm", "AUGLAG"}}).find("local_algorithm"), std::string::npos);
-  EXPECT_NE(message({{"maxeval", "0"}}).find("maxeval must be >= 1"), std::string::npos);
+  EXPECT_NE(message({{"maxeval", "0"}}).find("'maxeval': must be an integer >= 1"),
+            std::string::npos)
+      << message({{"maxeval", "0"}});
+  // The one grammar: an integer option takes 1e3, a number option inf only where allowed.
+  EXPECT_EQ(NloptOptions::Apply({{"maxeval", "1e3"}}, NloptOptions()).maxeval, 1000);
+  EXPECT_NE(message({{"ftol_rel", "inf"}}).find("'ftol_rel'"), std::string::npos);
   EXPECT_NE(message({{"maxtime", "x"}}).find("number"), std::string::npos);
 }
 
@@ -270,7 +275,7 @@ TEST(NloptSolver, EveryAlgorithmOnThePenalizedDoubleIntegrator) {
                                                    {"LD_MMA", 4e-3},
                                                    {"LD_CCSAQ", 1e-3}};
   for (const auto& [alg, tol] : tolerance) {
-    request.algorithm = alg;
+    request.options.Set("algorithm", alg);
     const SolveResult r = solver.Solve(*ocp, request);
     const bool creeps = alg == "LD_MMA" || alg == "LD_CCSAQ";
     EXPECT_EQ(r.status, creeps ? SolveStatus::kStepTooSmall : SolveStatus::kConverged)
@@ -293,7 +298,7 @@ TEST(NloptSolver, HardTerminalConstraintsOnTheBoundedDoubleIntegrator) {
   ASSERT_EQ(ipopt.status, SolveStatus::kConverged);
   const NloptSolver solver;
   for (const std::string alg : {"LD_SLSQP", "AUGLAG", "AUGLAG_EQ"}) {
-    request.algorithm = alg;
+    request.options.Set("algorithm", alg);
     const SolveResult r = solver.Solve(*ocp, request);
     EXPECT_EQ(r.status, SolveStatus::kConverged) << alg << ": " << r.message;
     EXPECT_NEAR(r.objective, ipopt.objective, 1e-6 * ipopt.objective) << alg;
@@ -302,7 +307,7 @@ TEST(NloptSolver, HardTerminalConstraintsOnTheBoundedDoubleIntegrator) {
     EXPECT_LE(ev.control_violation, 0.0) << alg;
   }
   for (const std::string alg : {"LD_MMA", "LD_CCSAQ", "LD_LBFGS"}) {
-    request.algorithm = alg;
+    request.options.Set("algorithm", alg);
     const SolveResult r = solver.Solve(*ocp, request);
     EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << alg;
     EXPECT_EQ(r.controls.values().cols(), 20);  // the starting controls, still judged
@@ -337,9 +342,9 @@ void ExpectCases(const Ocp& ocp,
   const NloptSolver solver;
   for (const PaperCase& c : cases) {
     const std::string name = std::string(c.algorithm) + "(" + c.local + ")";
-    request.algorithm = c.algorithm;
     request.options = {{"local_algorithm", c.local}};
-    if (c.maxeval > 0) request.options["maxeval"] = std::to_string(c.maxeval);
+    request.options.Set("algorithm", c.algorithm);
+    if (c.maxeval > 0) request.options.Set("maxeval", std::to_string(c.maxeval));
     const SolveResult r = solver.Solve(ocp, request);
     EXPECT_EQ(r.status, c.status) << name << ": " << r.message;
     EXPECT_EQ(r.solver_status, c.solver_status) << name << ": " << r.message;
@@ -451,8 +456,8 @@ TEST(NloptSolver, DefaultLimitsOnThePapersGrids) {
   const NloptSolver solver;
   auto run = [&](const std::string& algorithm, int N, bool one_evaluation) {
     SolveRequest request = ShootingRequest(ocp->tf(), N, TerminalMode::kPenalty);
-    request.algorithm = algorithm;
     if (one_evaluation) request.options = {{"maxeval", "1"}};
+    request.options.Set("algorithm", algorithm);
     return solver.Solve(*ocp, request);
   };
   // SLSQP: n = 3N; the paper's N = 400 (n = 1200) is refused, N = 166 (n = 498) runs.
@@ -473,15 +478,14 @@ TEST(NloptSolver, DefaultLimitsOnThePapersGrids) {
   EXPECT_NE(r.message.find("max_dense_jacobian"), std::string::npos) << r.message;
 }
 
-TEST(NloptSolver, RequestAlgorithmOverridesAndBadRequestsThrow) {
+TEST(NloptSolver, AlgorithmOptionOverridesAndBadRequestsThrow) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   const NloptSolver solver;
   SolveRequest request = ShootingRequest(1.0, 5, TerminalMode::kHard);
-  request.algorithm = "LD_LBFGS";
+  request.options.Set("algorithm", "LD_LBFGS");
   EXPECT_EQ(solver.Solve(*ocp, request).status, SolveStatus::kNotApplicable);
-  request.algorithm = "LD_NEWTON";
+  request.options.Set("algorithm", "LD_NEWTON");
   EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
-  request.algorithm = "";
   request.options = {{"tol", "1e-8"}};  // an Ipopt key
   EXPECT_THROW(solver.Solve(*ocp, request), std::invalid_argument);
   EXPECT_TRUE(FindSolver("nlopt").uses_transcription);

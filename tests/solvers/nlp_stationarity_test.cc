@@ -47,7 +47,7 @@ TEST(NlpStationarity, NloptSizeTestsAtNonStationaryPointsAreNotConverged) {
   SolveRequest request;
   request.grid = TimeGrid::Uniform(0.0, 1.0, 20);
   request.transcription = "single-shooting";
-  request.algorithm = "LD_MMA";
+  request.options.Set("algorithm", "LD_MMA");
   SolveResult r = FindSolver("nlopt").make()->Solve(*ocp, request);
   ASSERT_EQ(r.solver_status, "FTOL_REACHED") << r.message;
   const double residual = r.solver_stats.at("nlopt_stationarity");
@@ -55,13 +55,13 @@ TEST(NlpStationarity, NloptSizeTestsAtNonStationaryPointsAreNotConverged) {
   EXPECT_EQ(r.status, SolveStatus::kStepTooSmall);
   EXPECT_NE(r.message.find("not stationary"), std::string::npos) << r.message;
 
-  request.options["stationarity_tol"] = std::to_string(2.0 * residual);
+  request.options.Set("stationarity_tol", std::to_string(2.0 * residual));
   r = FindSolver("nlopt").make()->Solve(*ocp, request);
   EXPECT_EQ(r.status, SolveStatus::kConverged) << r.message;
 
   // SLSQP reaches the optimum, and its point passes the check.
-  request.options.clear();
-  request.algorithm = "LD_SLSQP";
+  request.options = OptionMap();
+  request.options.Set("algorithm", "LD_SLSQP");
   r = FindSolver("nlopt").make()->Solve(*ocp, request);
   EXPECT_EQ(r.status, SolveStatus::kConverged) << r.message;
   EXPECT_LE(r.solver_stats.at("nlopt_stationarity"), 1e-4);

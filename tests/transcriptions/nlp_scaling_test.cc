@@ -1,5 +1,8 @@
 #include "transcriptions/nlp_scaling.h"
 
+#include "transcriptions/radau_nodes.h"
+#include "transcriptions/registry.h"
+
 #include <stdexcept>
 #include <string>
 
@@ -33,20 +36,31 @@ TEST(NlpScaling, RejectsBadValuesAndSizes) {
   EXPECT_FALSE(s.IsIdentity());
 }
 
-TEST(NlpScaling, ParsesItsOwnKeysOnly) {
-  NlpScaling s;
-  EXPECT_TRUE(ParseNlpScalingOption("objective_scale", "1e-3", &s));
-  EXPECT_DOUBLE_EQ(s.objective, 1e-3);
-  EXPECT_TRUE(ParseNlpScalingOption("state_scale", "10,0.5,2", &s));
-  ASSERT_EQ(s.state.size(), 3);
-  EXPECT_DOUBLE_EQ(s.state[1], 0.5);
-  EXPECT_TRUE(ParseNlpScalingOption("control_scale", "4", &s));
-  EXPECT_DOUBLE_EQ(s.control[0], 4.0);
-  EXPECT_FALSE(ParseNlpScalingOption("max_iter", "3", &s));
-  EXPECT_THROW(ParseNlpScalingOption("objective_scale", "-1", &s), std::invalid_argument);
-  EXPECT_THROW(ParseNlpScalingOption("objective_scale", "abc", &s), std::invalid_argument);
-  EXPECT_THROW(ParseNlpScalingOption("state_scale", "1,,2", &s), std::invalid_argument);
-  EXPECT_THROW(ParseNlpScalingOption("state_scale", "1,inf", &s), std::invalid_argument);
+TEST(NlpScaling, EveryTranscriptionTakesTheScalingKeysByItsSchema) {
+  for (const TranscriptionInfo& info : Transcriptions()) {
+    const TranscriptionOptions o = info.Configure(
+        {{"objective_scale", "1e-3"}, {"state_scale", "10,0.5,2"}, {"control_scale", 4}});
+    EXPECT_DOUBLE_EQ(o.scaling.objective, 1e-3) << info.name;
+    ASSERT_EQ(o.scaling.state.size(), 3) << info.name;
+    EXPECT_DOUBLE_EQ(o.scaling.state[1], 0.5) << info.name;
+    ASSERT_EQ(o.scaling.control.size(), 1) << info.name;
+    EXPECT_DOUBLE_EQ(o.scaling.control[0], 4.0) << info.name;
+    EXPECT_THROW(info.Configure({{"max_iter", "3"}}), std::invalid_argument) << info.name;
+    EXPECT_THROW(info.Configure({{"objective_scale", "-1"}}), std::invalid_argument);
+    EXPECT_THROW(info.Configure({{"objective_scale", "abc"}}), std::invalid_argument);
+    EXPECT_THROW(info.Configure({{"state_scale", "1,,2"}}), std::invalid_argument);
+    EXPECT_THROW(info.Configure({{"state_scale", "1,inf"}}), std::invalid_argument);
+  }
+}
+
+TEST(TranscriptionRegistry, OnlyLgrTakesADegreeWithinItsRadauLimit) {
+  EXPECT_EQ(FindTranscription("lgr").Configure({{"degree", 7}}).degree, 7);
+  EXPECT_EQ(FindTranscription("lgr").PointsPerInterval({{"degree", 7}}), 7);
+  EXPECT_EQ(FindTranscription("hermite-simpson").PointsPerInterval({}), 2);
+  EXPECT_EQ(FindTranscription("euler").PointsPerInterval({}), 1);
+  EXPECT_THROW(FindTranscription("lgr").Configure({{"degree", kMaxRadauPoints + 1}}),
+               std::invalid_argument);
+  EXPECT_THROW(FindTranscription("trapezoid").Configure({{"degree", 3}}), std::invalid_argument);
 }
 
 }  // namespace

@@ -6,11 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "core/option_value.h"
 #include "core/solve_result.h"
 #include "core/time_grid.h"
 #include "core/types.h"
 #include "problems/comm_path2d.h"
-#include "problems/online/online_channel.h"
+#include "drivers/online/online_channel.h"
 
 namespace ocpb {
 
@@ -36,8 +37,9 @@ struct OnlineReplanningOptions {
   int intervals = 400;                 ///< N on [0, tf]; every plan uses the same step tf / N
   std::string solver = "hamiltonian";  ///< registry name ("hamiltonian", "ipopt", ...)
   std::string transcription;           ///< NLP solvers ("euler": the same discrete problem)
-  std::map<std::string, std::string> offline_options;  ///< solver options of the plan at t0 = 0
-  std::map<std::string, std::string> replan_options;   ///< solver options of the re-plans
+  OptionMap transcription_options;     ///< the transcription's options, every solve
+  OptionMap offline_options;           ///< solver options of the plan at t0 = 0
+  OptionMap replan_options;            ///< solver options of the re-plans
 
   /// False with a one-line reason naming the field when a value breaks its rule (the
   /// multiple-of-step rule is checked by RunOnlineReplanning, which knows tf).

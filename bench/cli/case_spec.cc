@@ -1,0 +1,299 @@
+#include "bench/cli/case_spec.h"
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "bench/cli/json_values.h"
+#include "drivers/online/online_scenario.h"
+#include "solvers/registry.h"
+
+namespace ocpb {
+namespace {
+
+using nlohmann::json;
+
+// The value a case field (algorithm, degree) gives an option, unless the options give the same
+// key too: then both must agree.
+void SetFromField(const char* field,
+                  const std::string& key,
+                  const OptionValue& value,
+                  OptionMap* options) {
+  if (const OptionValue* given = options->Find(key)) {
+    if (!(*given == value)) {
+      throw std::invalid_argument(std::string(field) + ": '" + value.ToText() +
+                                  "' disagrees with options." + key + " = '" + given->ToText() +
+                                  "' (give it once)");
+    }
+    return;
+  }
+  options->Set(key, value);
+}
+
+// The schema's messages name the field ("online option 'estimator': ...", "online: unknown
+// option ...").
+OptionMap ResolveOnline(const OptionMap& settings) {
+  return OnlineScenarioSchema().Resolve(settings);
+}
+
+}  // namespace
+
+TerminalMode ParseTerminal(const std::string& s) {
+  if (s == "penalty") return TerminalMode::kPenalty;
+  if (s == "hard") return TerminalMode::kHard;
+  throw std::invalid_argument("terminal: unknown form '" + s + "' (valid: penalty, hard)");
+}
+
+std::string CaseSpec::Key() const {
+  std::string key = fmt::format("{}|seed={}|{}|{}|{}|N={}|deg={}|{}|{}|eval={}",
+                                problem,
+                                seed,
+                                solver,
+                                transcription,
+                                algorithm,
+                                intervals,
+                                degree,
+                                ToString(terminal),
+                                ToString(integrator),
+                                ToString(evaluate_with));
+  for (const std::string& s : set) key += "|set:" + s;
+  for (const auto& [k, v] : options) key += "|opt:" + k + "=" + v.ToText();
+  if (!initial_guess.empty()) key += "|guess=" + initial_guess;
+  if (kind != "solve") {
+    key += "|kind=" + kind;
+    for (const auto& [k, v] : online) key += "|online:" + k + "=" + v.ToText();
+    for (const auto& [k, v] : replan_options) key += "|replan:" + k + "=" + v.ToText();
+  }
+  return key;
+}
+
+void CaseSpec::Validate() const {
+  if (problem.empty()) throw std::invalid_argument("problem: required");
+  if (solver.empty()) throw std::invalid_argument("solver: required");
+  if (intervals < 0) throw std::invalid_argument("N: must be >= 1 (or omitted for the default)");
+  if (degree < 1) throw std::invalid_argument("degree: must be >= 1");
+  if (repeats < 1 || repeats > 1000) throw std::invalid_argument("repeats: must be in 1..1000");
+  if (kind != "solve" && kind != "online") {
+    throw std::invalid_argument("kind: unknown '" + kind + "' (valid: solve, online)");
+  }
+  if (kind == "solve" && (!online.empty() || !replan_options.empty())) {
+    throw std::invalid_argument("online, replan_options: only for kind \"online\"");
+  }
+}
+
+MethodOptions ResolveMethodOptions(const CaseSpec& spec) {
+  const SolverInfo& sinfo = FindSolver(spec.solver);
+  const TranscriptionInfo* tinfo = nullptr;
+  if (sinfo.uses_transcription && !spec.transcription.empty()) {
+    tinfo = &FindTranscription(spec.transcription);
+  }
+  MethodOptions out;
+  for (const auto& [key, value] : spec.options) {
+    try {
+      if (sinfo.options.Contains(key)) {
+        out.solver.Set(key, sinfo.options.ResolveOne(key, value));
+      } else if (tinfo != nullptr && tinfo->options.Contains(key)) {
+        out.transcription.Set(key, tinfo->options.ResolveOne(key, value));
+      } else {
+        std::string valid = sinfo.options.Names();
+        if (tinfo != nullptr)
+          valid += "; transcription " + tinfo->name + ": " + tinfo->options.Names();
+        throw std::invalid_argument(spec.solver + ": unknown option '" + key +
+                                    "' (valid: " + valid + ")");
+      }
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("options: ") + e.what());
+    }
+  }
+  if (!spec.algorithm.empty()) {
+    if (!sinfo.options.Contains("algorithm")) {
+      throw std::invalid_argument("algorithm: solver '" + spec.solver +
+                                  "' has no option 'algorithm' (it takes none)");
+    }
+    try {
+      SetFromField("algorithm",
+                   "algorithm",
+                   sinfo.options.ResolveOne("algorithm", spec.algorithm),
+                   &out.solver);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("algorithm: ") + e.what());
+    }
+  }
+  if (tinfo != nullptr && tinfo->options.Contains("degree")) {
+    try {
+      SetFromField("degree",
+                   "degree",
+                   tinfo->options.ResolveOne("degree", static_cast<long long>(spec.degree)),
+                   &out.transcription);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("degree: ") + e.what());
+    }
+  }
+  if (sinfo.check_options) {
+    try {
+      sinfo.check_options(out.solver);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("options: ") + e.what());
+    }
+  }
+  return out;
+}
+
+CaseSpec ResolveCase(CaseSpec spec) {
+  const SolverInfo& sinfo = FindSolver(spec.solver);
+  if (!spec.transcription.empty()) FindTranscription(spec.transcription);
+  const MethodOptions resolved = ResolveMethodOptions(spec);
+  // Keep the options as the case gave them (algorithm and degree stay case fields), typed.
+  OptionMap options;
+  for (const auto& [key, value] : spec.options) {
+    const OptionValue* v = resolved.solver.Find(key);
+    options.Set(key, v ? *v : *resolved.transcription.Find(key));
+  }
+  spec.options = options;
+  if (spec.kind == "online") {
+    spec.online = ResolveOnline(spec.online);
+    try {
+      spec.replan_options = sinfo.options.Resolve(spec.replan_options);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("replan_options: ") + e.what());
+    }
+  }
+  return spec;
+}
+
+CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
+  if (!j.is_object()) throw std::invalid_argument(where + ": a case must be a JSON object");
+  static const std::set<std::string> kKeys = {"problem",
+                                              "set",
+                                              "seed",
+                                              "solver",
+                                              "transcription",
+                                              "algorithm",
+                                              "N",
+                                              "degree",
+                                              "terminal",
+                                              "integrator",
+                                              "evaluate_with",
+                                              "options",
+                                              "repeats",
+                                              "keep_trajectory",
+                                              "kind",
+                                              "online",
+                                              "replan_options"};
+  for (const auto& [k, v] : j.items()) {
+    if (!kKeys.count(k)) {
+      std::string valid;
+      for (const auto& key : kKeys) valid += (valid.empty() ? "" : ", ") + key;
+      throw std::invalid_argument(where + ": unknown key '" + k + "' (valid: " + valid + ")");
+    }
+  }
+  auto field = [&](const char* name) { return where + "." + name; };
+  auto get_string = [&](const char* name, std::string* out) {
+    if (!j.contains(name)) return;
+    if (!j[name].is_string()) throw std::invalid_argument(field(name) + ": must be a string");
+    *out = j[name].get<std::string>();
+  };
+  auto get_int = [&](const char* name, long long lo, long long hi, long long* out) {
+    if (!j.contains(name)) return;
+    const json& v = j[name];
+    if (!v.is_number_integer()) {
+      throw std::invalid_argument(field(name) + ": must be an integer");
+    }
+    const long long x = v.get<long long>();
+    if (x < lo || x > hi) {
+      throw std::invalid_argument(
+          fmt::format("{}: {} out of range [{}, {}]", field(name), x, lo, hi));
+    }
+    *out = x;
+  };
+  CaseSpec spec;
+  get_string("problem", &spec.problem);
+  get_string("solver", &spec.solver);
+  get_string("transcription", &spec.transcription);
+  get_string("algorithm", &spec.algorithm);
+  long long seed = 1, n = 0, degree = 3, repeats = 1;
+  get_int("seed", 0, (1LL << 53), &seed);
+  get_int("N", 1, std::numeric_limits<int>::max(), &n);  // the memory check is ValidateCase's
+  get_int("degree", 1, 1000, &degree);                   // the transcription's rule follows
+  get_int("repeats", 1, 1000, &repeats);
+  spec.seed = static_cast<std::uint64_t>(seed);
+  spec.intervals = static_cast<int>(n);
+  spec.degree = static_cast<int>(degree);
+  spec.repeats = static_cast<int>(repeats);
+  std::string s;
+  if (j.contains("terminal")) {
+    get_string("terminal", &s);
+    try {
+      spec.terminal = ParseTerminal(s);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(where + "." + e.what());
+    }
+  }
+  for (const char* name : {"integrator", "evaluate_with"}) {
+    if (!j.contains(name)) continue;
+    s.clear();
+    get_string(name, &s);
+    try {
+      (std::string(name) == "integrator" ? spec.integrator : spec.evaluate_with) =
+          ParseIntegrator(s);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(field(name) + ": " + e.what());
+    }
+  }
+  if (j.contains("keep_trajectory")) {
+    if (!j["keep_trajectory"].is_boolean()) {
+      throw std::invalid_argument(field("keep_trajectory") + ": must be true or false");
+    }
+    spec.keep_trajectory = j["keep_trajectory"].get<bool>();
+  }
+  if (j.contains("set")) {
+    const json& set = j["set"];
+    if (!set.is_object()) {
+      throw std::invalid_argument(field("set") +
+                                  ": must be an object {\"key\": value or [values]}");
+    }
+    for (const auto& [k, v] : set.items()) {
+      const std::string where_k = field("set") + "." + k;
+      std::vector<double> values;
+      auto push = [&](const json& x) {
+        if (!x.is_number())
+          throw std::invalid_argument(where_k + ": must be a number or a list of numbers");
+        const double d = x.get<double>();
+        if (!std::isfinite(d)) throw std::invalid_argument(where_k + ": must be finite");
+        values.push_back(d);
+      };
+      if (v.is_array()) {
+        if (v.empty()) throw std::invalid_argument(where_k + ": empty list");
+        for (const json& x : v) push(x);
+      } else {
+        push(v);
+      }
+      spec.set.push_back(k + "=" + OptionValue(values).ToText());
+    }
+  }
+  get_string("kind", &spec.kind);
+  auto get_map = [&](const char* name, OptionMap* out) {
+    if (!j.contains(name)) return;
+    const json& opts = j[name];
+    if (!opts.is_object()) throw std::invalid_argument(field(name) + ": must be an object");
+    for (const auto& [k, v] : opts.items()) {
+      out->Set(k, OptionValueFromJson(v, field(name) + "." + k));
+    }
+  };
+  get_map("options", &spec.options);
+  get_map("online", &spec.online);
+  get_map("replan_options", &spec.replan_options);
+  if (spec.problem.empty()) throw std::invalid_argument(field("problem") + ": required");
+  if (spec.solver.empty()) throw std::invalid_argument(field("solver") + ": required");
+  try {
+    spec.Validate();
+    return ResolveCase(spec);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where + ": " + e.what());
+  }
+}
+
+}  // namespace ocpb

@@ -1,0 +1,81 @@
+// One benchmark case: what to solve and how (`ocpbench solve`'s flags, one case of a suite).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/integrator.h"
+#include "core/ocp.h"
+#include "core/option_value.h"
+
+namespace ocpb {
+
+/// What to solve and how. Defaults are what `ocpbench solve` uses when an option is omitted.
+struct CaseSpec {
+  std::string problem;           ///< registry name
+  std::vector<std::string> set;  ///< parameter overrides, "key=value" or "key=v1,v2"
+  std::uint64_t seed = 1;        ///< channel realization (problems that use one)
+  std::string solver;            ///< registry name
+  std::string transcription;     ///< NLP solvers only
+  /// Sets the solver's option "algorithm" (NLopt's); refused for a solver without one.
+  std::string algorithm;
+  int intervals = 0;  ///< N; 0: the problem's default grid
+  /// Sets the transcription's option "degree" (LGR's) when it has one; ignored otherwise.
+  int degree = 3;
+  TerminalMode terminal = TerminalMode::kPenalty;
+  Integrator integrator = Integrator::kEuler;  ///< the method's own integrator (Hamiltonian)
+  /// The common evaluator's integrator on the method's grid. Every record also carries the
+  /// RK4 evaluation on a 10x finer grid (the "fine" fields).
+  Integrator evaluate_with = Integrator::kEuler;
+  /// The method's options: each key is the solver's (SolverInfo::options) or, failing that,
+  /// the transcription's (TranscriptionInfo::options). Text values are read by the option
+  /// grammar; ResolveCase turns them into typed values once.
+  OptionMap options;
+  int repeats = 1;              ///< timing repeats; the record keeps the median CPU time
+  bool keep_trajectory = true;  ///< store t, x, u in the record (for figures)
+  /// A previous `ocpbench solve --json` record whose controls start the solve (empty: the
+  /// solver's default start). Read and checked before solving (bench/cli/initial_guess.h).
+  std::string initial_guess;
+  /// "solve" (one solve, the default) or "online" (re-planning with channel updates, paper
+  /// Section IV: `options` are the solver options of every solve, `replan_options` override them
+  /// for the re-plans, `online` holds the scenario settings (OnlineScenarioSchema)).
+  std::string kind = "solve";
+  OptionMap online;          ///< kind "online": scenario settings
+  OptionMap replan_options;  ///< kind "online": re-plan solver options
+
+  /// A stable identifier of the case (for --resume, shards and compare): every field that
+  /// changes the result, options by their canonical text.
+  std::string Key() const;
+  /// The spec's own fields: throws std::invalid_argument naming the field when a value is out
+  /// of range. ValidateCase checks everything else that can be checked without solving.
+  void Validate() const;
+};
+
+/// A method's options split by owner, each resolved by its schema.
+struct MethodOptions {
+  OptionMap solver;
+  OptionMap transcription;
+};
+
+/// The case's options (with `algorithm` and `degree`) split between the solver and its
+/// transcription and resolved. Throws std::invalid_argument "options: ..." for a key neither
+/// knows (listing both sets of valid keys) or a value that breaks its rule, and
+/// "algorithm: ..." when the solver has no option "algorithm".
+MethodOptions ResolveMethodOptions(const CaseSpec& spec);
+
+/// `spec` with every option, online setting and re-plan option resolved to its typed value
+/// (so that Key() shows canonical values). Throws std::invalid_argument as
+/// ResolveMethodOptions, and for unknown solvers or transcriptions.
+CaseSpec ResolveCase(CaseSpec spec);
+
+/// Parses one suite case (JSON object) strictly and resolves it (ResolveCase): unknown keys,
+/// wrong types and invalid values throw std::invalid_argument "FIELD: rule" prefixed by `where`.
+CaseSpec ParseCaseSpec(const nlohmann::json& j, const std::string& where);
+
+/// "penalty" or "hard"; std::invalid_argument otherwise.
+TerminalMode ParseTerminal(const std::string& text);
+
+}  // namespace ocpb

@@ -1,0 +1,33 @@
+// Suite cases and `ocpbench online` runs of kind "online": re-planning with channel updates
+// (paper Section IV), judged on the true channel, next to the offline plan made at t0 = 0.
+#pragma once
+
+#include "bench/cli/case_spec.h"
+#include "bench/cli/record.h"
+
+namespace ocpb {
+
+/// Throws std::invalid_argument ("online.KEY: rule", or the problem's, the solver's message)
+/// unless `spec` (kind "online") is a valid online case: problem comm-path2d, a known solver
+/// with valid options, valid scenario settings (OnlineScenarioSchema in
+/// drivers/online/online_scenario.h: update_period, initial_measurements,
+/// measurements_per_update, placement, estimator, map_resolution, truth_resolution, workspace,
+/// refresh, region_margin, smap_resolution). No channel is simulated.
+void ValidateOnlineCase(const CaseSpec& spec);
+
+/// Runs an online case (RunOnlineReplanning on realization spec.seed) and returns its record:
+/// the case's identity, the resolved settings (`online`), the re-plans' options
+/// (`replan_options`), status (the worst cycle's), cycles [{t0, predict_seconds,
+/// estimate_seconds, factor_seconds, grid_seconds, map_seconds, solve_seconds, iterations,
+/// status, solver_status, new_measurements, measurements, measurement_stream, estimated,
+/// planned_energy, planned_J, segment_energy_true, segment_energy_predicted, plan {t, x}}],
+/// energy_true, energy_predicted, J_true, terminal_violation, terminal_residual, final_state,
+/// offline_energy_true, offline_energy_predicted, offline_J_true, offline_terminal_violation,
+/// energy_ratio (energy_true / offline_energy_true), transmit_energy_true and
+/// offline_transmit_energy_true (the transmission parts) with their ratio
+/// transmit_energy_ratio, J and Jbar (= J_true and energy_true, for summaries), cpu_seconds
+/// (every cycle's prediction and solve), and with keep_trajectory: executed and offline
+/// {t, x, u}, measurements {x, y, cycle}, s_map {x, y, log10_s (true), log10_s_predicted}.
+Record RunOnlineCase(const CaseSpec& spec);
+
+}  // namespace ocpb

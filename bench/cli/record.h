@@ -1,0 +1,128 @@
+// The result record: one struct from which every record is written and into which every record
+// is read (summary, merge, resume, compare). Its JSON form is a contract, documented once, in
+// results/record.schema.json (JSON Schema) and the README.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/solve_result.h"
+#include "core/types.h"
+
+namespace ocpb {
+
+/// The version of the record format written by this build. 1: records before the typed record
+/// (they carry no schema_version); 2: the typed record (adds schema_version, solver_options,
+/// transcription_options). Readers take both.
+inline constexpr int kRecordSchemaVersion = 2;
+
+/// The trajectory a record keeps (for figures): t (N + 1 grid points), states x (nx rows of
+/// N + 1), controls u (nu rows of N: each interval's left end) and the rule that says how u
+/// reads between samples.
+struct RecordTrajectory {
+  std::vector<double> t;
+  Mat x;
+  Mat u;
+  std::string u_rule;
+};
+
+/// A published optimum the record is compared with: value, quantity ("J", "tf"), source, the
+/// problem it is an optimum of ("continuous", or a scheme's name whose NLP at N it solves).
+struct RecordReference {
+  double value = NAN;
+  std::string quantity = "J";
+  std::string source;
+  std::string scheme = "continuous";
+  int N = 0;  ///< the grid of a discrete reference (0 when continuous)
+};
+
+/// What built the record.
+struct RecordVersions {
+  std::string ocpbench, commit, compiler, ipopt, nlopt;
+};
+
+/// The fields of an online re-planning record (kind "online"): energies of the executed and
+/// the offline trajectory on the true channel, and the bulky parts as JSON (cycles, executed,
+/// offline and measurements; the scenario's resolved settings).
+struct OnlineOutcome {
+  nlohmann::json settings = nlohmann::json::object();  ///< resolved scenario settings
+  std::map<std::string, std::string> replan_options;   ///< solver options of the re-plans
+  nlohmann::json cycles = nlohmann::json::array();     ///< one object per re-planning cycle
+  double energy_true = NAN, energy_predicted = NAN, J_true = NAN;
+  double transmit_energy_true = NAN, offline_transmit_energy_true = NAN;
+  double transmit_energy_ratio = NAN, energy_ratio = NAN;
+  double offline_energy_true = NAN, offline_energy_predicted = NAN, offline_J_true = NAN;
+  double offline_terminal_violation = NAN, offline_solve_seconds = NAN;
+  std::vector<double> offline_terminal_residual;
+  /// With keep_trajectory: {t, x, u} executed and offline, {x, y, cycle} of the measurements;
+  /// null otherwise.
+  nlohmann::json executed, offline, measurements;
+};
+
+/// One case's record. Numbers that were not computed are NaN (JSON null); counts that were not
+/// computed are -1.
+struct Record {
+  int schema_version = kRecordSchemaVersion;
+  std::string kind = "solve";  ///< "solve" or "online"
+  std::string key;             ///< the case's stable identifier (CaseSpec::Key)
+
+  // ---- the case ----------------------------------------------------------------------------
+  std::string problem;
+  std::map<std::string, std::vector<double>> parameters;  ///< every parameter, resolved
+  std::uint64_t seed = 1;
+  bool uses_seed = false;
+  std::string solver, transcription, algorithm;
+  int N = 0;
+  std::optional<int> degree;  ///< transcriptions with a "degree" option (LGR)
+  std::string terminal = "penalty", integrator = "euler", evaluated_with = "euler";
+  /// The options as the case gave them (canonical text), and every option the solve used with
+  /// its effective value (defaults included), by owner.
+  std::map<std::string, std::string> options;
+  nlohmann::json solver_options = nlohmann::json::object();
+  nlohmann::json transcription_options = nlohmann::json::object();
+  std::optional<std::string> initial_guess;
+  int repeats = 1;
+
+  // ---- how it ended --------------------------------------------------------------------------
+  std::string status, solver_status, message;
+  double objective = NAN;
+  int iterations = -1;
+  double cpu_seconds = NAN;
+  std::vector<double> cpu_seconds_repeats;
+  double wall_seconds = NAN;
+  std::map<std::string, double> solver_stats;
+  std::vector<IterationRecord> history;
+
+  // ---- the common evaluator ------------------------------------------------------------------
+  double J = NAN, Jbar = NAN;
+  double terminal_violation = NAN, control_violation = NAN, path_violation = NAN;
+  std::vector<double> terminal_residual, final_state;
+  double J_fine = NAN, Jbar_fine = NAN, terminal_violation_fine = NAN;
+  double resimulation_defect = NAN;
+  double final_time = NAN;  ///< the horizon the controls were judged on
+  bool final_time_free = false;
+
+  std::optional<RecordTrajectory> trajectory;
+  nlohmann::json s_map;  ///< null, or the channel map for figures
+  std::optional<RecordReference> reference;
+  std::optional<OnlineOutcome> online;
+  RecordVersions versions;
+
+  /// The JSON object (schema results/record.schema.json). Fields that do not apply (online
+  /// parts of a solve record, an absent trajectory, reference or degree) are left out.
+  nlohmann::json ToJson() const;
+  /// Reads a record. Fields missing from older records keep their defaults; a field of the
+  /// wrong type throws std::invalid_argument "FIELD: must be ..." (the caller adds file and
+  /// line). Keys it does not know are ignored (derived fields of derived.jsonl).
+  static Record FromJson(const nlohmann::json& j);
+};
+
+/// The versions of this build (OCPBench, commit, compiler, Ipopt, NLopt).
+RecordVersions CurrentVersions();
+
+}  // namespace ocpb
