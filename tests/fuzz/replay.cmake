@@ -1,6 +1,6 @@
 # Ordinary-build replay of the fuzzers' corpora and regressions (see replay_main.cc).
 include(${PROJECT_SOURCE_DIR}/tests/fuzz/entries.cmake)
-foreach(target measurement suite)
+foreach(target IN LISTS OCPB_FUZZ_TARGETS)
   add_executable(${target}_fuzz_replay ${OCPB_FUZZ_DIR}/replay_main.cc)
   target_link_libraries(${target}_fuzz_replay PRIVATE ${target}_fuzz_entry)
   ocpb_set_warnings(${target}_fuzz_replay)
