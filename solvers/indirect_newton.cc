@@ -326,7 +326,7 @@ class NewtonIteration {
     r->status = status_;
     r->solver_status = solver_status_;
     r->message = r->message.empty() ? message_ : r->message + "; Newton: " + message_;
-    r->controls = ControlTrajectory::PiecewiseLinear(solution_grid, pmp_.Controls(z_));
+    r->controls = pmp_.ControlFunction(z_);
     r->state_grid = solution_grid;
     r->states = std::move(X);
     r->costates = std::move(P);
@@ -451,7 +451,12 @@ class NewtonIteration {
 
 void RunNewton(const NewtonRun& run, const Mat& X0, const Mat& P0, const Vec* nu0, SolveResult* r) {
   const double newton_cpu0 = CpuSeconds();
-  PmpResidual pmp(run.ocp, run.request.grid, run.request.terminal);
+  PmpResidual pmp(run.ocp,
+                  run.request.grid,
+                  run.request.terminal,
+                  run.options.scheme == IndirectNewtonOptions::Scheme::kEuler
+                      ? PmpResidual::Scheme::kEuler
+                      : PmpResidual::Scheme::kTrapezoid);
   NewtonIteration newton(run, pmp);
   newton.Start(X0, P0, nu0);
   newton.Run(r);
