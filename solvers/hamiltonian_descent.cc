@@ -68,7 +68,7 @@ double HamiltonianDescent::Direction(const DiscreteOcp& docp,
 
 namespace {
 
-const OptionBinding<HamiltonianDescentOptions>& Binding() {
+const OptionBinding<HamiltonianDescentOptions>& DescentBinding() {
   static const OptionBinding<HamiltonianDescentOptions> table = [] {
     using O = HamiltonianDescentOptions;
     OptionBinding<O> t("hamiltonian");
@@ -109,7 +109,7 @@ const OptionBinding<HamiltonianDescentOptions>& Binding() {
 }  // namespace
 
 bool HamiltonianDescentOptions::IsValid(std::string* error) const {
-  return Binding().Check(*this, error);
+  return DescentBinding().Check(*this, error);
 }
 
 HamiltonianDescent::HamiltonianDescent(const Options& options) : options_(options) {
@@ -117,11 +117,11 @@ HamiltonianDescent::HamiltonianDescent(const Options& options) : options_(option
   if (!options_.IsValid(&error)) throw std::invalid_argument(error);
 }
 
-const OptionSchema& HamiltonianDescent::Schema() { return Binding().schema(); }
+const OptionSchema& HamiltonianDescent::Schema() { return DescentBinding().schema(); }
 
 HamiltonianDescent::Options HamiltonianDescent::ApplyOptions(const OptionMap& options,
                                                              const Options& base) {
-  return Binding().ApplyValidated(options, base);
+  return DescentBinding().ApplyValidated(options, base);
 }
 
 namespace {

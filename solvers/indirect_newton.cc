@@ -26,7 +26,7 @@ namespace ocpb {
 namespace {
 
 constexpr const char* kName = "indirect-newton";
-std::string Format(double v) {
+std::string NewtonNumber(double v) {
   std::ostringstream os;
   os.precision(3);
   os << v;
@@ -294,14 +294,14 @@ class NewtonIteration {
       if (residual <= o.tolerance) {
         Stop(SolveStatus::kConverged,
              "converged",
-             "||F||_inf = " + Format(residual) + " <= " + Format(o.tolerance) + " after " +
-                 std::to_string(iterations_) + " Newton steps (" + lu_name_ + ")");
+             "||F||_inf = " + NewtonNumber(residual) + " <= " + NewtonNumber(o.tolerance) +
+                 " after " + std::to_string(iterations_) + " Newton steps (" + lu_name_ + ")");
         return;
       }
       if (iterations_ >= o.max_iterations) {
         Stop(SolveStatus::kMaxIterations,
              "max_iterations",
-             "||F||_inf = " + Format(residual) +
+             "||F||_inf = " + NewtonNumber(residual) +
                  " after max_iterations = " + std::to_string(o.max_iterations) + " Newton steps");
         return;
       }
@@ -430,9 +430,9 @@ class NewtonIteration {
     }
     Stop(SolveStatus::kStepTooSmall,
          "line_search_failed",
-         "no step >= min_step = " + Format(o.min_step) +
+         "no step >= min_step = " + NewtonNumber(o.min_step) +
              " decreased 1/2 ||F||^2 enough at iterate " + std::to_string(iterations_) +
-             " (||F||_inf = " + Format(residual) + ")");
+             " (||F||_inf = " + NewtonNumber(residual) + ")");
     return false;
   }
 
@@ -495,7 +495,7 @@ const char* ToString(IndirectNewtonOptions::Costates costates) {
 
 namespace {
 
-const OptionBinding<IndirectNewtonOptions>& Binding() {
+const OptionBinding<IndirectNewtonOptions>& NewtonBinding() {
   static const OptionBinding<IndirectNewtonOptions> table = [] {
     using O = IndirectNewtonOptions;
     OptionBinding<O> t(kName);
@@ -550,7 +550,7 @@ const OptionBinding<IndirectNewtonOptions>& Binding() {
 }  // namespace
 
 bool IndirectNewtonOptions::IsValid(std::string* error) const {
-  if (!Binding().Check(*this, error)) return false;
+  if (!NewtonBinding().Check(*this, error)) return false;
   if (warm_start != WarmStart::kHamiltonian && !warm_start_options.empty()) {
     if (error)
       *error = std::string(kName) + ": hamiltonian.<key> options need warm_start = hamiltonian";
@@ -564,11 +564,11 @@ IndirectNewton::IndirectNewton(const Options& options) : options_(options) {
   if (!options_.IsValid(&error)) throw std::invalid_argument(error);
 }
 
-const OptionSchema& IndirectNewton::Schema() { return Binding().schema(); }
+const OptionSchema& IndirectNewton::Schema() { return NewtonBinding().schema(); }
 
 IndirectNewton::Options IndirectNewton::ApplyOptions(const OptionMap& options,
                                                      const Options& base) {
-  return Binding().ApplyValidated(options, base);
+  return NewtonBinding().ApplyValidated(options, base);
 }
 
 void IndirectNewton::StartFromControls(const Ocp& ocp,
@@ -672,7 +672,7 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
     r.solver_stats["warm_start_objective"] = start.objective;
     const std::string summary = "warm start: " + warm_name + " " + start.solver_status + " after " +
                                 std::to_string(start.iterations) +
-                                " iterations, J = " + Format(start.objective);
+                                " iterations, J = " + NewtonNumber(start.objective);
     const int N = request.grid.intervals();
     if (start.states.rows() != ocp.nx() || start.states.cols() != N + 1 ||
         start.state_grid.size() != N + 1 || !ocp.AdmitsFinalTime(start.state_grid.tf()) ||

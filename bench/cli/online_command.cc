@@ -14,9 +14,9 @@
 namespace ocpb {
 namespace {
 
-std::string Fmt(double v) { return fmt::format("{:.6g}", v); }
+std::string OnlineNumber(double v) { return fmt::format("{:.6g}", v); }
 
-void PrintReport(const Record& r) {
+void PrintOnlineReport(const Record& r) {
   std::cout << fmt::format("online {} / {}{}  seed {}: status {}\n",
                            r.problem,
                            r.solver,
@@ -48,18 +48,18 @@ void PrintReport(const Record& r) {
   }
   std::cout << fmt::format(
       "  online : energy on the true channel {}  (predicted {}), terminal violation {}\n",
-      Fmt(o.energy_true),
-      Fmt(o.energy_predicted),
-      Fmt(r.terminal_violation));
+      OnlineNumber(o.energy_true),
+      OnlineNumber(o.energy_predicted),
+      OnlineNumber(r.terminal_violation));
   std::cout << fmt::format(
       "  offline: energy on the true channel {}  (predicted {}), terminal violation {}\n",
-      Fmt(o.offline_energy_true),
-      Fmt(o.offline_energy_predicted),
-      Fmt(o.offline_terminal_violation));
+      OnlineNumber(o.offline_energy_true),
+      OnlineNumber(o.offline_energy_predicted),
+      OnlineNumber(o.offline_terminal_violation));
   std::cout << fmt::format("  online / offline true energy = {}   (transmission part: {} / {})\n",
-                           Fmt(o.energy_ratio),
-                           Fmt(o.transmit_energy_true),
-                           Fmt(o.offline_transmit_energy_true));
+                           OnlineNumber(o.energy_ratio),
+                           OnlineNumber(o.transmit_energy_true),
+                           OnlineNumber(o.offline_transmit_energy_true));
 }
 
 }  // namespace
@@ -126,7 +126,7 @@ void AddOnlineCommand(CLI::App& app) {
     ValidateCase(ResolveCase(s));
     if (!json_path->empty()) CheckOutputFile(*json_path, "--json");
     const Record record = RunCase(s);
-    PrintReport(record);
+    PrintOnlineReport(record);
     if (!json_path->empty()) WriteFileAtomically(*json_path, record.ToJson().dump(1) + "\n");
     if (IsFailure(record.status)) ReportSomeFailed();
   });

@@ -1,5 +1,5 @@
 // Replays a fuzzer's seed corpus and every crash it ever found (regressions/) through the same
-// entry point, in the ordinary (GCC, ASan+UBSan) test build: a crash found once stays fixed.
+// entry point, in the test build (ASan + UBSan): a crash found once stays fixed.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
