@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -33,9 +34,33 @@ std::vector<double> Numbers(const json& a, const std::string& path, const std::s
   return v;
 }
 
+// Strictly increasing grid points, at least 2.
+std::vector<double> Times(const json& a, const std::string& path, const std::string& what) {
+  const std::vector<double> t = Numbers(a, path, what);
+  if (t.size() < 2) Fail(path, what + " needs at least 2 points");
+  for (size_t k = 1; k < t.size(); ++k) {
+    if (!(t[k] > t[k - 1])) Fail(path, what + " is not strictly increasing");
+  }
+  return t;
+}
+
+// Rows of `points` finite numbers each (states or costates at a grid's points).
+Mat Rows(const json& rows, size_t points, const std::string& path, const std::string& what) {
+  if (!rows.is_array() || rows.empty()) Fail(path, what + " must be a non-empty array of rows");
+  Mat m(static_cast<int>(rows.size()), static_cast<int>(points));
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const std::vector<double> row = Numbers(rows[i], path, fmt::format("{}[{}]", what, i));
+    if (row.size() != points) {
+      Fail(path, fmt::format("{}[{}] has {} values, expected {}", what, i, row.size(), points));
+    }
+    for (size_t k = 0; k < points; ++k) m(static_cast<int>(i), static_cast<int>(k)) = row[k];
+  }
+  return m;
+}
+
 }  // namespace
 
-ControlTrajectory ReadInitialGuess(const std::string& path) {
+InitialGuess ReadInitialGuess(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) Fail(path, "no such file");
   json record;
@@ -51,11 +76,7 @@ ControlTrajectory ReadInitialGuess(const std::string& path) {
   }
   const json& traj = record["trajectory"];
   if (!traj.contains("t") || !traj.contains("u")) Fail(path, "trajectory needs \"t\" and \"u\"");
-  const std::vector<double> t = Numbers(traj["t"], path, "trajectory.t");
-  if (t.size() < 2) Fail(path, "trajectory.t needs at least 2 points");
-  for (size_t k = 1; k < t.size(); ++k) {
-    if (!(t[k] > t[k - 1])) Fail(path, "trajectory.t is not strictly increasing");
-  }
+  const std::vector<double> t = Times(traj["t"], path, "trajectory.t");
   const json& u = traj["u"];
   if (!u.is_array() || u.empty()) Fail(path, "trajectory.u must be a non-empty array of rows");
   const int N = static_cast<int>(t.size()) - 1;
@@ -71,33 +92,80 @@ ControlTrajectory ReadInitialGuess(const std::string& path) {
     values(static_cast<int>(i), N) = row[N - 1];
   }
   const TimeGrid grid = TimeGrid::FromPoints(t);
+  InitialGuess guess;
   // The record keeps one sample per interval: exact for piecewise-constant controls; for the
   // others (collocation polynomials) the linear interpolant of the samples is the closer guess.
   const std::string rule = traj.value("u_rule", std::string());
-  if (rule.find("constant") != std::string::npos) {
-    return ControlTrajectory::PiecewiseConstant(grid, values.leftCols(N));
+  guess.controls = rule.find("constant") != std::string::npos
+                       ? ControlTrajectory::PiecewiseConstant(grid, values.leftCols(N))
+                       : ControlTrajectory::PiecewiseLinear(grid, values);
+  if (traj.contains("own")) {
+    const json& own = traj["own"];
+    if (!own.is_object()) Fail(path, "trajectory.own must be an object");
+    if (!own.contains("t") || !own.contains("x"))
+      Fail(path, "trajectory.own needs \"t\" and \"x\"");
+    const std::vector<double> ts = Times(own["t"], path, "trajectory.own.t");
+    const TimeGrid own_grid = TimeGrid::FromPoints(ts);
+    if (std::abs(own_grid.t0() - grid.t0()) > 1e-9 * (1.0 + std::abs(grid.tf())) ||
+        std::abs(own_grid.tf() - grid.tf()) > 1e-9 * (1.0 + std::abs(grid.tf()))) {
+      Fail(path,
+           fmt::format("trajectory.own.t spans [{}, {}] but trajectory.t [{}, {}]",
+                       own_grid.t0(),
+                       own_grid.tf(),
+                       grid.t0(),
+                       grid.tf()));
+    }
+    guess.states = ControlTrajectory::PiecewiseLinear(
+        own_grid, Rows(own["x"], ts.size(), path, "trajectory.own.x"));
+    if (own.contains("p")) {
+      guess.costates = ControlTrajectory::PiecewiseLinear(
+          own_grid, Rows(own["p"], ts.size(), path, "trajectory.own.p"));
+    }
   }
-  return ControlTrajectory::PiecewiseLinear(grid, values);
+  return guess;
 }
 
-void CheckInitialGuess(const ControlTrajectory& guess, const Ocp& ocp, const std::string& path) {
-  if (guess.nu() != ocp.nu()) {
+void CheckInitialGuess(const InitialGuess& guess, const Ocp& ocp, const std::string& path) {
+  if (guess.controls.nu() != ocp.nu()) {
     Fail(path,
          fmt::format("the controls have dimension {} but problem '{}' has nu = {}",
-                     guess.nu(),
+                     guess.controls.nu(),
                      ocp.name(),
                      ocp.nu()));
   }
-  const double t0 = guess.grid().t0(), tf = guess.grid().tf();
+  for (const auto& [part, name] : {std::pair{&guess.states, "states (trajectory.own.x)"},
+                                   std::pair{&guess.costates, "costates (trajectory.own.p)"}}) {
+    if (*part && (*part)->nu() != ocp.nx()) {
+      Fail(path,
+           fmt::format("the {} have dimension {} but problem '{}' has nx = {}",
+                       name,
+                       (*part)->nu(),
+                       ocp.name(),
+                       ocp.nx()));
+    }
+  }
+  const double t0 = guess.controls.grid().t0(), tf = guess.controls.grid().tf();
   const double tol = 1e-9 * (1.0 + std::abs(ocp.tf()));
-  if (std::abs(t0 - ocp.t0()) > tol || std::abs(tf - ocp.tf()) > tol) {
+  const bool end_ok =
+      ocp.free_final_time() ? ocp.AdmitsFinalTime(tf) : std::abs(tf - ocp.tf()) <= tol;
+  if (std::abs(t0 - ocp.t0()) > tol || !end_ok) {
+    const auto& free = ocp.free_final_time();
     Fail(path,
-         fmt::format("the trajectory spans [{}, {}] but problem '{}' has the horizon [{}, {}]",
-                     t0,
-                     tf,
-                     ocp.name(),
-                     ocp.t0(),
-                     ocp.tf()));
+         free ? fmt::format("the trajectory spans [{}, {}] but problem '{}' starts at {} and ends "
+                            "within [{}, {}] (free final time)",
+                            t0,
+                            tf,
+                            ocp.name(),
+                            ocp.t0(),
+                            free->lower,
+                            free->upper)
+              : fmt::format(
+                    "the trajectory spans [{}, {}] but problem '{}' has the horizon [{}, {}]",
+                    t0,
+                    tf,
+                    ocp.name(),
+                    ocp.t0(),
+                    ocp.tf()));
   }
 }
 
