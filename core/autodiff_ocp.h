@@ -155,7 +155,8 @@ class AutoDiffOcp : public Ocp {
     Seed(x, u, &xz, &uz);
     Eigen::Matrix<double, kNz, kNz> h = Eigen::Matrix<double, kNz, kNz>::Zero();
     if (sigma != 0.0) h += sigma * self().EvalRunningCost(t, xz, uz).h;
-    if (lambda.size() > 0 && lambda.any()) {
+    // Affine dynamics (Ocp::HasAffineDynamics) have f'' = 0: the Jet2 pass over f is skipped.
+    if (lambda.size() > 0 && lambda.any() && !self().HasAffineDynamics()) {
       VecT<Z2, NX> f;
       self().EvalDynamics(t, xz, uz, &f);
       for (int i = 0; i < NX; ++i) h += lambda[i] * f[i].h;

@@ -127,7 +127,11 @@ std::string OptionValue::ToText() const {
       return text();
     case Kind::kVector: {
       std::string out;
-      for (double v : vector()) out += (out.empty() ? "" : ",") + ShortestText(v);
+      // Appended piecewise: GCC 12 -O2 reports a false -Wrestrict on `"," + text` here.
+      for (double v : vector()) {
+        if (!out.empty()) out += ',';
+        out += ShortestText(v);
+      }
       return out;
     }
   }

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "problems/channel/paper_channel.h"
+#include "problems/comm_channel_cache.h"
 
 namespace ocpb {
 namespace {
@@ -439,10 +441,41 @@ std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params,
                                              params.Scalar("distance_floor"));
   }
   // The paper's experiment: simulate the channel of these parameters (realization `seed`),
-  // measure it at `samples` random grid points, estimate the parameters, predict s.
+  // measure it at `samples` random grid points, estimate the parameters, predict s. Built once
+  // per process for every case with the same key (ChannelCache).
   const PaperChannelOptions options = CommPaperChannelOptions(params, model);
-  const PaperChannel channel = MakePaperChannel(seed, params.Integer("samples"), options);
-  return channel.Quality(model == 2 ? ChannelProvider::kMap : ChannelProvider::kExact);
+  const int samples = params.Integer("samples");
+  const double points = std::pow(params.Scalar("workspace") / params.Scalar("grid_step"), 2);
+  // The map holds (nx + 2)(ny + 2) spline coefficients; the exact predictor the capacity x
+  // capacity Cholesky factor and m x 2 positions (a generous 2 m^2 doubles).
+  const double bytes = model == 2 ? 8.0 * (std::sqrt(points) + 2.0) * (std::sqrt(points) + 2.0)
+                                  : 16.0 * samples * samples;
+  return ChannelCache::Global().GetOrBuild(
+      CommChannelKey(params, seed), static_cast<std::size_t>(bytes) + 4096, [&] {
+        const PaperChannel channel = MakePaperChannel(seed, samples, options);
+        return channel.Quality(model == 2 ? ChannelProvider::kMap : ChannelProvider::kExact);
+      });
+}
+
+std::string CommChannelKey(const Parameters& params, std::uint64_t seed) {
+  // Every shared comm parameter except those of the task and the motion model: a parameter
+  // added to CommParameterSpecs later is part of the key unless listed here, so forgetting it
+  // costs a rebuild, never a wrong channel.
+  static const std::set<std::string> kNotChannel = {
+      "S", "D", "c", "tf", "umax", "Rmax", "gamma", "C", "k", "eps", "pb"};
+  std::ostringstream key;
+  key.precision(17);
+  key << "seed=" << seed;
+  for (const ParameterSpec& spec : CommParameterSpecs()) {
+    if (kNotChannel.count(spec.name)) continue;
+    key << ';' << spec.name << '=';
+    const char* sep = "";
+    for (double v : params.Raw(spec.name)) {
+      key << sep << v;
+      sep = ",";
+    }
+  }
+  return key.str();
 }
 
 std::shared_ptr<const ChannelQuality> MakeCommChannelForChecks(const Parameters& params) {

@@ -184,14 +184,25 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0> {
 
   // Hand-written values and first derivatives (the Hamiltonian descent's hot loops call these;
   // they are about 5x faster than the Jet1 versions and are checked against finite differences
-  // and against the template above in tests/problems/comm_path2d_test.cc). Second derivatives
-  // come from AD of the template.
+  // and against the template above in tests/problems/comm_path2d_test.cc). The terminal
+  // Hessian comes from AD of the template.
   void Dynamics(double t, ConstVecRef x, ConstVecRef u, VecRef f) const override;
   double RunningCost(double t, ConstVecRef x, ConstVecRef u) const override;
   void DynamicsJacobian(
       double t, ConstVecRef x, ConstVecRef u, VecRef f, MatRef fx, MatRef fu) const override;
   void RunningCostGradient(
       double t, ConstVecRef x, ConstVecRef u, double* L, VecRef Lx, VecRef Lu) const override;
+  /// sigma L_zz in closed form (comm_path2d_hessian.cc): the dynamics are affine, so lambda
+  /// (and mu: there are no path constraints) contribute nothing. 958 instructions per point
+  /// with the map's Hessian, against 18,256 for the Jet2 pass (callgrind, Ipopt + Euler at
+  /// N = 400); tested against finite differences and the AD Hessian.
+  void PointHessian(double t,
+                    ConstVecRef x,
+                    ConstVecRef u,
+                    double sigma,
+                    ConstVecRef lambda,
+                    ConstVecRef mu,
+                    MatRef hess) const override;
 
   bool HasHamiltonianMinimizer() const override { return true; }
   void MinimizeHamiltonian(double t, ConstVecRef x, ConstVecRef p, VecRef u) const override;
@@ -257,7 +268,13 @@ std::vector<ParameterSpec> CommParameterSpecs();
 CommPowerModel CommPowerFromParameters(const Parameters& params);
 /// The channel `params` asks for, with realization `seed` (ignored by the path-loss channel).
 /// Throws std::invalid_argument naming the field on invalid values.
+/// Channels 1 and 2 are kept in ChannelCache::Global() under CommChannelKey: a suite's cases of
+/// one seed and channel build it once.
 std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params, std::uint64_t seed);
+/// The cache key of the channel `params` and `seed` define: the seed and the values of every
+/// shared comm parameter except the task's and the motion model's (S, D, c, tf, umax, Rmax,
+/// gamma, C, k, eps, pb).
+std::string CommChannelKey(const Parameters& params, std::uint64_t seed);
 /// Runs the checks of MakeCommChannel without simulating anything and returns a path-loss
 /// stand-in with the same base station and constants (for ProblemInfo::make_for_checks).
 std::shared_ptr<const ChannelQuality> MakeCommChannelForChecks(const Parameters& params);

@@ -607,6 +607,8 @@ NlpSolution SolveNlpWithIpopt(const Nlp& nlp, const Vec& z0, const IpoptOptions&
       NumberOption("max_cpu_time", options.max_cpu_time),
       TextOption("mu_strategy", options.mu_strategy),
       TextOption("linear_solver", options.linear_solver),
+      IntegerOption("mumps_pivot_order",
+                    options.mumps_pivot_order >= 0 ? options.mumps_pivot_order : (exact ? 0 : 7)),
       TextOption("nlp_scaling_method", options.nlp_scaling_method),
       NumberOption("obj_scaling_factor", options.obj_scaling_factor),
       NumberOption("nlp_scaling_max_gradient", options.nlp_scaling_max_gradient),

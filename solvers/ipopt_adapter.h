@@ -68,6 +68,14 @@ struct IpoptOptions {
   std::string hessian_approximation = "auto";
   /// Only "mumps" is available in OCPBench's build (no HSL).
   std::string linear_solver = "mumps";
+  /// MUMPS' fill-reducing ordering (Ipopt's mumps_pivot_order, ICNTL(7): 0 AMD, 2 AMF, 3 SCOTCH,
+  /// 4 PORD, 5 METIS, 6 QAMD, 7 MUMPS' automatic choice, Ipopt's default). -1 (OCPBench's
+  /// default) chooses by problem class, as measured (solvers/README-nlp.md, "MUMPS ordering"):
+  /// 0 (AMD) when the NLP has an exact Hessian (the collocation transcriptions: on comm-path2d
+  /// at N = 400, 12-21 % fewer MUMPS instructions than 7 with the same iterates), 7 otherwise
+  /// (limited-memory, single shooting: not measured, Ipopt's default kept).
+  /// `--option mumps_pivot_order=K` overrides it (applied after this field).
+  int mumps_pivot_order = -1;
   // ---- scaling ------------------------------------------------------------------
   /// "gradient-based" (Ipopt default: scale f and each g_i so their gradient at the start has
   /// max-norm <= nlp_scaling_max_gradient), "none", or "equilibration-based" (needs MC19, absent).

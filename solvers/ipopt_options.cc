@@ -120,6 +120,11 @@ const OptionBinding<IpoptOptions>& Binding() {
 
 bool IpoptOptions::IsValid(std::string* error) const {
   if (!Binding().Check(*this, error)) return false;
+  // The field (not the pass-through option of the same name, which overrides it).
+  if (mumps_pivot_order < -1 || mumps_pivot_order > 7) {
+    if (error) *error = "ipopt: mumps_pivot_order must be in -1..7 (-1: by problem class)";
+    return false;
+  }
   if (!(obj_scaling_factor != 0.0)) {
     if (error) *error = "ipopt option 'obj_scaling_factor': must be finite and nonzero";
     return false;

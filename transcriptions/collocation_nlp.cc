@@ -125,6 +125,25 @@ CollocationNlp::CollocationNlp(const Ocp& ocp,
     row_scale_.segment(d * nx_, nx_) = sx.cwiseInverse();
   }
   BuildStructure();
+  // The lower-triangle entries of each point's (nx + nu)^2 block, as (entry of H, slot).
+  const int nz = nx_ + nu_;
+  point_hess_pairs_begin_.push_back(0);
+  for (size_t e = 0; e < layout_.points.size(); ++e) {
+    for (int a = 0; a < nz; ++a) {
+      for (int b = 0; b < nz; ++b) {
+        const int slot = hess_slots_[point_hess_slots_[e] + a * nz + b];
+        if (slot >= 0) point_hess_pairs_.push_back({b * nz + a, slot});  // H is column-major
+      }
+    }
+    point_hess_pairs_begin_.push_back(static_cast<int>(point_hess_pairs_.size()));
+  }
+  // Affine dynamics on a fixed horizon: the defect rows' Jacobian does not depend on z (any z
+  // gives it; the starting point's states are simulated, so use zeros), so it is computed once.
+  if (ocp_.HasAffineDynamics() && !free_time_) {
+    Vec defect = Vec::Zero(static_cast<Eigen::Index>(jac_rows_.size()));
+    AddDefectJacobian(Vec::Zero(num_variables()), &defect);
+    if (defect.allFinite()) scaled_defect_jacobian_ = defect.cwiseProduct(jac_value_scale_);
+  }
 }
 
 void CollocationNlp::BuildStructure() {
@@ -433,6 +452,12 @@ bool CollocationNlp::Constraints(ConstVecRef zhat, VecRef g) const {
 }
 
 bool CollocationNlp::JacobianValues(ConstVecRef zhat, VecRef values) const {
+  if (scaled_defect_jacobian_.size() > 0) {
+    // Affine dynamics: the defect rows were computed and scaled once; only the other rows
+    // (balls, path constraints, hard terminal constraints) depend on z.
+    values = scaled_defect_jacobian_;
+    return AddOtherJacobianRows(Unscale(zhat), jac_value_scale_.data(), values.data());
+  }
   Vec out;
   if (!EvalJacobian(Unscale(zhat), &out)) return false;
   values = out.cwiseProduct(jac_value_scale_);
@@ -531,12 +556,62 @@ bool CollocationNlp::EvalConstraints(const Vec& z, Vec* g) const {
 
 bool CollocationNlp::EvalJacobian(const Vec& z, Vec* values) const {
   values->setZero(static_cast<Eigen::Index>(jac_rows_.size()));
+  AddDefectJacobian(z, values);
+  AddOtherJacobianRows(z, nullptr, values->data());
+  return values->allFinite();
+}
+
+bool CollocationNlp::AddOtherJacobianRows(const Vec& z, const double* scale, double* v) const {
+  // Each slot of these rows gets exactly one term, so adding scale * term to a zero entry gives
+  // the same double as scaling the finished sum (the order EvalJacobian's callers use).
+  bool finite = true;
+  auto add = [&](int slot, double term) {
+    v[slot] += scale == nullptr ? term : term * scale[slot];
+    finite = finite && std::isfinite(term);
+  };
+  Vec c(nc_);
+  Mat cx(nc_, nx_), cu(nc_, nu_);
+  for (size_t e = 0; e < layout_.points.size(); ++e) {
+    const auto& p = layout_.points[e];
+    if (path_point_row_[e] >= 0) {
+      const auto x = z.segment(layout_.states[p.state].offset, nx_);
+      const auto u = z.segment(layout_.controls[p.control].offset, nu_);
+      ocp_.PathConstraintsJacobian(p.t, x, u, c, cx, cu);
+      for (int i = 0; i < nc_; ++i) {
+        for (int j = 0; j < nx_; ++j) add(jac_slots_[path_x_slots_[e] + i * nx_ + j], cx(i, j));
+        for (int j = 0; j < nu_; ++j) add(jac_slots_[path_u_slots_[e] + i * nu_ + j], cu(i, j));
+      }
+    }
+  }
+  const auto& blocks = ocp_.control_set().blocks();
+  int ball = 0;
+  for (const auto& cb : layout_.controls) {
+    for (int b : ball_blocks_) {
+      const int base = ball_slots_[ball++];
+      for (int j = 0; j < blocks[b].size; ++j) {
+        add(jac_slots_[base + j],
+            2.0 * (z[cb.offset + blocks[b].offset + j] - blocks[b].center[j]));
+      }
+    }
+  }
+  if (terminal_slots_ >= 0) {
+    Vec psi(npsi_);
+    Mat psix(npsi_, nx_);
+    ocp_.TerminalConstraintsJacobian(z.segment(layout_.states.back().offset, nx_), psi, psix);
+    for (int i = 0; i < npsi_; ++i) {
+      for (int j = 0; j < nx_; ++j) add(jac_slots_[terminal_slots_ + i * nx_ + j], psix(i, j));
+    }
+  }
+  return finite;
+}
+
+void CollocationNlp::AddDefectJacobian(const Vec& z, Vec* values) const {
   Vec& v = *values;
   for (const auto& use : state_uses_) {
     for (int i = 0; i < nx_; ++i) v[jac_slots_[use.x_slots + i * nx_ + i]] += use.coeff;
   }
-  Vec f(nx_), c(nc_);
-  Mat fx(nx_, nx_), fu(nx_, nu_), cx(nc_, nx_), cu(nc_, nu_);
+  Vec f(nx_);
+  Mat fx(nx_, nx_), fu(nx_, nu_);
   const double r = Ratio(z);
   for (size_t e = 0; e < layout_.points.size(); ++e) {
     const auto& p = layout_.points[e];
@@ -556,41 +631,17 @@ bool CollocationNlp::EvalJacobian(const Vec& z, Vec* values) const {
         }
       }
     }
-    if (path_point_row_[e] >= 0) {
-      ocp_.PathConstraintsJacobian(p.t, x, u, c, cx, cu);
-      for (int i = 0; i < nc_; ++i) {
-        for (int j = 0; j < nx_; ++j) v[jac_slots_[path_x_slots_[e] + i * nx_ + j]] += cx(i, j);
-        for (int j = 0; j < nu_; ++j) v[jac_slots_[path_u_slots_[e] + i * nu_ + j]] += cu(i, j);
-      }
-    }
   }
-  const auto& blocks = ocp_.control_set().blocks();
-  int ball = 0;
-  for (const auto& cb : layout_.controls) {
-    for (int b : ball_blocks_) {
-      const int base = ball_slots_[ball++];
-      for (int j = 0; j < blocks[b].size; ++j) {
-        v[jac_slots_[base + j]] +=
-            2.0 * (z[cb.offset + blocks[b].offset + j] - blocks[b].center[j]);
-      }
-    }
-  }
-  if (terminal_slots_ >= 0) {
-    Vec psi(npsi_);
-    Mat psix(npsi_, nx_);
-    ocp_.TerminalConstraintsJacobian(z.segment(layout_.states.back().offset, nx_), psi, psix);
-    for (int i = 0; i < npsi_; ++i) {
-      for (int j = 0; j < nx_; ++j) v[jac_slots_[terminal_slots_ + i * nx_ + j]] += psix(i, j);
-    }
-  }
-  return v.allFinite();
 }
 
 bool CollocationNlp::EvalHessian(const Vec& z, double sigma, const Vec& lambda, Vec* values) const {
   values->setZero(static_cast<Eigen::Index>(hess_rows_.size()));
   Vec& v = *values;
   const int nz = nx_ + nu_;
-  Vec lam(nx_), mu = Vec::Zero(nc_);
+  // Plain loops over preallocated storage: this loop runs at every point of every Ipopt
+  // iteration, and Eigen's dynamic-size temporaries (a Ref of an expression allocates) cost
+  // more than the problem's own closed-form Hessian.
+  Vec lam(nx_), scaled_lam(nx_), mu = Vec::Zero(nc_);
   Mat H(nz, nz);
   const double r = Ratio(z);
   Vec f(nx_), Lx(nx_), Lu(nu_);
@@ -598,16 +649,20 @@ bool CollocationNlp::EvalHessian(const Vec& z, double sigma, const Vec& lambda, 
   double L = 0.0;
   for (size_t e = 0; e < layout_.points.size(); ++e) {
     const auto& p = layout_.points[e];
-    lam.setZero();
-    for (const auto& use : point_uses_[e])
-      lam += use.coeff * lambda.segment(defect_row(use.defect), nx_);
-    if (path_point_row_[e] >= 0) {
-      mu = lambda.segment(path_point_row_[e], nc_);
-    } else {
-      mu.setZero();
+    bool any_lam = false;
+    for (int i = 0; i < nx_; ++i) {
+      double sum = 0.0;
+      for (const auto& use : point_uses_[e]) sum += use.coeff * lambda[defect_row(use.defect) + i];
+      lam[i] = sum;
+      any_lam = any_lam || sum != 0.0;
+    }
+    bool any_mu = false;
+    for (int i = 0; i < nc_; ++i) {
+      mu[i] = path_point_row_[e] >= 0 ? lambda[path_point_row_[e] + i] : 0.0;
+      any_mu = any_mu || mu[i] != 0.0;
     }
     const double s = sigma * p.cost_weight;
-    if (s == 0.0 && !lam.any() && !mu.any()) continue;
+    if (s == 0.0 && !any_lam && !any_mu) continue;
     const auto x = z.segment(layout_.states[p.state].offset, nx_);
     const auto u = z.segment(layout_.controls[p.control].offset, nu_);
     if (free_time_) {
@@ -622,13 +677,11 @@ bool CollocationNlp::EvalHessian(const Vec& z, double sigma, const Vec& lambda, 
         v[hess_slots_[base + nx_ + j]] += inv_duration_ * (s * Lu[j] + fu.col(j).dot(lam));
       }
     }
-    ocp_.PointHessian(p.t, x, u, r * s, r * lam, mu, H);
-    const int base = point_hess_slots_[e];
-    for (int a = 0; a < nz; ++a) {
-      for (int b = 0; b < nz; ++b) {
-        const int slot = hess_slots_[base + a * nz + b];
-        if (slot >= 0) v[slot] += H(a, b);
-      }
+    for (int i = 0; i < nx_; ++i) scaled_lam[i] = r * lam[i];
+    ocp_.PointHessian(p.t, x, u, r * s, scaled_lam, mu, H);
+    const double* h = H.data();
+    for (int k = point_hess_pairs_begin_[e]; k < point_hess_pairs_begin_[e + 1]; ++k) {
+      v[point_hess_pairs_[k].slot] += h[point_hess_pairs_[k].entry];
     }
   }
   // Terminal terms.

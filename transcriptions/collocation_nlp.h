@@ -193,6 +193,11 @@ class CollocationNlp : public TranscribedNlp {
   bool EvalGradient(const Vec& z, Vec* grad) const;
   bool EvalConstraints(const Vec& z, Vec* g) const;
   bool EvalJacobian(const Vec& z, Vec* values) const;
+  // Adds the defect rows' entries (states and dynamics, the T column) to the Jacobian values.
+  void AddDefectJacobian(const Vec& z, Vec* values) const;
+  // Adds the other rows' entries (path constraints, balls, hard terminal constraints), each
+  // times scale[slot] when `scale` is not null; false when one is not finite.
+  bool AddOtherJacobianRows(const Vec& z, const double* scale, double* values) const;
   bool EvalHessian(const Vec& z, double sigma, const Vec& lambda, Vec* values) const;
 
   const Ocp& ocp_;
@@ -222,6 +227,9 @@ class CollocationNlp : public TranscribedNlp {
 
   // Jacobian structure.
   std::vector<int> jac_slots_;
+  // The defect rows' Jacobian values times jac_value_scale_ when they do not depend on z
+  // (Ocp::HasAffineDynamics on a fixed horizon), else empty.
+  Vec scaled_defect_jacobian_;
   std::vector<std::vector<PointUse>> point_uses_;  // per point
   std::vector<StateUse> state_uses_;
   std::vector<int> path_x_slots_, path_u_slots_;  // per point (base into jac_slots_), or -1
@@ -230,8 +238,14 @@ class CollocationNlp : public TranscribedNlp {
   // Hessian structure.
   std::vector<int> hess_slots_;
   std::vector<int> point_hess_slots_;  // per point: base of (nx+nu)^2 entries (-1: upper)
-  int terminal_hess_slots_ = -1;       // nx x nx
-  std::vector<int> ball_hess_slots_;   // per ball row: base of `size` diagonal slots
+  struct HessPair {
+    int entry;  // index into the column-major (nx+nu)^2 point Hessian
+    int slot;   // index into the Hessian values
+  };
+  std::vector<HessPair> point_hess_pairs_;   // per point, its lower-triangle entries in order
+  std::vector<int> point_hess_pairs_begin_;  // per point: first pair; one more at the end
+  int terminal_hess_slots_ = -1;             // nx x nx
+  std::vector<int> ball_hess_slots_;         // per ball row: base of `size` diagonal slots
 };
 
 /// Throws std::invalid_argument unless `options` is a valid request for `ocp`: the grid spans

@@ -13,9 +13,11 @@
 namespace ocpb {
 namespace {
 bool g_some_failed = false;
+bool g_incomplete = false;
 }  // namespace
 
 void ReportSomeFailed() { g_some_failed = true; }
+void ReportIncomplete() { g_incomplete = true; }
 
 OptionMap ParseKeyValues(const std::vector<std::string>& items, const std::string& flag) {
   OptionMap out;
@@ -31,6 +33,7 @@ OptionMap ParseKeyValues(const std::vector<std::string>& items, const std::strin
 
 int Main(int argc, char** argv) {
   g_some_failed = false;
+  g_incomplete = false;
   CLI::App app{
       "OCPBench: optimal-control problems solved by Hamiltonian descent and by sparse NLPs",
       "ocpbench"};
@@ -39,8 +42,10 @@ int Main(int argc, char** argv) {
   AddListCommand(app);
   AddSolveCommand(app);
   AddRunCommand(app);
+  AddMergeCommand(app);
   AddChannelCommand(app);
   AddOnlineCommand(app);
+  AddCompareCommand(app);
   try {
     // Name an unknown command plainly (CLI11 alone would say "A subcommand is required").
     if (argc >= 2 && argv[1][0] != '-') {
@@ -72,6 +77,7 @@ int Main(int argc, char** argv) {
     std::cerr << "ocpbench: error: " << e.what() << "\n";
     return kExitInternalError;
   }
+  if (g_incomplete) return kExitIncomplete;
   return g_some_failed ? kExitSomeFailed : kExitOk;
 }
 

@@ -19,6 +19,9 @@ enum ExitCode : int {
   kExitSomeFailed = 1,     ///< everything ran; some solves ended with a failure status
   kExitBadInput = 2,       ///< invalid input (one-line message on stderr); nothing was run
   kExitInternalError = 3,  ///< an unexpected error
+  /// `merge` and `status`: cases of the suite are missing (or duplicated, or records of other
+  /// cases are there); what was found was merged and its summary says it is partial.
+  kExitIncomplete = 4,
 };
 
 /// `ocpbench list problems|solvers|transcriptions` and `ocpbench describe problem|solver|
@@ -26,16 +29,24 @@ enum ExitCode : int {
 void AddListCommand(CLI::App& app);
 /// `ocpbench solve --problem P --solver S [...] [--json FILE]`.
 void AddSolveCommand(CLI::App& app);
-/// `ocpbench run SUITE.json [--out DIR] [--resume|--overwrite] [--shard i/n]`, `ocpbench merge
-/// DIR`.
+/// `ocpbench run SUITE.json [--out DIR] [--resume|--overwrite] [--shard i/n] [--jobs N]`.
 void AddRunCommand(CLI::App& app);
+/// `ocpbench merge DIR [--suite FILE]` and `ocpbench status DIR [--suite FILE]`
+/// (bench/cli/merge_command.cc).
+void AddMergeCommand(CLI::App& app);
 /// `ocpbench channel simulate|predict` (bench/cli/channel_command.cc).
 void AddChannelCommand(CLI::App& app);
 /// `ocpbench online --problem comm-path2d --solver S [...]` (bench/cli/online_command.cc).
 void AddOnlineCommand(CLI::App& app);
+/// `ocpbench compare BASE NEW [...]`: two runs of one suite, case by case
+/// (bench/cli/compare_command.cc).
+void AddCompareCommand(CLI::App& app);
 
 /// Subcommands set this when their work ran but some cases failed.
 void ReportSomeFailed();
+/// `merge` and `status` set this when the suite's cases are not all there exactly once (exit
+/// code kExitIncomplete, before kExitSomeFailed).
+void ReportIncomplete();
 
 /// "key=value" items of a repeatable flag (`--option`, `--replan-option`) as text values (each
 /// resolved later by its owner's schema). Throws std::invalid_argument "malformed FLAG 'item':

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/cli/app.h"
+#include "bench/cli/compare.h"
 #include "core/parameters.h"
 #include "drivers/online/online_scenario.h"
 #include "problems/registry.h"
@@ -75,14 +76,19 @@ void AddListCommand(CLI::App& app) {
       "describe", "Every option of a problem, solver or transcription, with default and rule");
   auto kind = std::make_shared<std::string>();
   auto name = std::make_shared<std::string>();
-  describe->add_option("what", *kind, "problem | solver | transcription | online")
+  describe->add_option("what", *kind, "problem | solver | transcription | online | compare")
       ->required()
-      ->check(CLI::IsMember({"problem", "solver", "transcription", "online"}));
-  describe->add_option("name", *name, "its registered name (not for online)");
+      ->check(CLI::IsMember({"problem", "solver", "transcription", "online", "compare"}));
+  describe->add_option("name", *name, "its registered name (not for online, compare)");
   describe->callback([kind, name]() {
     if (*kind == "online") {
       std::cout << "online scenario settings (suite \"online\"; ocpbench online flags):\n"
                 << OnlineScenarioSchema().Describe();
+      return;
+    }
+    if (*kind == "compare") {
+      std::cout << "thresholds of ocpbench compare (flags --NAME, '_' written '-'):\n"
+                << CompareThresholdSchema().Describe();
       return;
     }
     if (name->empty()) throw std::invalid_argument("describe " + *kind + ": a name is required");

@@ -1,13 +1,10 @@
-// `ocpbench run SUITE.json` and `ocpbench merge DIR`: suites, records, summaries.
-#include <unistd.h>
-
-#include <chrono>
+// `ocpbench run SUITE.json`: a suite's cases (or one shard of them) in one process or in N
+// worker processes, appending one record per case.
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <set>
-#include <sstream>
+#include <unordered_map>
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
@@ -15,184 +12,189 @@
 #include "bench/cli/app.h"
 #include "bench/cli/case_runner.h"
 #include "bench/cli/io.h"
+#include "bench/cli/progress.h"
 #include "bench/cli/records_file.h"
+#include "bench/cli/run_outputs.h"
+#include "bench/cli/shard.h"
+#include "bench/cli/shard_manifest.h"
 #include "bench/cli/suite.h"
-#include "bench/cli/summary.h"
+#include "bench/cli/worker_pool.h"
 
 namespace ocpb {
 namespace {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
+
+/// The most worker processes `--jobs` takes (a typo such as 1000 should not fork a thousand).
+constexpr int kMaxJobs = 256;
 
 struct RunArgs {
   std::string suite_path;
   std::string out;
   std::string shard;
+  int jobs = 1;
   bool resume = false;
   bool overwrite = false;
+  bool check = false;
 };
 
-void ParseShard(const std::string& s, int* index, int* count) {
-  const auto slash = s.find('/');
-  try {
-    if (slash == std::string::npos) throw std::invalid_argument("");
-    size_t a = 0, b = 0;
-    *index = std::stoi(s.substr(0, slash), &a);
-    *count = std::stoi(s.substr(slash + 1), &b);
-    if (a != slash || b != s.size() - slash - 1) throw std::invalid_argument("");
-  } catch (const std::exception&) {
-    throw std::invalid_argument("--shard '" + s + "': expected i/n with 0 <= i < n");
-  }
-  if (*count < 1 || *index < 0 || *index >= *count) {
-    throw std::invalid_argument("--shard '" + s + "': expected i/n with 0 <= i < n");
-  }
+std::string MethodLabel(const CaseSpec& spec) {
+  return spec.problem + " / " + spec.solver +
+         (spec.transcription.empty() ? "" : " + " + spec.transcription);
 }
 
-void WriteSummaries(const std::string& dir,
-                    const std::string& name,
-                    const std::vector<Record>& records,
-                    size_t expected_cases = 0) {
-  WriteFileAtomically(dir + "/summary.md", SummaryMarkdown(name, records, expected_cases));
-  WriteFileAtomically(dir + "/records.csv", RecordsCsv(records));
-  // Derived fields (best_J, time_to_target) for the plotting script; records.jsonl stays raw.
-  std::string derived;
-  for (const json& j : DerivedRecordsJson(records)) derived += j.dump() + "\n";
-  WriteFileAtomically(dir + "/derived.jsonl", derived);
-  json meta{{"suite", name}, {"records", records.size()}};
-  WriteFileAtomically(dir + "/suite.json", meta.dump(1) + "\n");
+// Each case's position in the suite, by key.
+std::unordered_map<std::string, size_t> SuitePositions(const Suite& suite) {
+  std::unordered_map<std::string, size_t> position;
+  for (size_t i = 0; i < suite.cases.size(); ++i) position.emplace(suite.cases[i].Key(), i);
+  return position;
 }
 
-std::string Clock(double seconds) {
-  const int s = static_cast<int>(seconds + 0.5);
-  return fmt::format("{}:{:02d}:{:02d}", s / 3600, (s / 60) % 60, s % 60);
+// The suite position of a key; keys that are no case of the suite come after all cases.
+size_t PositionOf(const std::unordered_map<std::string, size_t>& position, const std::string& key) {
+  const auto it = position.find(key);
+  return it == position.end() ? position.size() : it->second;
+}
+
+// Rewrites the records file in the suite's case order when it is not (worker processes finish
+// in any order; a resumed run appends after what was there). Lines are kept verbatim; records of
+// keys that are no case of the suite stay, after the others. One atomic rename.
+void PutInSuiteOrder(const std::string& path,
+                     const std::unordered_map<std::string, size_t>& position) {
+  RecordFile file = ReadRecords(path);
+  std::vector<std::pair<size_t, size_t>> order;  // (suite position, line)
+  for (size_t i = 0; i < file.records.size(); ++i) {
+    order.emplace_back(PositionOf(position, file.records[i].key), i);
+  }
+  if (std::is_sorted(order.begin(), order.end())) return;
+  std::stable_sort(
+      order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::string> lines;
+  for (const auto& [pos, line] : order) lines.push_back(std::move(file.lines[line]));
+  WriteFileAtomically(path, JoinLines(lines));
 }
 
 void Run(const RunArgs& args) {
+  // ---- every check before anything is written ----------------------------------------------
   const Suite suite = LoadSuite(args.suite_path);
   const std::string dir = args.out.empty() ? "results/" + suite.name : args.out;
-  int shard = 0, shards = 1;
-  if (!args.shard.empty()) ParseShard(args.shard, &shard, &shards);
+  const std::optional<Shard> shard =
+      args.shard.empty() ? std::nullopt : std::optional<Shard>(ParseShard(args.shard));
   if (args.resume && args.overwrite)
     throw std::invalid_argument("--resume and --overwrite exclude each other");
+  if (args.jobs < 1 || args.jobs > kMaxJobs) {
+    throw std::invalid_argument(fmt::format(
+        "--jobs {}: must be an integer from 1 to {} (worker processes)", args.jobs, kMaxJobs));
+  }
+  if (shard) CheckShardManifest(dir, suite, shard->count);
+  if (args.check) {
+    std::cerr << fmt::format(
+        "ocpbench: suite {} checked: {} cases{}; nothing run\n",
+        suite.name,
+        suite.cases.size(),
+        shard ? fmt::format(", {} in shard {}", shard->CaseCount(suite.cases.size()), shard->Text())
+              : "");
+    return;
+  }
   const std::string records_path =
-      shards == 1 ? dir + "/records.jsonl"
-                  : fmt::format("{}/records.shard-{}-of-{}.jsonl", dir, shard, shards);
+      dir + "/" + (shard ? shard->RecordsFileName() : std::string("records.jsonl"));
 
   std::set<std::string> done;
   std::vector<Record> records;
-  if (fs::exists(records_path) && fs::file_size(records_path) > 0) {
-    if (args.overwrite) {
-      fs::rename(records_path, records_path + ".prev");
-      std::cerr << "ocpbench: previous records kept as " << records_path << ".prev\n";
-    } else if (!args.resume) {
+  RecordFile previous;
+  const bool has_records = fs::exists(records_path) && fs::file_size(records_path) > 0;
+  if (has_records && !args.overwrite) {
+    if (!args.resume) {
       throw std::invalid_argument(records_path +
                                   " exists: pass --resume to continue it or --overwrite to " +
                                   "start over (the old file is kept as .prev)");
-    } else {
-      RecordFile file = ReadRecords(records_path);
-      if (file.dropped_partial) {
-        std::cerr << "ocpbench: dropped a partial last record in " << records_path
-                  << " (its case runs again)\n";
-      }
-      if (file.dropped_partial || file.unterminated) {
-        WriteFileAtomically(records_path, JoinLines(file.lines));
-      }
-      records = std::move(file.records);
-      for (const Record& r : records) done.insert(r.key);
     }
+    previous = ReadRecords(records_path);
   }
 
+  // ---- writes ------------------------------------------------------------------------------
+  if (has_records && args.overwrite) {
+    fs::rename(records_path, records_path + ".prev");
+    std::cerr << "ocpbench: previous records kept as " << records_path << ".prev\n";
+  }
+  if (previous.dropped_partial) {
+    std::cerr << "ocpbench: dropped a partial last record in " << records_path
+              << " (its case runs again)\n";
+  }
+  if (previous.dropped_partial || previous.unterminated) {
+    WriteFileAtomically(records_path, JoinLines(previous.lines));
+  }
+  records = std::move(previous.records);
+  for (const Record& r : records) done.insert(r.key);
+  if (shard) WriteShardManifestIfAbsent(dir, suite, args.suite_path, shard->count);
+
   std::vector<const CaseSpec*> todo;
-  int total_in_shard = 0;
+  size_t total_in_shard = 0;
   for (size_t i = 0; i < suite.cases.size(); ++i) {
-    if (static_cast<int>(i % shards) != shard) continue;
+    if (shard && !shard->Owns(i)) continue;
     ++total_in_shard;
     if (!done.count(suite.cases[i].Key())) todo.push_back(&suite.cases[i]);
   }
-  const bool tty = ::isatty(STDERR_FILENO);
   if (!done.empty()) {
     std::cerr << fmt::format("ocpbench: resuming: {} of {} cases already recorded\n",
                              total_in_shard - todo.size(),
                              total_in_shard);
   }
-  const auto start = std::chrono::steady_clock::now();
+
+  const int jobs = std::min<int>(args.jobs, std::max<size_t>(todo.size(), 1));
+  RunProgress progress(todo.size(), jobs, shard ? "shard " + shard->Text() + ": " : "");
   int failed = 0;
-  for (size_t i = 0; i < todo.size(); ++i) {
-    const CaseSpec& spec = *todo[i];
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (tty) {
-      const double eta = i > 0 ? elapsed / i * (todo.size() - i) : 0.0;
-      std::cerr << fmt::format("\r\033[Kcase {} of {}  elapsed {}  remaining ~{}  {} / {}{}",
-                               i + 1,
-                               todo.size(),
-                               Clock(elapsed),
-                               i > 0 ? Clock(eta) : "?",
-                               spec.problem,
-                               spec.solver,
-                               spec.transcription.empty() ? "" : " + " + spec.transcription)
-                << std::flush;
-    }
-    // One case never stops the suite: whatever it throws becomes its record.
-    Record record = RunCaseRecordingFailures(spec);
+  // Every finished case, whichever process ran it, is appended here (this process is the file's
+  // only writer) and flushed to disk before the next one is taken.
+  auto record_done = [&](size_t task, Record record, const std::string& line, size_t running) {
     if (IsFailure(record.status)) ++failed;
-    AppendLineDurably(records_path, record.ToJson().dump());
+    AppendLineDurably(records_path, line);
     records.push_back(std::move(record));
+    progress.CaseDone(running, MethodLabel(*todo[task]));
+  };
+  if (jobs == 1) {
+    for (size_t i = 0; i < todo.size(); ++i) {
+      // One case never stops the suite: whatever it throws becomes its record.
+      Record record = RunCaseRecordingFailures(*todo[i]);
+      const std::string line = record.ToJson().dump();
+      record_done(i, std::move(record), line, i + 1 < todo.size() ? 1 : 0);
+    }
+  } else {
+    WorkerPoolTasks tasks;
+    tasks.count = todo.size();
+    tasks.run = [&](size_t i) { return RunCaseRecordingFailures(*todo[i]).ToJson().dump(); };
+    tasks.died = [&](size_t i, const std::string& why) {
+      Record rec = CaseIdentityRecord(*todo[i]);
+      rec.status = ToString(SolveStatus::kError);
+      rec.solver_status = "worker_died";
+      rec.message = "the worker process running this case ended: " + why;
+      return rec.ToJson().dump();
+    };
+    tasks.done = [&](size_t i, std::string line, size_t running) {
+      Record record = Record::FromJson(nlohmann::json::parse(line));
+      record_done(i, std::move(record), line, running);
+    };
+    RunInWorkerProcesses(tasks, jobs);
   }
-  if (tty) std::cerr << "\r\033[K";
-  const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  progress.Finish();
+  const auto position = SuitePositions(suite);
+  if (!todo.empty()) PutInSuiteOrder(records_path, position);
+  std::stable_sort(records.begin(), records.end(), [&](const Record& a, const Record& b) {
+    return PositionOf(position, a.key) < PositionOf(position, b.key);
+  });
   std::cerr << fmt::format("ocpbench: {} cases run in {}, {} failed; records in {}\n",
                            todo.size(),
-                           Clock(elapsed),
+                           ClockText(progress.Elapsed()),
                            failed,
                            records_path);
-  if (shards == 1) {
-    WriteSummaries(dir, suite.name, records, suite.cases.size());
+  if (!shard) {
+    WriteRunSummaries(dir, suite.name, records, suite.cases.size());
     std::cerr << "ocpbench: summary in " << dir << "/summary.md\n";
   } else {
-    std::cerr << "ocpbench: shard done; join shards with `ocpbench merge " << dir << "`\n";
+    std::cerr << "ocpbench: shard " << shard->Text()
+              << " done; join the shards with `ocpbench merge " << dir << "`\n";
   }
   if (failed > 0) ReportSomeFailed();
-}
-
-void Merge(const std::string& dir, const std::string& name_arg) {
-  if (!fs::is_directory(dir)) throw std::invalid_argument("merge: no such directory " + dir);
-  std::vector<std::string> shard_files;
-  for (const auto& e : fs::directory_iterator(dir)) {
-    const std::string f = e.path().filename().string();
-    if (f.rfind("records.shard-", 0) == 0 && f.size() > 6 && f.substr(f.size() - 6) == ".jsonl") {
-      shard_files.push_back(e.path().string());
-    }
-  }
-  if (shard_files.empty())
-    throw std::invalid_argument("merge: no records.shard-*.jsonl files in " + dir);
-  std::sort(shard_files.begin(), shard_files.end());
-  std::vector<Record> merged;
-  std::vector<std::string> merged_lines;
-  std::set<std::string> keys;
-  for (const std::string& f : shard_files) {
-    RecordFile file = ReadRecords(f);
-    for (size_t i = 0; i < file.records.size(); ++i) {
-      if (keys.insert(file.records[i].key).second) {
-        merged.push_back(std::move(file.records[i]));
-        merged_lines.push_back(std::move(file.lines[i]));
-      }
-    }
-    if (file.dropped_partial) {
-      std::cerr << "ocpbench: merge: ignored a partial last record in " << f << "\n";
-    }
-  }
-  const std::string records_path = dir + "/records.jsonl";
-  if (fs::exists(records_path)) fs::rename(records_path, records_path + ".prev");
-  WriteFileAtomically(records_path, JoinLines(merged_lines));
-  const std::string name = name_arg.empty() ? fs::path(dir).filename().string() : name_arg;
-  WriteSummaries(dir, name, merged);
-  std::cerr << fmt::format("ocpbench: merged {} records from {} shards into {}\n",
-                           merged.size(),
-                           shard_files.size(),
-                           records_path);
 }
 
 }  // namespace
@@ -206,15 +208,19 @@ void AddRunCommand(CLI::App& app) {
   run->add_flag("--resume", args->resume, "skip cases already in the records file");
   run->add_flag(
       "--overwrite", args->overwrite, "start over; the old records file is kept as .prev");
-  run->add_option("--shard", args->shard, "run only cases i, i+n, i+2n, ... (i/n)");
+  run->add_option("--shard",
+                  args->shard,
+                  "run only shard i of n (1 <= i <= n): the suite's cases i, i+n, i+2n, ... "
+                  "into records.shard-i-of-n.jsonl; join them with `ocpbench merge`");
+  run->add_option("--jobs",
+                  args->jobs,
+                  "worker processes running cases at once (default 1); each case's CPU time "
+                  "stays its own, records come out in the suite's order");
+  run->add_flag("--check",
+                args->check,
+                "check the suite (every case) and the output folder's shard rules; run and "
+                "write nothing");
   run->callback([args]() { Run(*args); });
-
-  auto dir = std::make_shared<std::string>();
-  auto name = std::make_shared<std::string>();
-  CLI::App* merge = app.add_subcommand("merge", "Join the shard records of a suite directory");
-  merge->add_option("dir", *dir, "suite output directory")->required();
-  merge->add_option("--name", *name, "suite name for the summary (default: directory name)");
-  merge->callback([dir, name]() { Merge(*dir, *name); });
 }
 
 }  // namespace ocpb

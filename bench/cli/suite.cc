@@ -20,6 +20,7 @@ Suite ParseSuite(const json& j, const std::string& source) {
     }
   }
   Suite suite;
+  suite.document = j;
   if (!j.contains("name") || !j["name"].is_string() || j["name"].get<std::string>().empty()) {
     throw std::invalid_argument(source + ": name: required non-empty string");
   }

@@ -26,6 +26,8 @@ struct Suite {
   std::string name;
   std::string description;
   std::vector<CaseSpec> cases;
+  /// The suite as parsed (a sharded run keeps it in its output folder for `merge`).
+  nlohmann::json document;
 };
 
 /// Parses and validates; throws std::invalid_argument "SUITE: field: rule" on any error.

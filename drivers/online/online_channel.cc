@@ -142,7 +142,11 @@ ChannelUpdateTimings OnlineChannel::Update(const MeasurementSet& more,
   GridPrediction grid;
   {
     const Stopwatch watch;
-    grid = PredictOnGrid(*predictor_, current_grid_, options_.grid_prediction);
+    // Every region is part of map_grid_: one FFT size for all updates, so one FFTW plan.
+    GridPredictionOptions o = options_.grid_prediction;
+    o.min_fft_nx = std::max(o.min_fft_nx, map_grid_.nx);
+    o.min_fft_ny = std::max(o.min_fft_ny, map_grid_.ny);
+    grid = PredictOnGrid(*predictor_, current_grid_, o);
     t.grid_seconds = watch.cpu();
   }
   {

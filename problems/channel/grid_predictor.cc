@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <numbers>
@@ -36,6 +37,7 @@ bool GridPredictionOptions::IsValid(std::string* error) const {
   if (tile_points < 2) return fail("tile_points must be >= 2");
   if (far_field_order < 4) return fail("far_field_order must be >= 4");
   if (num_threads < 0) return fail("num_threads must be >= 0");
+  if (min_fft_nx < 0 || min_fft_ny < 0) return fail("min_fft_nx and min_fft_ny must be >= 0");
   return true;
 }
 
@@ -78,12 +80,15 @@ Eigen::MatrixXd ChebyshevBasis(const Eigen::VectorXd& nodes_t,
 
 // sum_k w_k table(|i - i_k|, |j - j_k|) at every grid point (i, j): the linear convolution of
 // the weight image with the kernel table, by real FFTs of size >= (2 nx - 1) x (2 ny - 1)
-// (no wrap-around in the part kept).
+// (no wrap-around in the part kept; larger when min_nx, min_ny ask for it).
 Eigen::MatrixXd LatticeConvolution(const Eigen::MatrixXd& table,
                                    const std::vector<int>& lattice,
-                                   const Eigen::VectorXd& weights) {
+                                   const Eigen::VectorXd& weights,
+                                   int min_nx,
+                                   int min_ny) {
   const int nx = static_cast<int>(table.rows()), ny = static_cast<int>(table.cols());
-  const int mx = NextFftSize(2 * nx - 1), my = NextFftSize(2 * ny - 1);
+  const int mx = NextFftSize(2 * std::max(nx, min_nx) - 1);
+  const int my = NextFftSize(2 * std::max(ny, min_ny) - 1);
   const int cx = mx / 2 + 1;
   const std::size_t real_n = static_cast<std::size_t>(mx) * my;
   const std::size_t complex_n = static_cast<std::size_t>(cx) * my;
@@ -101,15 +106,7 @@ Eigen::MatrixXd LatticeConvolution(const Eigen::MatrixXd& table,
   auto kernel = real_alloc(real_n);
   auto image_hat = complex_alloc(complex_n);
   auto kernel_hat = complex_alloc(complex_n);
-  fftw_plan forward, backward;
-  {
-    std::lock_guard<std::mutex> lock(FftwPlannerMutex());
-    forward = fftw_plan_dft_r2c_2d(my, mx, image.get(), image_hat.get(), FFTW_ESTIMATE);
-    backward = fftw_plan_dft_c2r_2d(my, mx, image_hat.get(), image.get(), FFTW_ESTIMATE);
-  }
-  if (forward == nullptr || backward == nullptr) {
-    throw std::runtime_error("grid prediction: FFTW could not plan the FFT");
-  }
+  const std::shared_ptr<const RealFft2dPlans> plans = CachedRealFft2dPlans(my, mx);
   std::fill(image.get(), image.get() + real_n, 0.0);
   std::fill(kernel.get(), kernel.get() + real_n, 0.0);
   for (std::size_t k = 0; k < static_cast<std::size_t>(weights.size()); ++k) {
@@ -122,8 +119,8 @@ Eigen::MatrixXd LatticeConvolution(const Eigen::MatrixXd& table,
       kernel.get()[row + (di + mx) % mx] = table(std::abs(di), std::abs(dj));
     }
   }
-  fftw_execute_dft_r2c(forward, image.get(), image_hat.get());
-  fftw_execute_dft_r2c(forward, kernel.get(), kernel_hat.get());
+  fftw_execute_dft_r2c(plans->forward, image.get(), image_hat.get());
+  fftw_execute_dft_r2c(plans->forward, kernel.get(), kernel_hat.get());
   const double scale = 1.0 / static_cast<double>(real_n);
   for (std::size_t k = 0; k < complex_n; ++k) {
     const double ar = image_hat.get()[k][0], ai = image_hat.get()[k][1];
@@ -131,12 +128,7 @@ Eigen::MatrixXd LatticeConvolution(const Eigen::MatrixXd& table,
     image_hat.get()[k][0] = scale * (ar * br - ai * bi);
     image_hat.get()[k][1] = scale * (ar * bi + ai * br);
   }
-  fftw_execute_dft_c2r(backward, image_hat.get(), image.get());
-  {
-    std::lock_guard<std::mutex> lock(FftwPlannerMutex());
-    fftw_destroy_plan(forward);
-    fftw_destroy_plan(backward);
-  }
+  fftw_execute_dft_c2r(plans->backward, image_hat.get(), image.get());
   Eigen::MatrixXd out(nx, ny);
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) out(i, j) = image.get()[static_cast<std::size_t>(j) * mx + i];
@@ -178,30 +170,45 @@ class GridWorker {
         any_lattice = true;
       }
     }
-    if (any_lattice) {
-      table_.resize(grid.nx, grid.ny);
-      const double h = grid.resolution;
-      for (int dj = 0; dj < grid.ny; ++dj) {
-        for (int di = 0; di < grid.nx; ++di) {
-          table_(di, dj) =
-              xi2_ * std::exp(-inv_eta_ * h * std::sqrt(double(di) * di + double(dj) * dj));
-        }
+    // The kernel table and Omega are filled by SetupJob, the mean's lattice part by Convolve.
+    if (any_lattice) table_.resize(grid.nx, grid.ny);
+    if (options.variance == GridVarianceMethod::kLocal) omega_.resize(m, m);
+  }
+
+  // The jobs below are kept out of line so that a profile (results/plotting/callgrind_counts.py)
+  // attributes instructions to each round. Setup jobs, each independent of the others: the kernel
+  // table's columns dj (when some measurements lie on the lattice), then the columns c of Omega
+  // (local variance).
+  int num_setup_jobs() const {
+    return static_cast<int>(table_.cols()) + static_cast<int>(omega_.cols());
+  }
+  [[gnu::noinline]] void SetupJob(int job) {
+    if (job < table_.cols()) {
+      const int dj = job;
+      const double h = grid_.resolution;
+      for (int di = 0; di < grid_.nx; ++di) {
+        table_(di, dj) =
+            xi2_ * std::exp(-inv_eta_ * h * std::sqrt(double(di) * di + double(dj) * dj));
       }
+      return;
     }
-    if (any_lattice) lattice_mean_ = LatticeConvolution(table_, lattice_, pred_.alpha());
-    if (options.variance == GridVarianceMethod::kLocal) {
-      omega_.resize(m, m);
-      for (int c = 0; c < m; ++c) {
-        for (int r = c; r < m; ++r) {
-          omega_(r, c) = omega_(c, r) = xi2_ * std::exp(-inv_eta_ * (Q.col(r) - Q.col(c)).norm());
-        }
-      }
+    // Entry (r, c) and (c, r) of Omega belong to the job of column min(r, c).
+    const int c = job - static_cast<int>(table_.cols());
+    const Eigen::Matrix2Xd& Q = pred_.positions();
+    for (int r = c; r < omega_.rows(); ++r) {
+      omega_(r, c) = omega_(c, r) = xi2_ * std::exp(-inv_eta_ * (Q.col(r) - Q.col(c)).norm());
     }
+  }
+  bool has_lattice() const { return table_.size() > 0; }
+  // The mean's part from the measurements on the lattice, by FFT (after the setup jobs).
+  [[gnu::noinline]] void Convolve() {
+    lattice_mean_ = LatticeConvolution(
+        table_, lattice_, pred_.alpha(), options_.min_fft_nx, options_.min_fft_ny);
   }
 
   int num_tiles() const { return tiles_x_ * tiles_y_; }
 
-  void Tile(int tile) const {
+  [[gnu::noinline]] void Tile(int tile) const {
     const int T = options_.tile_points;
     const int i0 = (tile % tiles_x_) * T, j0 = (tile / tiles_x_) * T;
     const int tx = std::min(T, grid_.nx - i0), ty = std::min(T, grid_.ny - j0);
@@ -252,13 +259,9 @@ class GridWorker {
             xi2_ * (-inv_eta_ * ((X - Q(0, k)).square() + (Y - Q(1, k)).square()).sqrt()).exp();
       }
     }
-    // Mean: measurements on the lattice all at once (LatticeConvolution), others near ...
+    // Mean: the measurements off the lattice near ... (Finish adds the lattice part, which
+    // Convolve computes meanwhile on another thread)
     Eigen::ArrayXd mean = Eigen::ArrayXd::Zero(P);
-    if (lattice_mean_.size() > 0) {
-      for (int j = 0; j < ty; ++j) {
-        mean.segment(tx * j, tx) = lattice_mean_.col(j0 + j).segment(i0, tx).array();
-      }
-    }
     for (int c = 0; c < n; ++c) {
       if (lattice_[2 * near[c]] < 0) mean += alpha[near[c]] * KT.col(c).array();
     }
@@ -319,15 +322,27 @@ class GridWorker {
       variance -= KT.rowwise().squaredNorm().array();
     }
 
-    const QualityUnits& units = pred_.options().units;
     for (int j = 0; j < ty; ++j) {
       for (int i = 0; i < tx; ++i) {
-        const int idx = i + tx * j;
-        const double pl = pred_.PathLossMean(grid_.Point(i0 + i, j0 + j), nullptr, nullptr);
-        const double mu = pl + mean[idx];
-        out_->mean_db(i0 + i, j0 + j) = mu;
-        out_->variance_db2(i0 + i, j0 + j) = variance[idx];
-        out_->s(i0 + i, j0 + j) = ExpectedInverseCnr(mu, variance[idx], units);
+        out_->mean_db(i0 + i, j0 + j) = mean[i + tx * j];  // Finish completes it
+        out_->variance_db2(i0 + i, j0 + j) = variance[i + tx * j];
+      }
+    }
+  }
+
+  // The tile's mean (+ lattice part + path loss) and s, after Tile and Convolve.
+  [[gnu::noinline]] void Finish(int tile) const {
+    const int T = options_.tile_points;
+    const int i0 = (tile % tiles_x_) * T, j0 = (tile / tiles_x_) * T;
+    const int tx = std::min(T, grid_.nx - i0), ty = std::min(T, grid_.ny - j0);
+    const QualityUnits& units = pred_.options().units;
+    for (int j = j0; j < j0 + ty; ++j) {
+      for (int i = i0; i < i0 + tx; ++i) {
+        double mean = out_->mean_db(i, j);
+        if (lattice_mean_.size() > 0) mean = lattice_mean_(i, j) + mean;
+        const double mu = pred_.PathLossMean(grid_.Point(i, j), nullptr, nullptr) + mean;
+        out_->mean_db(i, j) = mu;
+        out_->s(i, j) = ExpectedInverseCnr(mu, out_->variance_db2(i, j), units);
       }
     }
   }
@@ -358,6 +373,28 @@ class GridWorker {
   Eigen::MatrixXd lattice_mean_;  // Psi^T alpha over the lattice measurements, nx x ny
 };
 
+// Runs job(0), ..., job(count - 1) on `threads` threads (this one included), each job once,
+// in increasing order of start; rethrows the first exception after all threads stopped.
+void RunJobs(int count, int threads, const std::function<void(int)>& job) {
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto run = [&]() {
+    try {
+      for (int j = next++; j < count; j = next++) job(j);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+      next = count;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::min(threads, count); ++t) pool.emplace_back(run);
+  run();
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
 }  // namespace
 
 GridPrediction PredictOnGrid(const GpChannelPredictor& predictor,
@@ -372,27 +409,24 @@ GridPrediction PredictOnGrid(const GpChannelPredictor& predictor,
   out.mean_db.resize(grid.nx, grid.ny);
   out.variance_db2.resize(grid.nx, grid.ny);
   out.s.resize(grid.nx, grid.ny);
-  const GridWorker worker(predictor, grid, options, &out);
+  GridWorker worker(predictor, grid, options, &out);
   int threads = options.num_threads > 0 ? options.num_threads
                                         : static_cast<int>(std::thread::hardware_concurrency());
   threads = std::clamp(threads, 1, std::max(1, worker.num_tiles()));
-  std::atomic<int> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  auto run = [&]() {
-    try {
-      for (int t = next++; t < worker.num_tiles(); t = next++) worker.Tile(t);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(failure_mutex);
-      if (!failure) failure = std::current_exception();
-      next = worker.num_tiles();
+  // Three rounds of independent jobs on `threads` threads; every job does the same arithmetic
+  // whichever thread runs it, so the result does not depend on the thread count. Round 2 runs
+  // the FFT convolution (job 0) next to the tiles, which do not need it.
+  const int tiles = worker.num_tiles();
+  RunJobs(worker.num_setup_jobs(), threads, [&](int job) { worker.SetupJob(job); });
+  const int convolve = worker.has_lattice() ? 1 : 0;
+  RunJobs(convolve + tiles, threads, [&](int job) {
+    if (job < convolve) {
+      worker.Convolve();
+    } else {
+      worker.Tile(job - convolve);
     }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(run);
-  run();
-  for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  });
+  RunJobs(tiles, threads, [&](int job) { worker.Finish(job); });
   out.seconds = watch.wall();
   std::ostringstream os;
   os << ToString(options.variance);

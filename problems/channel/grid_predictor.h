@@ -40,6 +40,11 @@ struct GridPredictionOptions {
   int far_field_order = 10;
   /// Worker threads; 0 means std::thread::hardware_concurrency().
   int num_threads = 0;
+  /// The FFT of the mean's lattice convolution is sized for a grid of at least min_fft_nx x
+  /// min_fft_ny points (>= 0; 0: the grid's own size). Predictions on regions of one larger
+  /// grid (the online re-planning's) then share one FFT size, hence one cached FFTW plan
+  /// (CachedRealFft2dPlans) instead of planning a new size at every update.
+  int min_fft_nx = 0, min_fft_ny = 0;
 
   bool IsValid(std::string* error) const;
 };

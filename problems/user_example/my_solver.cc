@@ -119,6 +119,7 @@ ocpb::SolveResult ProjectedGradient::Solve(const ocpb::Ocp& ocp,
       Mat trial = U;
       for (int k = 0; k < grid.intervals(); ++k) trial.col(k) -= step * G.col(k) / grid.h(k);
       Project(ocp.control_set(), &trial);
+      if (trial == U) break;  // the step no longer moves U: rounding, not progress
       const double J_trial = docp.Simulate(trial, &X_trial);
       const double decrease = o.sufficient_decrease * (G.array() * (trial - U).array()).sum();
       if (std::isfinite(J_trial) && J_trial - J <= decrease) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "problems/channel/channel_simulator.h"
+#include "problems/channel/fftw_planner.h"
 #include "problems/channel/measurement_sampling.h"
 
 namespace ocpb {
@@ -77,17 +78,59 @@ TEST(PredictOnGrid, OffLatticeMeasurementsUseTheFarFieldInterpolation) {
   ExpectMatchesPointwise(pred, g, 1e-7, -1e-9, 5e-3);
 }
 
+// Bit-for-bit the same with 1, 2 or 3 threads: on the lattice (the FFT convolution runs next to
+// the tiles), and with half the measurements moved off it (near sums and the far field too).
 TEST(PredictOnGrid, ThreadsDoNotChangeTheResult) {
   const SmallCase s;
+  MeasurementSet mixed = s.measurements;
+  for (size_t k = 0; k < mixed.positions.size(); k += 2) {
+    mixed.positions[k] += Eigen::Vector2d(0.013, -0.021);
+  }
+  for (const MeasurementSet& m : {s.measurements, mixed}) {
+    const GpChannelPredictor pred(s.params, m);
+    GridPredictionOptions one;
+    one.num_threads = 1;
+    const GridPrediction a = PredictOnGrid(pred, s.channel.grid, one);
+    for (int threads : {2, 3}) {
+      GridPredictionOptions o;
+      o.num_threads = threads;
+      const GridPrediction b = PredictOnGrid(pred, s.channel.grid, o);
+      EXPECT_EQ(a.mean_db, b.mean_db) << threads;
+      EXPECT_EQ(a.variance_db2, b.variance_db2) << threads;
+      EXPECT_EQ(a.s, b.s) << threads;
+    }
+  }
+}
+
+// A larger FFT (what the online re-planning asks for, to reuse one plan) is the same linear
+// convolution: the mean agrees to rounding, the variance (no FFT) exactly.
+TEST(PredictOnGrid, LargerFftGivesTheSameMean) {
+  const SmallCase s;
   const GpChannelPredictor pred(s.params, s.measurements);
-  GridPredictionOptions one, two;
-  one.num_threads = 1;
-  two.num_threads = 2;
-  const GridPrediction a = PredictOnGrid(pred, s.channel.grid, one);
-  const GridPrediction b = PredictOnGrid(pred, s.channel.grid, two);
-  EXPECT_EQ(a.mean_db, b.mean_db);
+  GridPredictionOptions larger;
+  larger.min_fft_nx = 130;
+  larger.min_fft_ny = 97;
+  const GridPrediction a = PredictOnGrid(pred, s.channel.grid, {});
+  const GridPrediction b = PredictOnGrid(pred, s.channel.grid, larger);
+  EXPECT_LT((a.mean_db - b.mean_db).cwiseAbs().maxCoeff(), 1e-11);
+  EXPECT_GT((a.mean_db - b.mean_db).cwiseAbs().maxCoeff(), 0.0);  // another FFT really ran
   EXPECT_EQ(a.variance_db2, b.variance_db2);
-  EXPECT_EQ(a.s, b.s);
+  larger.min_fft_nx = -1;
+  EXPECT_THROW(PredictOnGrid(pred, s.channel.grid, larger), std::invalid_argument);
+}
+
+TEST(CachedRealFft2dPlans, OnePairPerSizeReused) {
+  const auto a = CachedRealFft2dPlans(40, 60);
+  const auto b = CachedRealFft2dPlans(40, 60);
+  const auto c = CachedRealFft2dPlans(60, 40);
+  EXPECT_EQ(a.get(), b.get());
+  EXPECT_NE(a.get(), c.get());
+  EXPECT_EQ(c->ny, 60);
+  EXPECT_EQ(c->nx, 40);
+  // 16 other sizes push (40, 60) out of the cache; the holders keep theirs alive.
+  for (int k = 1; k <= 16; ++k) CachedRealFft2dPlans(40 + k, 60);
+  EXPECT_NE(CachedRealFft2dPlans(40, 60).get(), a.get());
+  EXPECT_NE(a->forward, nullptr);
 }
 
 TEST(PredictOnGrid, RejectsInvalidOptions) {

@@ -155,6 +155,37 @@ TEST(CommPath2d, HandWrittenDerivativesMatchTheTemplate) {
   }
 }
 
+// The hand-written PointHessian equals the Jet2 Hessian of the template (the base class's
+// PointHessian, called non-virtually) at random points, at rest and on the bicubic map, whatever
+// lambda (the dynamics are affine); finite differences check it in
+// DerivativesMatchFiniteDifferences.
+TEST(CommPath2d, HandWrittenHessianMatchesTheTemplate) {
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> pos(2.0, 48.0), vel(-1.5, 1.5), unit(-1.0, 1.0);
+  const auto map = RippleMap();
+  for (const auto& [k5, k6, channel] : {std::tuple{0.0, 0.0, PaperPathLoss()},
+                                        std::tuple{0.7, 1.3, PaperPathLoss()},
+                                        std::tuple{0.7, 1.3, map}}) {
+    const CommPath2d ocp(WithK56(k5, k6), channel);
+    using Base = AutoDiffOcp<CommPath2d, 5, 3, 5, 0>;
+    for (int trial = 0; trial < 20; ++trial) {
+      Vec x(5), u(3), lambda(5), mu(0);
+      x << pos(rng), pos(rng), vel(rng), vel(rng), 150.0 * unit(rng);
+      u << 0.3 * unit(rng), 0.3 * unit(rng), 3.0 + 3.0 * unit(rng);
+      if (trial == 0) x[2] = x[3] = u[0] = u[1] = 0.0;  // at rest: the smoothing's curvature
+      for (int i = 0; i < 5; ++i) lambda[i] = 5.0 * unit(rng);
+      const double sigma = trial == 1 ? 0.0 : 0.5 + unit(rng);
+      Mat h(8, 8), h_ad(8, 8);
+      ocp.PointHessian(0.0, x, u, sigma, lambda, mu, h);
+      ocp.Base::PointHessian(0.0, x, u, sigma, lambda, mu, h_ad);
+      EXPECT_LE((h - h_ad).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + h_ad.cwiseAbs().maxCoeff()))
+          << "k5 = " << k5 << ", trial " << trial << "\n"
+          << h << "\n\n"
+          << h_ad;
+    }
+  }
+}
+
 // H(t, x, u, p) for the closed form is no worse than any of many points of U (a polar grid of
 // the ball times a grid of [0, Rmax], plus random points), at random (x, p).
 void ExpectMinimizerBeatsBruteForce(const Ocp& ocp, double umax, double rmax, std::uint64_t seed) {

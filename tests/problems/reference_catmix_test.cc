@@ -160,59 +160,6 @@ TEST(Catmix, CopsSchemeReproducesTheCopsValueAndConvergesToTheContinuousEstimate
 // ---- OCPBench's methods
 // --------------------------------------------------------------------------
 
-// Against kContinuous (the COPS value is an optimum of another discrete problem). Catmix is
-// bang-singular-bang, which limits every scheme. Measured relative errors of Jbar_fine: Euler
-// 3.7e-3 at N = 50 (first order), trapezoid 1.8e-6 at N = 100 (3.2e-5 at N = 50, 4.2e-6 at
-// N = 200: at N = 100 its error happens to be near a sign change), Hermite-Simpson 7.8e-4 and LGR
-// (3 points) 1.4e-3 at N = 50: their polynomial controls ring on the singular arc and at the
-// switches, and the NLP exploits that (their NLP objectives lie below any admissible continuous
-// cost). They improve slowly or not at all with N (N = 100: 2.8e-4 and 1.4e-3; LGR N = 200:
-// 1.3e-3): with polynomial controls LGR cannot reach the optimum on this problem to better than
-// about 1e-3.
-struct IpoptCase {
-  const char* transcription;
-  int N;
-  double tolerance;
-};
-
-class CatmixIpopt : public ::testing::TestWithParam<IpoptCase> {};
-
-TEST_P(CatmixIpopt, ReachesTheReference) {
-  const IpoptCase c = GetParam();
-  const auto ocp = MakeProblem("catmix", {}, 0);
-  const SolveResult r = SolveWithIpopt(*ocp, c.transcription, c.N);
-  ASSERT_TRUE(IsSuccess(r.status)) << r.solver_status << " " << r.message;
-  const Evaluation fine = FineEvaluation(*ocp, r, c.N);
-  EXPECT_LT(RelativeError(fine.Jbar, kContinuous), c.tolerance) << "Jbar_fine = " << fine.Jbar;
-  EXPECT_EQ(fine.control_violation, 0.0);
-}
-
-INSTANTIATE_TEST_SUITE_P(Transcriptions,
-                         CatmixIpopt,
-                         ::testing::Values(IpoptCase{"euler", 50, 5e-3},
-                                           IpoptCase{"trapezoid", 100, 5e-6},
-                                           IpoptCase{"hermite-simpson", 50, 1.2e-3},
-                                           IpoptCase{"lgr", 50, 2e-3}),
-                         [](const auto& info) {
-                           std::string n = info.param.transcription;
-                           for (char& ch : n) ch = ch == '-' ? '_' : ch;
-                           return n + "_N" + std::to_string(info.param.N);
-                         });
-
-// SLSQP needs about 900 evaluations at N = 10 (2800 at N = 20: too slow for a sanitizer build) on
-// this singular problem; its optimum is the trapezoid's at N = 10, whose controls cost 3.3e-3 more
-// than the continuous optimum.
-TEST(Catmix, NloptSlsqpReachesTheSameOptimumAsIpopt) {
-  const auto ocp = MakeProblem("catmix", {}, 0);
-  SolveRequest req = Request(*ocp, 10, TerminalMode::kHard, "trapezoid");
-  req.options.Set("algorithm", "LD_SLSQP");
-  const SolveResult nlopt = SolveWith("nlopt", *ocp, req);
-  ASSERT_EQ(nlopt.status, SolveStatus::kConverged) << nlopt.solver_status << " " << nlopt.message;
-  const SolveResult ipopt = SolveWithIpopt(*ocp, "trapezoid", 10);
-  EXPECT_LT(RelativeError(nlopt.objective, ipopt.objective), 1e-5);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, nlopt, 10).Jbar, kContinuous), 5e-3);
-}
-
 // The Hamiltonian method on the regularized problem (eps = 1e-4 int u^2, the default), Euler
 // N = 100: theta reaches 0 (every u_k is at the minimizer of its H). The problem is not convex:
 // its discrete optimum and Ipopt's on the same discrete problem (Euler transcription of the

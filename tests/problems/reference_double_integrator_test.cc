@@ -65,20 +65,6 @@ TEST(DoubleIntegrator, IpoptCostatesMatchTheAnalyticOnes) {
   EXPECT_LT(RelativeError(FineEvaluation(*ocp, r, 20).Jbar, 6.0), 1e-8);
 }
 
-// |u| <= 5: J* = 6.0450277563, u* = clip(6.4549722 - 12.9099445 t, -5, 5) (CTProblems.jl). The
-// kinks of u* at t = 0.1127 and 0.8873 limit every scheme: Ipopt + Hermite-Simpson measured
-// 1.3e-4 at N = 50 and 1.0e-7 at N = 100 (whose mesh points 0.11 and 0.89 lie close to the
-// kinks).
-TEST(DoubleIntegratorBounded, IpoptReachesTheReference) {
-  const double reference = 6.0450277563;
-  const auto ocp = MakeProblem("double-integrator-bounded", {}, 0);
-  const SolveResult r = SolveWithIpopt(*ocp, "hermite-simpson", 100);
-  ASSERT_EQ(r.status, SolveStatus::kConverged);
-  const Evaluation fine = FineEvaluation(*ocp, r, 100);
-  EXPECT_LT(RelativeError(fine.Jbar, reference), 5e-7);
-  EXPECT_EQ(fine.control_violation, 0.0);
-}
-
 // NLopt on single shooting (hard form: |u| <= 5 as bounds, psi = 0 as two dense rows), N = 100:
 // SLSQP and AUGLAG(L-BFGS) reach the optimum of the Euler discretization, which Ipopt finds on
 // the Euler transcription (6.0455684); its O(h) error is what separates it from J* (measured

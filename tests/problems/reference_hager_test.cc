@@ -51,37 +51,6 @@ TEST(Hager, ClosedFormSatisfiesTheOptimalityConditions) {
   EXPECT_NEAR(J, kJ, 1e-13);
 }
 
-struct IpoptCase {
-  const char* transcription;
-  int N;
-  double tolerance;  // on |Jbar_fine - J*| / J*: measured accuracy rounded up
-};
-
-class HagerIpopt : public ::testing::TestWithParam<IpoptCase> {};
-
-TEST_P(HagerIpopt, ReachesTheReference) {
-  const IpoptCase c = GetParam();
-  const auto ocp = MakeProblem("hager", {}, 0);
-  const SolveResult r = SolveWithIpopt(*ocp, c.transcription, c.N);
-  ASSERT_EQ(r.status, SolveStatus::kConverged) << r.solver_status << " " << r.message;
-  const double jbar = FineEvaluation(*ocp, r, c.N).Jbar;
-  EXPECT_LT(RelativeError(jbar, kJ), c.tolerance) << "Jbar_fine = " << jbar;
-}
-
-// Measured: Euler 3.8e-5 (N = 100), trapezoid 3.6e-6 (N = 50), Hermite-Simpson 8.0e-9 (N = 25),
-// LGR 5.3e-12 (N = 25).
-INSTANTIATE_TEST_SUITE_P(Transcriptions,
-                         HagerIpopt,
-                         ::testing::Values(IpoptCase{"euler", 100, 6e-5},
-                                           IpoptCase{"trapezoid", 50, 6e-6},
-                                           IpoptCase{"hermite-simpson", 25, 1.5e-8},
-                                           IpoptCase{"lgr", 25, 1e-11}),
-                         [](const auto& info) {
-                           std::string n = info.param.transcription;
-                           for (char& ch : n) ch = ch == '-' ? '_' : ch;
-                           return n + "_N" + std::to_string(info.param.N);
-                         });
-
 // ---- order of accuracy
 // ---------------------------------------------------------------------------
 
@@ -180,17 +149,6 @@ INSTANTIATE_TEST_SUITE_P(Transcriptions,
 
 // ---- costates, NLopt, Hamiltonian
 // -------------------------------------------------------------------
-
-TEST(Hager, NloptSlsqpReachesTheSameOptimumAsIpopt) {
-  const auto ocp = MakeProblem("hager", {}, 0);
-  SolveRequest req = Request(*ocp, 20, TerminalMode::kHard, "hermite-simpson");
-  req.options.Set("algorithm", "LD_SLSQP");
-  const SolveResult nlopt = SolveWith("nlopt", *ocp, req);
-  ASSERT_EQ(nlopt.status, SolveStatus::kConverged) << nlopt.solver_status << " " << nlopt.message;
-  const SolveResult ipopt = SolveWithIpopt(*ocp, "hermite-simpson", 20);
-  EXPECT_NEAR(nlopt.objective, ipopt.objective, 1e-8);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, nlopt, 20).Jbar, kJ), 5e-8);  // measured 2.0e-8
-}
 
 // Forward Euler: the Hamiltonian method and Ipopt on the Euler transcription solve the same
 // discrete problem. The continuous cost of its controls is within 6e-5 of J* at N = 100

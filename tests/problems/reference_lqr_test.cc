@@ -94,37 +94,6 @@ TEST(Lqr, RiccatiReproducesTheReferenceValue) {
   EXPECT_LT(RelativeError(ev.Jbar, kJ), 1e-7);  // linear interpolation of u*: O(h^2)
 }
 
-struct IpoptCase {
-  const char* transcription;
-  int N;
-  double tolerance;  // on |Jbar_fine - J*| / J*: measured accuracy of the scheme, rounded up
-};
-
-class LqrIpopt : public ::testing::TestWithParam<IpoptCase> {};
-
-TEST_P(LqrIpopt, ReachesTheReference) {
-  const IpoptCase c = GetParam();
-  const auto ocp = MakeProblem("lqr", {}, 0);
-  const SolveResult r = SolveWithIpopt(*ocp, c.transcription, c.N);
-  ASSERT_EQ(r.status, SolveStatus::kConverged) << r.solver_status << " " << r.message;
-  const double jbar = FineEvaluation(*ocp, r, c.N).Jbar;
-  EXPECT_LT(RelativeError(jbar, kJ), c.tolerance) << "Jbar_fine = " << jbar;
-}
-
-// Euler: first order in the states, second in J (measured 5.5e-3 at N = 100); trapezoid:
-// 1.5e-5 at N = 100; Hermite-Simpson: 1.1e-7 at N = 50; LGR (degree 3): 5.7e-9 at N = 25.
-INSTANTIATE_TEST_SUITE_P(Transcriptions,
-                         LqrIpopt,
-                         ::testing::Values(IpoptCase{"euler", 100, 8e-3},
-                                           IpoptCase{"trapezoid", 100, 3e-5},
-                                           IpoptCase{"hermite-simpson", 50, 2e-7},
-                                           IpoptCase{"lgr", 25, 1e-8}),
-                         [](const auto& info) {
-                           std::string n = info.param.transcription;
-                           for (char& ch : n) ch = ch == '-' ? '_' : ch;
-                           return n + "_N" + std::to_string(info.param.N);
-                         });
-
 // The largest |p - P x*| over a result's state grid, relative to max |p*| (about 1.2 here).
 double CostateError(const SolveResult& r) {
   double err = 0.0, scale = 0.0;
@@ -150,17 +119,6 @@ TEST(Lqr, IpoptCostatesMatchRiccati) {
     ASSERT_EQ(r.costates.cols(), r.state_grid.size()) << transcription;
     EXPECT_LT(CostateError(r), tolerance) << transcription;
   }
-}
-
-TEST(Lqr, NloptSlsqpReachesTheSameOptimumAsIpopt) {
-  const auto ocp = MakeProblem("lqr", {}, 0);
-  SolveRequest req = Request(*ocp, 20, TerminalMode::kHard, "hermite-simpson");
-  req.options.Set("algorithm", "LD_SLSQP");
-  const SolveResult nlopt = SolveWith("nlopt", *ocp, req);
-  ASSERT_EQ(nlopt.status, SolveStatus::kConverged) << nlopt.solver_status << " " << nlopt.message;
-  const SolveResult ipopt = SolveWithIpopt(*ocp, "hermite-simpson", 20);
-  EXPECT_NEAR(nlopt.objective, ipopt.objective, 1e-7);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, nlopt, 20).Jbar, kJ), 1e-5);  // measured 4.3e-6
 }
 
 // The Hamiltonian method on forward Euler solves the same discrete problem as Ipopt on the Euler

@@ -174,53 +174,6 @@ TEST(MinTimeProblems, HamiltonianMinimizersAreExact) {
   }
 }
 
-struct IpoptCase {
-  const char* problem;
-  const char* transcription;
-  int N;
-  double tolerance;  // on |J - tf*| / tf*: the measured error rounded up
-};
-
-class MinTimeIpopt : public ::testing::TestWithParam<IpoptCase> {};
-
-// Hard terminal form, Ipopt at tol 1e-12 (its bound_relax_factor 1e-8 still loosens the cone
-// |v|^2 <= sigma^2, which shortens tf by about 7e-9 relative). Jbar on the transcription's own
-// discretization is J (no penalty), the value the scheme's optimum has.
-TEST_P(MinTimeIpopt, ReachesTheReferenceTime) {
-  const IpoptCase c = GetParam();
-  const auto ocp = MakeProblem(c.problem, {}, 0);
-  const SolveResult r = SolveWith(
-      "ipopt", *ocp, Request(*ocp, c.N, TerminalMode::kHard, c.transcription, {{"tol", "1e-12"}}));
-  ASSERT_EQ(r.status, SolveStatus::kConverged) << r.solver_status << " " << r.message;
-  EXPECT_LT(RelativeError(r.objective, ReferenceOf(c.problem)), c.tolerance)
-      << "J = " << r.objective;
-}
-
-// Measured (relative errors): brachistochrone Euler N=100 3.7e-3, trapezoid N=100 6.2e-6,
-// Hermite-Simpson N=25 7e-9, LGR N=10 7e-9; zermelo Euler 4.7e-3, trapezoid 8.2e-5, HS 3e-10,
-// LGR 3e-10; steering Euler 1.8e-6, trapezoid 4.4e-5, HS 1e-8, LGR 1e-8.
-INSTANTIATE_TEST_SUITE_P(Transcriptions,
-                         MinTimeIpopt,
-                         ::testing::Values(IpoptCase{"brachistochrone", "euler", 100, 4e-3},
-                                           IpoptCase{"brachistochrone", "trapezoid", 100, 7e-6},
-                                           IpoptCase{
-                                               "brachistochrone", "hermite-simpson", 25, 2e-8},
-                                           IpoptCase{"brachistochrone", "lgr", 10, 2e-8},
-                                           IpoptCase{"zermelo", "euler", 100, 5e-3},
-                                           IpoptCase{"zermelo", "trapezoid", 100, 9e-5},
-                                           IpoptCase{"zermelo", "hermite-simpson", 25, 2e-8},
-                                           IpoptCase{"zermelo", "lgr", 10, 2e-8},
-                                           IpoptCase{"steering", "euler", 100, 2e-6},
-                                           IpoptCase{"steering", "trapezoid", 100, 5e-5},
-                                           IpoptCase{"steering", "hermite-simpson", 25, 2e-8},
-                                           IpoptCase{"steering", "lgr", 10, 2e-8}),
-                         [](const auto& info) {
-                           std::string n =
-                               std::string(info.param.problem) + "_" + info.param.transcription;
-                           for (char& ch : n) ch = ch == '-' ? '_' : ch;
-                           return n + "_N" + std::to_string(info.param.N);
-                         });
-
 // Forward Euler is first order: doubling N halves the error (measured ratios 2.0 and 2.0).
 TEST(MinTimeProblems, EulerErrorHalvesWhenNDoubles) {
   for (const char* name : {"brachistochrone", "zermelo"}) {

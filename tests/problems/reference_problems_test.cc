@@ -118,20 +118,8 @@ Point RandomPoint(const Ocp& ocp, std::mt19937_64* rng) {
   return p;
 }
 
-TEST(ReferenceProblems, DerivativesMatchFiniteDifferences) {
-  std::mt19937_64 rng(11);
-  for (const std::string& name : kNames) {
-    // catmix with eps > 0, so that its running cost has a Hessian to check.
-    const std::vector<std::string> set =
-        name == "catmix" ? std::vector<std::string>{"eps=0.3"} : std::vector<std::string>{};
-    const auto ocp = MakeProblem(name, set, 0);
-    for (int trial = 0; trial < 5; ++trial) {
-      const Point p = RandomPoint(*ocp, &rng);
-      const DerivativeCheck check = CheckOcpDerivatives(*ocp, p.t, p.x, p.u, p.lambda, p.mu, p.nu);
-      EXPECT_LT(check.max_error, 1e-7) << name << "\n" << check.log;
-    }
-  }
-}
+// ReferenceProblems' derivatives: tests/problems/registered_problems_test.cc checks every
+// registered problem (these among them) by iterating the registry.
 
 // The penalty reformulation's derivatives are hand-assembled (PathPenaltyOcp): check them where
 // the constraint is active (c > 0, the penalty's second derivative is on) and inactive.

@@ -22,55 +22,6 @@ using reference_testing::SolveWithIpopt;
 
 constexpr double kJ = Rayleigh::kReferenceCost;
 
-struct IpoptCase {
-  const char* transcription;
-  int N;
-  double tolerance;       // on |Jbar_fine - J*| / J*
-  double path_tolerance;  // max(u + x1/6, 0) on the fine grid
-};
-
-class RayleighIpopt : public ::testing::TestWithParam<IpoptCase> {};
-
-// Hard form (no terminal constraint). Measured errors: Euler 7.4e-4 (N = 100), trapezoid 2.5e-4
-// (N = 100), Hermite-Simpson 6.1e-6 (N = 50), LGR 1.8e-9 (N = 50; from N = 100 on LGR settles
-// at 3.5e-8 above Betts' 44.8044433, which is the difference to the notes' PMP value
-// 44.80444491: the reference's own precision). The fine-grid path violation is the constraint
-// evaluated along the re-simulated states, which differ from the scheme's by its state error.
-TEST_P(RayleighIpopt, ReachesTheReference) {
-  const IpoptCase c = GetParam();
-  const auto ocp = MakeProblem("rayleigh", {}, 0);
-  const SolveResult r = SolveWithIpopt(*ocp, c.transcription, c.N);
-  ASSERT_EQ(r.status, SolveStatus::kConverged) << r.solver_status << " " << r.message;
-  const Evaluation fine = FineEvaluation(*ocp, r, c.N);
-  EXPECT_LT(RelativeError(fine.Jbar, kJ), c.tolerance) << "Jbar_fine = " << fine.Jbar;
-  EXPECT_LT(fine.path_violation, c.path_tolerance);
-}
-
-INSTANTIATE_TEST_SUITE_P(Transcriptions,
-                         RayleighIpopt,
-                         ::testing::Values(IpoptCase{"euler", 100, 1.2e-3, 5e-2},
-                                           IpoptCase{"trapezoid", 100, 4e-4, 1.5e-2},
-                                           IpoptCase{"hermite-simpson", 50, 1e-5, 5e-3},
-                                           IpoptCase{"lgr", 50, 1e-7, 5e-3}),
-                         [](const auto& info) {
-                           std::string n = info.param.transcription;
-                           for (char& ch : n) ch = ch == '-' ? '_' : ch;
-                           return n + "_N" + std::to_string(info.param.N);
-                         });
-
-// Hermite-Simpson N = 20 (N = 40 is 10x slower for SLSQP's dense subproblems): the scheme's
-// error at N = 20 is 2.0e-4.
-TEST(Rayleigh, NloptSlsqpReachesTheSameOptimumAsIpopt) {
-  const auto ocp = MakeProblem("rayleigh", {}, 0);
-  SolveRequest req = Request(*ocp, 20, TerminalMode::kHard, "hermite-simpson");
-  req.options.Set("algorithm", "LD_SLSQP");
-  const SolveResult nlopt = SolveWith("nlopt", *ocp, req);
-  ASSERT_EQ(nlopt.status, SolveStatus::kConverged) << nlopt.solver_status << " " << nlopt.message;
-  const SolveResult ipopt = SolveWithIpopt(*ocp, "hermite-simpson", 20);
-  EXPECT_NEAR(nlopt.objective, ipopt.objective, 1e-7 * kJ);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, nlopt, 20).Jbar, kJ), 3e-4);
-}
-
 // The penalty reformulation's optimum approaches J* from below as rho grows (Ipopt,
 // Hermite-Simpson N = 100, judged on the original problem).
 TEST(Rayleigh, PenaltyReformulationGapShrinksWithRho) {

@@ -404,6 +404,31 @@ TEST(IpoptSolver, StartsFromTheRequestsInitialGuess) {
   }
 }
 
+// The default ordering (-1: AMD for NLPs with an exact Hessian) and MUMPS' automatic choice
+// (7, Ipopt's default, through the request's options, which override the field) take the same
+// iterates on the paper's problem: same iteration count and objective to rounding.
+TEST(IpoptSolver, MumpsOrderingChangesNoIterate) {
+  const auto ocp = MakeProblem("comm-path2d", {"channel=0"}, 1);
+  for (const std::string scheme : {"euler", "trapezoid", "hermite-simpson", "lgr"}) {
+    SolveRequest request;
+    request.grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 60);
+    request.transcription = scheme;
+    const SolveResult amd = IpoptSolver().Solve(*ocp, request);
+    request.options = {{"mumps_pivot_order", "7"}};
+    const SolveResult automatic = IpoptSolver().Solve(*ocp, request);
+    ASSERT_EQ(amd.status, SolveStatus::kConverged) << scheme;
+    EXPECT_EQ(amd.iterations, automatic.iterations) << scheme;
+    EXPECT_NEAR(amd.objective, automatic.objective, 1e-10 * std::abs(automatic.objective))
+        << scheme;
+    request.options = {{"mumps_pivot_order", "8"}};  // applied: Ipopt's range is 0..7
+    EXPECT_EQ(IpoptSolver().Solve(*ocp, request).status, SolveStatus::kInvalidInput) << scheme;
+  }
+  IpoptOptions o;
+  EXPECT_EQ(o.mumps_pivot_order, -1);
+  o.mumps_pivot_order = 8;
+  EXPECT_FALSE(o.IsValid(nullptr));
+}
+
 TEST(IpoptSolver, RejectsInvalidRequests) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   const IpoptSolver solver;

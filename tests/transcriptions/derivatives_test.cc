@@ -1,7 +1,7 @@
 // Every transcription's gradient, constraint Jacobian and Hessian of the Lagrangian against
-// central differences, on five problems (two with a free final time), both terminal modes, with and
-// without scaling; and the declared sparsity (unique triplets, Hessian lower triangle) covers every
-// nonzero found.
+// central differences, on six problems (two with a free final time, one with affine dynamics), both
+// terminal modes, with and without scaling; and the declared sparsity (unique triplets, Hessian
+// lower triangle) covers every nonzero found.
 #include <cmath>
 #include <random>
 #include <set>
@@ -22,7 +22,8 @@ namespace {
 struct Case {
   std::string scheme;
   int degree;
-  std::string problem;  // "double-integrator", "nonlinear", "ball", "free-time", "free-time-ball"
+  std::string problem;  // "double-integrator", "nonlinear", "ball", "free-time", "free-time-ball",
+                        // "comm"
   TerminalMode mode;
   bool scaled;
 };
@@ -48,6 +49,16 @@ std::unique_ptr<Ocp> MakeOcp(const std::string& name) {
   // A free final time: T is the NLP's last variable (its column, row and cross terms).
   if (name == "free-time") return MakeProblem("double-integrator-free-time", {}, 0);
   if (name == "free-time-ball") return MakeProblem("brachistochrone-free-time", {}, 0);
+  // Affine dynamics (the constant defect Jacobian) with a ball, the hand-written Hessian, and
+  // k5, k6 > 0 (every motion term); moving from the start (the smoothed |v| is stiff at v = 0),
+  // D = S and c = 1 so that the terminal penalty (2e5 at the paper's D and c) leaves finite
+  // differences of the objective their digits.
+  if (name == "comm") {
+    return MakeProblem(
+        "comm-path2d",
+        {"channel=0", "v0=0.5,-0.4", "k=17.75,1.16,10.46,1175,0.3,0.2", "D=20,40", "c=1"},
+        0);
+  }
   return MakeProblem("double-integrator", {}, 0);
 }
 
@@ -150,7 +161,7 @@ std::vector<Case> AllCases() {
       {"euler", 0}, {"trapezoid", 0}, {"hermite-simpson", 0}, {"lgr", 1}, {"lgr", 3}, {"lgr", 4}};
   for (const auto& [scheme, degree] : schemes) {
     for (const std::string problem :
-         {"double-integrator", "nonlinear", "ball", "free-time", "free-time-ball"}) {
+         {"double-integrator", "nonlinear", "ball", "free-time", "free-time-ball", "comm"}) {
       for (TerminalMode mode : {TerminalMode::kPenalty, TerminalMode::kHard}) {
         for (bool scaled : {false, true}) cases.push_back({scheme, degree, problem, mode, scaled});
       }

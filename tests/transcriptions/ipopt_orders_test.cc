@@ -31,7 +31,7 @@ IpoptRun SolveWithIpopt(const Ocp& ocp,
   request.grid = TimeGrid::Uniform(ocp.t0(), ocp.tf(), N);
   request.terminal = TerminalMode::kHard;
   request.transcription = transcription;
-  request.transcription_options.Set("degree", degree);
+  if (transcription == std::string("lgr")) request.transcription_options.Set("degree", degree);
   request.options = {{"tol", "1e-12"}};
   const SolveResult result = FindSolver("ipopt").make()->Solve(ocp, request);
   EXPECT_EQ(result.status, SolveStatus::kConverged)

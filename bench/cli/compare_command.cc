@@ -1,0 +1,99 @@
+// `ocpbench compare BASE NEW`: the comparison of bench/cli/compare.h from the command line.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include "bench/cli/app.h"
+#include "bench/cli/compare.h"
+#include "bench/cli/compare_report.h"
+#include "bench/cli/io.h"
+
+namespace ocpb {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CompareArgs {
+  std::string base, next, json_path, markdown_path;
+  std::vector<std::string> ignore_options;
+  OptionMap thresholds;  ///< as given, resolved by CompareThresholdSchema()
+};
+
+// An output file must not be a folder, nor one of the records files it is computed from.
+void CheckOutput(const std::string& flag,
+                 const std::string& path,
+                 const std::vector<std::string>& inputs) {
+  if (path.empty()) return;
+  if (fs::is_directory(path)) {
+    throw std::invalid_argument(flag + " '" + path + "': is a folder (expected a file name)");
+  }
+  std::error_code ec;
+  for (const std::string& input : inputs) {
+    if (fs::exists(path) && fs::equivalent(path, input, ec)) {
+      throw std::invalid_argument(flag + " '" + path + "': is an input of the comparison");
+    }
+  }
+}
+
+void RunCompare(const CompareArgs& args) {
+  CompareOptions options;
+  options.thresholds = ResolveCompareThresholds(args.thresholds);
+  options.ignore_options = args.ignore_options;
+  const CompareSide base = LoadCompareSide(args.base);
+  const CompareSide next = LoadCompareSide(args.next);
+  CheckOutput("--json", args.json_path, {base.records_path, next.records_path});
+  CheckOutput("--markdown", args.markdown_path, {base.records_path, next.records_path});
+  const Comparison comparison = Compare(base, next, options);
+  const std::string markdown = CompareMarkdown(comparison);
+  if (!args.json_path.empty()) {
+    WriteFileAtomically(args.json_path, CompareJson(comparison).dump(1) + "\n");
+  }
+  if (!args.markdown_path.empty()) WriteFileAtomically(args.markdown_path, markdown);
+  std::cout << markdown;
+  std::cerr << fmt::format(
+      "ocpbench: compare: {} matched cases: {} regressed, {} improved; {} methods' CPU "
+      "regressed; {} only in BASE, {} only in NEW\n",
+      comparison.cases.size(),
+      comparison.RegressedCases(),
+      comparison.ImprovedCases(),
+      comparison.RegressedMethods(),
+      comparison.only_in_base.size(),
+      comparison.only_in_new.size());
+  if (comparison.HasRegression()) ReportSomeFailed();
+}
+
+}  // namespace
+
+void AddCompareCommand(CLI::App& app) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare",
+      "Two runs of one suite side by side, case by case, regressions first (exit 1 when a "
+      "regression beyond the thresholds is found)");
+  cmd->add_option("base", args->base, "BASE: a result folder of ocpbench run, or a records file")
+      ->required();
+  cmd->add_option("new", args->next, "NEW: the same, after the change")->required();
+  cmd->add_option("--json", args->json_path, "also write the comparison as JSON to this file");
+  cmd->add_option(
+      "--markdown", args->markdown_path, "also write the Markdown report (stdout) to this file");
+  cmd->add_option("--ignore-option",
+                  args->ignore_options,
+                  "match cases without this solver or transcription option (repeatable): an "
+                  "A/B test of the option");
+  // One flag per threshold, named after its key (ocpbench describe compare lists them).
+  for (const OptionSpec& spec : CompareThresholdSchema().specs()) {
+    std::string flag = "--" + spec.name;
+    for (char& ch : flag) ch = ch == '_' ? '-' : ch;
+    const std::string key = spec.name;
+    cmd->add_option_function<std::string>(
+        flag,
+        [args, key](const std::string& v) { args->thresholds.Set(key, v); },
+        fmt::format("{} (default {})", spec.doc, spec.DefaultText()));
+  }
+  cmd->callback([args]() { RunCompare(*args); });
+}
+
+}  // namespace ocpb

@@ -1,0 +1,20 @@
+// What `run` and `merge` write beside a suite's records: summary.md, records.csv, derived.jsonl
+// and suite.json (the suite's name and record count).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "bench/cli/record.h"
+
+namespace ocpb {
+
+/// Writes the tables of `records` into `dir`, each atomically. `expected_cases`, when > 0, is
+/// the suite's case count: a summary of fewer records says it covers part of the suite.
+void WriteRunSummaries(const std::string& dir,
+                       const std::string& suite_name,
+                       const std::vector<Record>& records,
+                       size_t expected_cases);
+
+}  // namespace ocpb

@@ -1,0 +1,120 @@
+// Every problem in the registry, found by iterating it (a new problem is checked by being
+// registered, not by being added to a list): its first and second derivatives against finite
+// differences, and the consistency of its registry entry.
+#include <cmath>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/derivative_check.h"
+#include "core/parameters.h"
+#include "problems/registry.h"
+
+namespace ocpb {
+namespace {
+
+// How a problem is checked: near x0 within spread * max(1, |x0_i|), to a relative error below
+// tolerance, with parameter settings under which the check is meaningful and cheap. Every
+// problem without an entry is checked with the defaults.
+struct CheckSetting {
+  std::vector<std::string> set;
+  double spread = 0.3;
+  double tolerance = 1e-7;
+};
+
+const std::map<std::string, CheckSetting>& CheckSettings() {
+  static const std::map<std::string, CheckSetting> settings = {
+      // With eps > 0 its running cost has a Hessian to check.
+      {"catmix", {{"eps=0.3"}}},
+      // The analytic path-loss channel: the map's and the GP's derivatives have their own tests
+      // (tests/problems/comm_path2d_test.cc, tests/channel/).
+      {"comm-path2d", {{"channel=0"}}},
+      {"comm-fixed-path", {{"channel=0"}}},
+      // Goddard's drag varies like exp(-500 (h - 1)): near its own scale, and central
+      // differences (step 6e-6) then have a relative truncation error of (500 * 6e-6)^2 / 6 =
+      // 1.5e-6 in the Hessian (tests/problems/reference_free_time_test.cc measured 1.5e-6).
+      {"goddard", {{}, 0.01, 1e-5}},
+  };
+  return settings;
+}
+
+// A point near the problem's start: x = x0 + spread max(1, |x0|) unit, u inside U's bounding
+// box (0.5 +- 0.4 where unbounded) projected onto U, multipliers of order one.
+void RandomPoint(const Ocp& ocp,
+                 double spread,
+                 std::mt19937_64* rng,
+                 double* t,
+                 Vec* x,
+                 Vec* u,
+                 Vec* lambda,
+                 Vec* mu,
+                 Vec* nu) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  *t = ocp.t0() + 0.5 * (1.0 + unit(*rng)) * (ocp.tf() - ocp.t0());
+  *x = Vec(ocp.nx());
+  for (int i = 0; i < ocp.nx(); ++i) {
+    (*x)[i] = ocp.x0()[i] + spread * std::max(1.0, std::abs(ocp.x0()[i])) * unit(*rng);
+  }
+  Vec lo, hi;
+  ocp.control_set().BoundingBox(&lo, &hi);
+  *u = Vec(ocp.nu());
+  for (int i = 0; i < ocp.nu(); ++i) {
+    const double a = std::isfinite(lo[i]) ? lo[i] : 0.1, b = std::isfinite(hi[i]) ? hi[i] : 0.9;
+    (*u)[i] = a + (b - a) * (0.5 + 0.4 * unit(*rng));
+  }
+  ocp.control_set().Project(*u);
+  *lambda = Vec(ocp.nx());
+  for (int i = 0; i < ocp.nx(); ++i) (*lambda)[i] = 2.0 * unit(*rng);
+  *mu = Vec(ocp.num_path());
+  for (int i = 0; i < ocp.num_path(); ++i) (*mu)[i] = 1.0 + unit(*rng);
+  *nu = Vec(ocp.num_terminal());
+  for (int i = 0; i < ocp.num_terminal(); ++i) (*nu)[i] = 2.0 * unit(*rng);
+}
+
+TEST(RegisteredProblems, DerivativesMatchFiniteDifferences) {
+  std::mt19937_64 rng(11);
+  size_t checked = 0;
+  for (const ProblemInfo& info : Problems()) {
+    const auto it = CheckSettings().find(info.name);
+    const CheckSetting setting = it == CheckSettings().end() ? CheckSetting() : it->second;
+    const auto ocp = MakeProblem(info.name, setting.set, 1);
+    for (int trial = 0; trial < 5; ++trial) {
+      double t = 0.0;
+      Vec x, u, lambda, mu, nu;
+      RandomPoint(*ocp, setting.spread, &rng, &t, &x, &u, &lambda, &mu, &nu);
+      const DerivativeCheck check = CheckOcpDerivatives(*ocp, t, x, u, lambda, mu, nu);
+      EXPECT_LT(check.max_error, setting.tolerance) << info.name << " at trial " << trial << "\n"
+                                                    << check.log;
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, Problems().size());
+  EXPECT_GE(checked, 17u);  // the built-in problems, at least
+}
+
+// What `ocpbench describe`, suites and records read from an entry holds together for every
+// registered problem: defaults satisfy their own ranges, the default grid is positive, a
+// discrete reference names its grid.
+TEST(RegisteredProblems, EntriesAreConsistent) {
+  for (const ProblemInfo& info : Problems()) {
+    EXPECT_FALSE(info.description.empty()) << info.name;
+    EXPECT_GT(info.default_intervals, 0) << info.name;
+    OptionSchema schema(info.name);
+    for (const ParameterSpec& p : info.parameters) {
+      EXPECT_NO_THROW(schema.Add(ToOptionSpec(p))) << info.name << "." << p.name;
+    }
+    if (info.reference_value) {
+      EXPECT_TRUE(std::isfinite(*info.reference_value)) << info.name;
+      EXPECT_FALSE(info.reference_source.empty()) << info.name;
+      if (info.reference_scheme != "continuous") {
+        EXPECT_GT(info.reference_intervals, 0) << info.name;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ocpb
