@@ -175,12 +175,12 @@ TEST(ValidateCase, RefusesAProblemThatStatesItsDimensionsTwiceDifferently) {
     return std::make_unique<testing::UserDoubleIntegrator>(/*declared_npsi=*/1);
   };
   RegisterProblem(info);
-  const std::string error = ErrorOf(Spec(info.name, "ipopt"));
+  CaseSpec spec = Spec(info.name, "ipopt");
+  spec.transcription = "euler";
+  const std::string error = ErrorOf(spec);
   EXPECT_NE(error.find("SetDimensions gives npsi = 1 but AutoDiffOcp's template argument says 2"),
             std::string::npos)
       << error;
-  CaseSpec spec = Spec(info.name, "ipopt");
-  spec.transcription = "euler";
   EXPECT_THROW(RunCase(spec), std::invalid_argument);
 }
 
