@@ -2,6 +2,9 @@
 // first and second derivative the Ocp interface asks for by forward-mode AD (core/jet.h).
 #pragma once
 
+#include <stdexcept>
+#include <string>
+
 #include "core/jet.h"
 #include "core/ocp.h"
 
@@ -23,14 +26,25 @@ namespace ocpb {
 /// Derivatives with respect to z = (x, u) use Jet1<NX+NU> (first order) and
 /// Jet2<NX+NU> (Hessians); terminal functions use Jet1<NX> / Jet2<NX>.
 /// A problem may still override any virtual with hand-written derivatives.
+///
+/// Dimensions are stated once, by the template arguments: the constructor sets nx = NX, nu = NU,
+/// npsi = NPSI, nc = NC (with Ocp::SetDimensions' defaults for x0, weights and U), so a problem
+/// need not call SetDimensions. One that does must repeat the same four numbers: any other value
+/// throws std::invalid_argument naming the dimension, and the call changes nothing (x0, weights
+/// and U set before it are kept).
 template <class Derived, int NX, int NU, int NPSI = 0, int NC = 0>
 class AutoDiffOcp : public Ocp {
  public:
+  static_assert(
+      NX >= 1 && NU >= 1 && NPSI >= 0 && NC >= 0,
+      "AutoDiffOcp<Derived, NX, NU, NPSI, NC> needs NX >= 1, NU >= 1, NPSI >= 0, NC >= 0");
   static constexpr int kNz = NX + NU;
   using Z1 = Jet1<kNz>;
   using Z2 = Jet2<kNz>;
   using X1 = Jet1<NX>;
   using X2 = Jet2<NX>;
+
+  AutoDiffOcp() { Ocp::SetDimensions(NX, NU, NPSI, NC); }
 
   // Defaults for the optional pieces.
   template <class T>
@@ -74,8 +88,8 @@ class AutoDiffOcp : public Ocp {
   }
 
   // ---- first derivatives ---------------------------------------------------------
-  void DynamicsJacobian(double t, ConstVecRef x, ConstVecRef u, VecRef f, MatRef fx,
-                        MatRef fu) const override {
+  void DynamicsJacobian(
+      double t, ConstVecRef x, ConstVecRef u, VecRef f, MatRef fx, MatRef fu) const override {
     VecT<Z1, NX> xz;
     VecT<Z1, NU> uz;
     Seed(x, u, &xz, &uz);
@@ -87,8 +101,8 @@ class AutoDiffOcp : public Ocp {
       fu.row(i) = out[i].g.template tail<NU>().transpose();
     }
   }
-  void RunningCostGradient(double t, ConstVecRef x, ConstVecRef u, double* L, VecRef Lx,
-                           VecRef Lu) const override {
+  void RunningCostGradient(
+      double t, ConstVecRef x, ConstVecRef u, double* L, VecRef Lx, VecRef Lu) const override {
     VecT<Z1, NX> xz;
     VecT<Z1, NU> uz;
     Seed(x, u, &xz, &uz);
@@ -112,8 +126,8 @@ class AutoDiffOcp : public Ocp {
       }
     }
   }
-  void PathConstraintsJacobian(double t, ConstVecRef x, ConstVecRef u, VecRef c, MatRef cx,
-                               MatRef cu) const override {
+  void PathConstraintsJacobian(
+      double t, ConstVecRef x, ConstVecRef u, VecRef c, MatRef cx, MatRef cu) const override {
     if constexpr (NC > 0) {
       VecT<Z1, NX> xz;
       VecT<Z1, NU> uz;
@@ -129,8 +143,13 @@ class AutoDiffOcp : public Ocp {
   }
 
   // ---- second derivatives -------------------------------------------------------
-  void PointHessian(double t, ConstVecRef x, ConstVecRef u, double sigma, ConstVecRef lambda,
-                    ConstVecRef mu, MatRef hess) const override {
+  void PointHessian(double t,
+                    ConstVecRef x,
+                    ConstVecRef u,
+                    double sigma,
+                    ConstVecRef lambda,
+                    ConstVecRef mu,
+                    MatRef hess) const override {
     VecT<Z2, NX> xz;
     VecT<Z2, NU> uz;
     Seed(x, u, &xz, &uz);
@@ -163,7 +182,26 @@ class AutoDiffOcp : public Ocp {
     CopyTo(h, hess);
   }
 
+ protected:
+  /// Checks (nx, nu, npsi, nc) against the template arguments, which already set them: a
+  /// second statement of the dimensions may only agree with the first.
+  void SetDimensions(int nx, int nu, int npsi, int nc) {
+    CheckDimension("nx", nx, NX);
+    CheckDimension("nu", nu, NU);
+    CheckDimension("npsi", npsi, NPSI);
+    CheckDimension("nc", nc, NC);
+  }
+
  private:
+  void CheckDimension(const char* what, int given, int declared) const {
+    if (given != declared) {
+      throw std::invalid_argument("problem dimensions: SetDimensions gives " + std::string(what) +
+                                  " = " + std::to_string(given) + " but AutoDiffOcp's template " +
+                                  "argument says " + std::to_string(declared) +
+                                  " (state the dimensions once, as template arguments)");
+    }
+  }
+
   // Element-wise copies: GCC 12 warns (falsely, -Warray-bounds) on Eigen's vectorized copy of
   // small fixed-size matrices into a Ref (1x1 at -O2; 3-vectors with AVX, -march=x86-64-v3),
   // which -Werror would turn into a build failure.

@@ -76,6 +76,16 @@ void CheckInputs(const Ocp& ocp, const ControlTrajectory& controls, const TimeGr
         (cg.size() ? Str(cg.tf()) : "?") + "], which does not cover the grid [" + Str(grid.t0()) +
         ", " + Str(grid.tf()) + "]");
   }
+  // With a free final time the controls end where the solution ends (at its T): a grid that
+  // stops earlier (the request's nominal grid) would judge a truncated trajectory, with a
+  // plausible but wrong cost and terminal miss.
+  if (ocp.free_final_time() && cg.tf() > grid.tf() + tol) {
+    throw std::invalid_argument("Evaluate: problem " + ocp.name() +
+                                " has a free final time and the controls end at T = " +
+                                Str(cg.tf()) + ", but the grid ends at " + Str(grid.tf()) +
+                                ": judge on the solution's horizon (JudgeResult in "
+                                "solvers/judge.h, or the grid StretchedTo(T))");
+  }
 }
 
 }  // namespace

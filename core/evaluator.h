@@ -36,7 +36,10 @@ struct Evaluation {
 /// DiscreteOcp::Simulate. Throws std::invalid_argument (one line) when the controls do not have
 /// the problem's nu components, when `grid` does not span the problem's horizon [t0, tf] (for a
 /// free final time: [t0, T] with T within its bounds, Ocp::AdmitsFinalTime; the trajectory is
-/// then judged on [t0, T]), or when the controls' own grid does not cover `grid`.
+/// then judged on [t0, T]), when the controls' own grid does not cover `grid`, or, for a free
+/// final time, when the controls go on past the grid's end (they end at the solution's T: a
+/// shorter grid would judge a truncated trajectory). To judge a solver's result, JudgeResult
+/// (solvers/judge.h) picks the grids from the result itself.
 Evaluation Evaluate(const Ocp& ocp,
                     const ControlTrajectory& controls,
                     const TimeGrid& grid,

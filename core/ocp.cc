@@ -74,6 +74,7 @@ void Ocp::SetDimensions(int nx, int nu, int npsi, int nc) {
   nc_ = nc;
   x0_ = Vec::Zero(nx);
   terminal_weights_ = Vec::Ones(npsi);
+  terminal_weights_chosen_ = false;
   control_set_ = ControlSet::Unbounded(nu);
 }
 
@@ -120,6 +121,7 @@ void Ocp::SetTerminalWeights(const Vec& w) {
     }
   }
   terminal_weights_ = w;
+  terminal_weights_chosen_ = true;
 }
 
 void Ocp::SetControlSet(const ControlSet& set) {

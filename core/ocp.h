@@ -69,7 +69,15 @@ class Ocp {
   double t0() const { return t0_; }
   double tf() const { return tf_; }
   const Vec& x0() const { return x0_; }
+  /// The penalty weights w_i of the terminal constraints (TerminalMode::kPenalty). Default: 1
+  /// for every i, set by SetDimensions; see terminal_weights_chosen().
   const Vec& terminal_weights() const { return terminal_weights_; }
+  /// True once the problem called SetTerminalWeights (or has no terminal constraints). The
+  /// default w = 1 is rarely right (with psi = 0 weighed 1 against the cost, a double integrator
+  /// misses its target by 0.75): results judged in the penalty form of a problem whose weights
+  /// were never chosen carry a warning (JudgeResult, solvers/judge.h). A problem that means
+  /// w = 1 says so with SetTerminalWeights(Vec::Ones(npsi)).
+  bool terminal_weights_chosen() const { return npsi_ == 0 || terminal_weights_chosen_; }
   const ControlSet& control_set() const { return control_set_; }
   /// Set when the final time is free (see the class comment); empty for a fixed horizon.
   const std::optional<FreeFinalTime>& free_final_time() const { return free_final_time_; }
@@ -180,12 +188,21 @@ class Ocp {
   double Hamiltonian(double t, ConstVecRef x, ConstVecRef u, ConstVecRef p) const;
 
  protected:
-  /// Problems call this from their constructor; it validates sizes and values and
-  /// throws std::invalid_argument with a one-line message on bad input.
+  /// Problems call these from their constructor; they validate sizes and values and throw
+  /// std::invalid_argument with a one-line message on bad input.
+  ///
+  /// The dimensions. Defaults it sets for what a problem does not set afterwards: x0 = 0,
+  /// terminal weights w = 1 (not chosen: see terminal_weights_chosen()), U = R^nu (unbounded).
+  /// Problems derived from AutoDiffOcp get their dimensions from its template arguments and
+  /// need not call it (AutoDiffOcp's SetDimensions only checks agreement).
   void SetDimensions(int nx, int nu, int npsi, int nc);
+  /// The horizon [t0, tf]; default [0, 1] (every problem should set its own).
   void SetHorizon(double t0, double tf);
+  /// x(t0) (size nx, finite); default 0.
   void SetInitialState(const Vec& x0);
+  /// The penalty weights w_i > 0 of psi_i (size npsi); marks them chosen.
   void SetTerminalWeights(const Vec& w);
+  /// U (dimension nu); default unbounded.
   void SetControlSet(const ControlSet& set);
   /// Declares the final time free in [lower, upper]; call after SetHorizon. Needs finite
   /// t0 < lower <= tf() <= upper. The caller promises an autonomous problem (f, L, c
@@ -197,6 +214,7 @@ class Ocp {
   double t0_ = 0.0, tf_ = 1.0;
   Vec x0_;
   Vec terminal_weights_;
+  bool terminal_weights_chosen_ = false;
   ControlSet control_set_;
   std::optional<FreeFinalTime> free_final_time_;
 };

@@ -18,7 +18,8 @@ enum class SolveStatus {
   kMaxIterations,     ///< iteration limit reached; controls are the last iterate
   kMaxTime,           ///< time or evaluation limit reached; controls are the last iterate
   kStepTooSmall,      ///< line search failed (e.g. Armijo exponent beyond its limit)
-  kRoundoffLimited,   ///< progress limited by roundoff; the result is usually still useful
+  kRoundoffLimited,   ///< progress limited by roundoff after some progress (a stop at the
+                      ///< start is kNumericalFailure); check the solver's message
   kInfeasible,        ///< the solver declared the problem (locally) infeasible
   kNumericalFailure,  ///< NaN/inf or a solver-internal numerical error
   kInvalidInput,      ///< the request was rejected before solving
@@ -27,7 +28,9 @@ enum class SolveStatus {
 };
 
 const char* ToString(SolveStatus status);
-/// Converged or acceptable.
+/// Converged or acceptable: the solver's own test passed, at its tight or at its looser level.
+/// Summaries and records keep the two apart (status "acceptable" is never shown as
+/// "converged"); compare with == kConverged where only the tight level will do.
 bool IsSuccess(SolveStatus status);
 
 /// One row of a solver's iteration history. Fields a solver does not have stay NaN / -1.

@@ -39,11 +39,12 @@ struct ProblemInfo {
   std::string reference_scheme = "continuous";
   int reference_intervals = 0;  ///< the grid of a discrete reference (0 when continuous)
   bool uses_seed = false;       ///< true when `seed` changes the problem
-  /// Whether the Hamiltonian descent applies to this problem, directly or through
-  /// Ocp::HamiltonianReformulation; when false the solver reports SolveStatus::kNotApplicable.
-  bool hamiltonian_applicable = true;
-  /// How it applies (for example "path constraint as penalty rho max(0, c)^2, rho = 1e4"), or
-  /// why it does not; empty when it applies to the problem as stated.
+  /// How the Hamiltonian descent applies (for example "path constraint as penalty rho max(0,
+  /// c)^2, rho = 1e4"), or why it does not (then the note says "not applicable"); empty when it
+  /// applies to the problem as stated. Shown by `ocpbench describe problem`. Whether it applies
+  /// is decided by the problem itself (Ocp::HasHamiltonianMinimizer,
+  /// Ocp::HamiltonianReformulation, Ocp::free_final_time), which the solver reads; a registry
+  /// test checks that every note agrees with the solver's verdict.
   std::string hamiltonian_note;
   /// Optional: a field to draw a solution over (comm-path2d: its channel map), kept in records
   /// that keep their trajectory (field s_map). Empty, or nullopt for a given problem: none.

@@ -78,6 +78,17 @@ SolveResult Result(SolveStatus status, std::string solver_status, std::string me
 
 // nu minimizing |p_N - grad phi(x_N) - psi_x^T nu| (the hard form's multipliers for a given
 // terminal costate).
+// A trajectory's values at the grid's nodes (the left limit at the last node).
+Mat SampleNodes(const ControlTrajectory& trajectory, const TimeGrid& grid) {
+  Mat out(trajectory.nu(), grid.size());
+  for (int k = 0; k < grid.size(); ++k) {
+    const auto side =
+        k + 1 == grid.size() ? ControlTrajectory::Side::kLeft : ControlTrajectory::Side::kRight;
+    trajectory.Evaluate(grid.t(k), side, out.col(k));
+  }
+  return out;
+}
+
 Vec EstimateMultipliers(const Ocp& ocp, ConstVecRef xN, ConstVecRef pN) {
   const int nx = ocp.nx(), npsi = ocp.num_terminal();
   Vec grad(nx), psi(npsi);
@@ -708,8 +719,28 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
     if (guess.nu() != ocp.nu()) {
       throw std::invalid_argument(std::string(kName) + ": the initial guess must have nu controls");
     }
+    for (const auto* given : {&request.initial_states, &request.initial_costates}) {
+      if (*given && (*given)->nu() != ocp.nx()) {
+        throw std::invalid_argument(std::string(kName) + ": the initial " +
+                                    (given == &request.initial_states ? "states" : "costates") +
+                                    " must have nx components");
+      }
+    }
+    // A free final time starts at the guess's own T (a previous solution's), within the bounds.
+    const double T = guess.grid().size() >= 2 ? guess.grid().tf() : request.grid.tf();
+    if (ocp.free_final_time() && request.initial_guess && T != request.grid.tf() &&
+        ocp.AdmitsFinalTime(T)) {
+      newton_request.grid = request.grid.StretchedTo(T);
+    }
+    const TimeGrid& grid = newton_request.grid;
     const double start_cpu0 = CpuSeconds();
-    StartFromControls(ocp, request.grid, request.terminal, guess, &X, &P, o.EffectiveCostates());
+    X = request.initial_states ? SampleNodes(*request.initial_states, grid)
+                               : Evaluate(ocp, guess, grid, Integrator::kRk4).X;
+    if (request.initial_costates) {
+      P = SampleNodes(*request.initial_costates, grid);
+    } else {
+      CostatesFromControls(ocp, grid, request.terminal, guess, X, o.EffectiveCostates(), &P);
+    }
     r.solver_stats["start_cpu_seconds"] = CpuSeconds() - start_cpu0;
   }
   RunNewton({ocp, newton_request, o, watch}, X, P, nullptr, &r);

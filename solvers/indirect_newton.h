@@ -213,9 +213,14 @@ class IndirectNewton final : public Solver {
   std::string name() const override { return "indirect-newton"; }
   const Options& options() const { return options_; }
 
-  /// Solves with options_ overridden by request.options, from request.initial_guess (default:
-  /// DefaultInitialGuess) or the warm start. Throws std::invalid_argument for an invalid request
-  /// (bad options, a grid that does not span [t0, tf]); numerical trouble is the result's status.
+  /// Solves with options_ overridden by request.options, from the warm start, or else from
+  /// request.initial_guess (default: DefaultInitialGuess) with states request.initial_states
+  /// (default: RK4 simulation of the controls) and costates request.initial_costates (default:
+  /// from the controls as the `costates` option says), each sampled at the grid's nodes; for a
+  /// free final time the start's T is the guess's own end when the bounds admit it (a previous
+  /// solution's T). Throws std::invalid_argument for an invalid request (bad options, a grid
+  /// that does not span [t0, tf], guesses of the wrong size); numerical trouble is the result's
+  /// status.
   SolveResult Solve(const Ocp& ocp, const SolveRequest& request) const override;
 
   /// Newton from an explicit start: X and P (nx x N+1) on request.grid, for example a

@@ -434,6 +434,7 @@ NlpSolution SolveNlpWithNlopt(const Nlp& nlp, const Vec& z0, const NloptOptions&
     upper[i] = bound(problem.z_upper()[i]);
   }
 
+  const Vec start = Eigen::Map<const Vec>(x.data(), n);  // where NLopt starts (clipped)
   int code = NLOPT_FAILURE;
   double f = NAN;
   std::string message;
@@ -519,8 +520,28 @@ NlpSolution SolveNlpWithNlopt(const Nlp& nlp, const Vec& z0, const NloptOptions&
                std::to_string(stationarity) + " > stationarity_tol " +
                std::to_string(options.stationarity_tol) + ". ";
   }
-  if (code == NLOPT_ROUNDOFF_LIMITED) {
-    message += "roundoff limited: the last point is kept (usually still useful). ";
+  // A stop at the starting point is no answer, whatever the code: NLopt's ROUNDOFF_LIMITED
+  // after one evaluation returns the untouched start. Only a start that is already stationary
+  // and feasible (a warm start at an optimum) may end there.
+  const bool at_start = !out.has_iterate || (z - start).lpNorm<Eigen::Infinity>() == 0.0;
+  const bool stopped = out.status == SolveStatus::kConverged ||
+                       out.status == SolveStatus::kStepTooSmall ||
+                       out.status == SolveStatus::kRoundoffLimited;
+  if (stopped && (at_start || code == NLOPT_ROUNDOFF_LIMITED)) {
+    const double kkt = NlpStationarity(nlp, z, std::max(1e-4, options.feasibility_tol));
+    out.stats["nlopt_stationarity"] = kkt;
+    const bool kkt_point = violation <= options.feasibility_tol && kkt <= options.stationarity_tol;
+    if (at_start && !kkt_point) {
+      out.status = SolveStatus::kNumericalFailure;
+      message += "NLopt stopped at the starting point (" + out.solver_status + " after " +
+                 std::to_string(out.iterations) +
+                 " evaluations), which is not a KKT point (relative KKT residual " +
+                 std::to_string(kkt) + ", violation " + std::to_string(violation) +
+                 "): no progress. ";
+    } else if (code == NLOPT_ROUNDOFF_LIMITED) {
+      message += "roundoff limited: the last point is kept (relative KKT residual " +
+                 std::to_string(kkt) + (kkt_point ? ", stationary" : ", not stationary") + "). ";
+    }
   }
   out.message = message + "NLopt " + options.algorithm +
                 (IsAuglag(options.algorithm) ? "(" + options.local_algorithm + ")" : "") + ": " +

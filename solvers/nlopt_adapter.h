@@ -99,7 +99,8 @@ std::string NloptResultName(int nlopt_result);
 /// OCPBench's grouping of an NLopt result code:
 ///   SUCCESS, STOPVAL_REACHED, FTOL_REACHED, XTOL_REACHED -> kConverged
 ///   MAXEVAL_REACHED, MAXTIME_REACHED                     -> kMaxTime
-///   ROUNDOFF_LIMITED                                      -> kRoundoffLimited (x is kept)
+///   ROUNDOFF_LIMITED                                      -> kRoundoffLimited (x is kept; the
+///                                    message gives its relative KKT residual)
 ///   INVALID_ARGS                                          -> kInvalidInput
 ///   FORCED_STOP                                           -> kNumericalFailure when OCPBench
 ///                                    stopped NLopt because an evaluation failed, else kError
@@ -113,9 +114,12 @@ SolveStatus MapNloptResult(int nlopt_result, bool evaluation_failed);
 /// algorithm cannot take the constraint kinds present or a size limit of NloptOptions is exceeded.
 /// Every NLopt exception (roundoff_limited, forced_stop, std::invalid_argument, std::bad_alloc,
 /// std::runtime_error) is caught and mapped; a failed evaluation (false from the Nlp) stops NLopt
-/// with forced_stop and gives kNumericalFailure. NLopt has no multipliers: lambda stays empty.
-/// iterations = objective evaluations. Throws std::invalid_argument only for invalid options or
-/// a z0 of the wrong size.
+/// with forced_stop and gives kNumericalFailure. A stop at the starting point (the returned
+/// point is the start, or no evaluation succeeded) with a converged, step-too-small or
+/// roundoff-limited code is kNumericalFailure unless the start is feasible and stationary (a
+/// warm start at an optimum): NLopt's ROUNDOFF_LIMITED after one evaluation is no answer.
+/// NLopt has no multipliers: lambda stays empty. iterations = objective evaluations. Throws
+/// std::invalid_argument only for invalid options or a z0 of the wrong size.
 NlpSolution SolveNlpWithNlopt(const Nlp& nlp, const Vec& z0, const NloptOptions& options);
 
 }  // namespace ocpb

@@ -26,6 +26,7 @@ TranscriptionOptions TranscriptionOptionsFor(const SolveRequest& request) {
   options.grid = request.grid;
   options.terminal = request.terminal;
   options.initial_guess = request.initial_guess;
+  options.initial_states = request.initial_states;
   options.integrator = request.integrator;
   return options;
 }

@@ -35,6 +35,10 @@ struct SolverInfo {
   /// Factors sparse Jacobian or Hessian matrices (Ipopt, indirect Newton): the memory
   /// estimate then adds their nonzeros and fill-in (see EstimateCaseMemoryBytes in bench/).
   bool factorizes_sparse_matrices = false;
+  /// The option whose value stops the solver and so bounds its accuracy (Ipopt's "tol"), and
+  /// what it measures; records carry both with the value used (JudgeResult). Empty: none named.
+  std::string accuracy_option;
+  std::string accuracy_note;
 };
 
 /// Every registered solver: the built-in ones, then RegisterSolver's, in that order.

@@ -19,16 +19,35 @@ namespace ocpb {
 /// them before any work, throwing std::invalid_argument naming the key and the rule (unknown
 /// keys list the valid ones). Text values ("500") are read by the one option grammar.
 struct SolveRequest {
-  TimeGrid grid;                                   ///< the method's grid on [t0, tf]
-  TerminalMode terminal = TerminalMode::kPenalty;  ///< penalty (paper) or hard psi = 0
+  /// The method's grid on [t0, tf] (required; any strictly increasing points: Uniform or
+  /// FromPoints). For a free final time, on the nominal horizon (T starts at tf unless a guess
+  /// says otherwise).
+  TimeGrid grid;
+  /// Default: the penalty form (the paper's), whose answer depends on the problem's terminal
+  /// weights (Ocp::terminal_weights_chosen); kHard enforces psi = 0.
+  TerminalMode terminal = TerminalMode::kPenalty;
   /// For methods that simulate: the Hamiltonian descent's integrator, single shooting's.
+  /// Default: forward Euler (the paper's).
   Integrator integrator = Integrator::kEuler;
   std::string transcription;  ///< NLP solvers: "euler", "trapezoid", ... (TranscriptionInfo)
   /// The transcription's options (LGR: "degree"; every collocation scheme: "objective_scale",
   /// "state_scale", "control_scale"); see `ocpbench describe transcription NAME`.
   OptionMap transcription_options;
-  std::optional<ControlTrajectory>
-      initial_guess;  ///< default: Ocp::NominalControl() projected onto U
+  /// The controls to start from; default: Ocp::NominalControl() projected onto U. For a free
+  /// final time a guess may end at its own T within the bounds (a previous solution's): methods
+  /// that take T start there, reading the guess on that stretched axis.
+  std::optional<ControlTrajectory> initial_guess;
+  /// States to start from (nx components; a ControlTrajectory serves as any function of time,
+  /// usually piecewise linear through a previous solution's states), on the same horizon as
+  /// initial_guess. Taken by the methods whose unknowns include states: the collocation
+  /// transcriptions (euler, trapezoid, hermite-simpson, lgr) at their state points, and
+  /// indirect-newton at its nodes. Ignored by the others, whose states follow from the controls
+  /// (the Hamiltonian descent, single shooting). Empty: states by simulating initial_guess.
+  std::optional<ControlTrajectory> initial_states;
+  /// Costates to start from (nx components, the convention H = p^T f + L), for methods whose
+  /// unknowns include them: indirect-newton (without: from its `costates` option). Ignored by
+  /// the others.
+  std::optional<ControlTrajectory> initial_costates;
   /// The solver's options (NLopt's algorithm is its option "algorithm"); see `ocpbench
   /// describe solver NAME`.
   OptionMap options;

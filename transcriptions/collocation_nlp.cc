@@ -55,6 +55,9 @@ void ValidateTranscriptionOptions(const Ocp& ocp, const TranscriptionOptions& op
                                 std::to_string(ocp.nu()) + " components");
   }
   std::string error;
+  if ((options.initial_guess || options.initial_states) && !options.IsValidFor(ocp, &error)) {
+    throw std::invalid_argument(error);
+  }
   if (!options.scaling.IsValidFor(ocp.nx(), ocp.nu(), &error)) {
     throw std::invalid_argument("transcription: " + error);
   }
@@ -68,6 +71,8 @@ CollocationNlp::CollocationNlp(const Ocp& ocp,
       grid_(options.grid),
       mode_(options.terminal),
       initial_guess_(options.initial_guess),
+      initial_states_(options.initial_states),
+      start_final_time_(options.GuessFinalTime(ocp)),
       layout_(std::move(layout)),
       start_integrator_(start_integrator),
       nx_(ocp.nx()),
@@ -278,20 +283,37 @@ Vec CollocationNlp::StartingPoint() const {
     ocp_.control_set().Project(u0);
     return ControlTrajectory::Constant(grid_, u0);
   }();
+  // A free final time starts at the guess's own T (a previous solution's): the layout's nominal
+  // times are read on the guess's stretched axis t0 + r (t - t0).
+  const bool stretched = free_time_ && start_final_time_ != grid_.tf();
+  const double r = stretched ? (start_final_time_ - grid_.t0()) * inv_duration_ : 1.0;
+  auto at = [&](double t) { return stretched ? grid_.t0() + r * (t - grid_.t0()) : t; };
   Mat values(nu_, layout_.controls.size());
   for (size_t i = 0; i < layout_.controls.size(); ++i) {
     const double t = layout_.controls[i].t;
     const auto side =
         t >= grid_.tf() ? ControlTrajectory::Side::kLeft : ControlTrajectory::Side::kRight;
-    guess.Evaluate(t, side, values.col(i));
+    guess.Evaluate(at(t), side, values.col(i));
     ocp_.control_set().Project(values.col(i));
   }
-  const Evaluation ev = Evaluate(ocp_, MakeControls(values, grid_), state_grid_, start_integrator_);
-  Mat X = ev.X;
+  Mat X(nx_, state_grid_.size());
+  if (initial_states_) {
+    for (int j = 0; j < state_grid_.size(); ++j) {
+      initial_states_->Evaluate(at(state_grid_.t(j)), ControlTrajectory::Side::kRight, X.col(j));
+    }
+  } else if (stretched) {
+    X = Evaluate(ocp_,
+                 MakeControls(values, grid_.StretchedTo(start_final_time_)),
+                 state_grid_.StretchedTo(start_final_time_),
+                 start_integrator_)
+            .X;
+  } else {
+    X = Evaluate(ocp_, MakeControls(values, grid_), state_grid_, start_integrator_).X;
+  }
   if (!X.allFinite()) X = ocp_.x0().replicate(1, state_grid_.size());
 
   Vec z = Vec::Zero(num_variables());
-  if (free_time_) z[time_index_] = grid_.tf();
+  if (free_time_) z[time_index_] = start_final_time_;
   for (size_t j = 0; j < layout_.states.size(); ++j) {
     z.segment(layout_.states[j].offset, nx_) = X.col(j);
   }

@@ -123,9 +123,12 @@ class CollocationNlp : public TranscribedNlp {
   void Bounds(Vec* z_lower, Vec* z_upper, Vec* g_lower, Vec* g_upper) const override;
   /// Controls from TranscriptionOptions::initial_guess (default: Ocp::NominalControl() projected
   /// onto U) at every control block's time (the left limit at tf, the right limit elsewhere),
-  /// projected onto U; states by simulating the resulting ControlTrajectory from x0 on state_grid()
-  /// with the scheme's start integrator (Euler for the Euler transcription, so its start is
-  /// feasible; RK4 otherwise). If that simulation is not finite, every state block is set to x0.
+  /// projected onto U; states from TranscriptionOptions::initial_states at every state point,
+  /// or else by simulating the resulting ControlTrajectory from x0 on state_grid() with the
+  /// scheme's start integrator (Euler for the Euler transcription, so its start is feasible;
+  /// RK4 otherwise). If the states are not finite, every state block is set to x0. A free final
+  /// time starts at TranscriptionOptions::GuessFinalTime (a previous solution's T), the guesses
+  /// read at the stretched times of the nominal layout.
   Vec StartingPoint() const override;
   bool Objective(ConstVecRef z, double* f) const override;
   bool Gradient(ConstVecRef z, VecRef grad) const override;
@@ -201,6 +204,8 @@ class CollocationNlp : public TranscribedNlp {
   TimeGrid grid_;
   TerminalMode mode_;
   std::optional<ControlTrajectory> initial_guess_;
+  std::optional<ControlTrajectory> initial_states_;
+  double start_final_time_;  // T of the starting point (TranscriptionOptions::GuessFinalTime)
   CollocationLayout layout_;
   Integrator start_integrator_;
   TimeGrid state_grid_;

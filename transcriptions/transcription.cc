@@ -20,35 +20,51 @@ std::string Interval(double a, double b) {
   return os.str();
 }
 
+// A guess covers [grid.t0(), end]: the grid's tf, or a free final time's start.
+bool GuessCovers(const std::optional<ControlTrajectory>& guess,
+                 const char* what,
+                 const TimeGrid& grid,
+                 double end,
+                 std::string* error) {
+  if (!guess) return true;
+  const TimeGrid& g = guess->grid();
+  const double tol = 1e-12 * std::max({1.0, std::abs(grid.t0()), std::abs(end)});
+  if (g.size() < 2 || g.t0() > grid.t0() + tol || g.tf() < end - tol) {
+    return Fail(error,
+                std::string("transcription: the initial ") + what + " is defined on " +
+                    (g.size() < 2 ? std::string("no interval") : Interval(g.t0(), g.tf())) +
+                    ", which does not cover the grid " + Interval(grid.t0(), end));
+  }
+  return true;
+}
+
 }  // namespace
 
-bool TranscriptionOptions::IsValid(std::string* error) const {
+bool TranscriptionOptions::IsValidOnItsOwn(std::string* error) const {
   if (grid.size() < 2) return Fail(error, "transcription: the grid has no interval");
   if (degree < 1 || degree > kMaxRadauPoints) {
     return Fail(error,
                 "transcription: degree must be in [1, " + std::to_string(kMaxRadauPoints) +
                     "], got " + std::to_string(degree));
   }
-  if (initial_guess) {
-    if (initial_guess->nu() < 1) {
-      return Fail(error, "transcription: the initial guess has no control components");
-    }
-    const TimeGrid& g = initial_guess->grid();
-    const double tol = 1e-12 * std::max({1.0, std::abs(grid.t0()), std::abs(grid.tf())});
-    if (g.size() < 2 || g.t0() > grid.t0() + tol || g.tf() < grid.tf() - tol) {
-      return Fail(error,
-                  "transcription: the initial guess is defined on " +
-                      (g.size() < 2 ? std::string("no interval") : Interval(g.t0(), g.tf())) +
-                      ", which does not cover the grid " + Interval(grid.t0(), grid.tf()));
-    }
+  if (initial_guess && initial_guess->nu() < 1) {
+    return Fail(error, "transcription: the initial guess has no control components");
+  }
+  if (initial_states && initial_states->nu() < 1) {
+    return Fail(error, "transcription: the initial states have no components");
   }
   std::string why;
   if (!scaling.IsValid(&why)) return Fail(error, "transcription: " + why);
   return true;
 }
 
+bool TranscriptionOptions::IsValid(std::string* error) const {
+  return IsValidOnItsOwn(error) && GuessCovers(initial_guess, "guess", grid, grid.tf(), error) &&
+         GuessCovers(initial_states, "states", grid, grid.tf(), error);
+}
+
 bool TranscriptionOptions::IsValidFor(const Ocp& ocp, std::string* error) const {
-  if (!IsValid(error)) return false;
+  if (!IsValidOnItsOwn(error)) return false;
   const double tol = 1e-12 * std::max({1.0, std::abs(ocp.t0()), std::abs(ocp.tf())});
   if (std::abs(grid.t0() - ocp.t0()) > tol || std::abs(grid.tf() - ocp.tf()) > tol) {
     return Fail(error,
@@ -60,9 +76,29 @@ bool TranscriptionOptions::IsValidFor(const Ocp& ocp, std::string* error) const 
                 "transcription: the initial guess must have nu = " + std::to_string(ocp.nu()) +
                     " components, got " + std::to_string(initial_guess->nu()));
   }
+  if (initial_states && initial_states->nu() != ocp.nx()) {
+    return Fail(error,
+                "transcription: the initial states must have nx = " + std::to_string(ocp.nx()) +
+                    " components, got " + std::to_string(initial_states->nu()));
+  }
+  // Each guess covers the horizon the start is read on: [t0, tf], or [t0, T] at the guess's
+  // own final time T for a free final time.
+  const double end = GuessFinalTime(ocp);
+  if (!GuessCovers(initial_guess, "guess", grid, end, error) ||
+      !GuessCovers(initial_states, "states", grid, end, error)) {
+    return false;
+  }
   std::string why;
   if (!scaling.IsValidFor(ocp.nx(), ocp.nu(), &why)) return Fail(error, "transcription: " + why);
   return true;
+}
+
+double TranscriptionOptions::GuessFinalTime(const Ocp& ocp) const {
+  if (!ocp.free_final_time() || !initial_guess || initial_guess->grid().size() < 2) {
+    return grid.tf();
+  }
+  const double T = initial_guess->grid().tf();
+  return ocp.AdmitsFinalTime(T) ? T : grid.tf();
 }
 
 }  // namespace ocpb

@@ -42,6 +42,9 @@ struct TranscriptionOptions {
   TerminalMode terminal = TerminalMode::kPenalty;
   std::optional<ControlTrajectory> initial_guess;  ///< controls to start from (states by
                                                    ///< simulation); nu >= 1, covering the grid
+  /// States to start from (nx components, on the horizon of initial_guess), for the schemes
+  /// with state variables; default: simulated from the controls. Single shooting ignores them.
+  std::optional<ControlTrajectory> initial_states;
   int degree = 3;      ///< LGR: collocation points per interval, 1..kMaxRadauPoints (60)
   NlpScaling scaling;  ///< default: none (see nlp_scaling.h)
   /// Schemes whose objective is a simulation (single shooting): forward Euler (the
@@ -49,12 +52,21 @@ struct TranscriptionOptions {
   Integrator integrator = Integrator::kEuler;
 
   /// True when every field satisfies its rule above on its own (sizes are checked against a
-  /// problem by IsValidFor); otherwise false with a one-line reason in *error (may be null).
+  /// problem by IsValidFor) and the guesses cover the grid; otherwise false with a one-line
+  /// reason in *error (may be null).
   bool IsValid(std::string* error) const;
   /// IsValid() and the options fit `ocp`: the grid spans [t0, tf] (to 1e-12 relative), the
-  /// initial guess has ocp.nu() components, the scaling's sizes are nx and nu
-  /// (NlpScaling::IsValidFor).
+  /// initial guess has ocp.nu() components, the initial states ocp.nx(), the scaling's sizes
+  /// are nx and nu (NlpScaling::IsValidFor). For a free final time the guesses may end at their
+  /// own T within the bounds (GuessFinalTime), else they must cover the grid.
   bool IsValidFor(const Ocp& ocp, std::string* error) const;
+  /// Where a free final time starts: the end of initial_guess's grid when `ocp` has a free final
+  /// time admitting it (a previous solution's T), else the grid's tf.
+  double GuessFinalTime(const Ocp& ocp) const;
+
+ private:
+  /// IsValid without the guesses' horizon (IsValidFor checks that against the problem).
+  bool IsValidOnItsOwn(std::string* error) const;
 };
 
 /// A scheme, by name ("euler", "trapezoid", "hermite-simpson", "lgr", "single-shooting").

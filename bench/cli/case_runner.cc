@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -17,6 +18,8 @@
 #include "core/memory_budget.h"
 #include "core/parameters.h"
 #include "problems/registry.h"
+#include "solvers/continuation.h"
+#include "solvers/judge.h"
 #include "solvers/registry.h"
 
 namespace ocpb {
@@ -70,7 +73,7 @@ struct PreparedCase {
 PreparedCase Prepare(const CaseSpec& spec) {
   PreparedCase p;
   const ProblemInfo& pinfo = FindProblem(spec.problem);
-  std::optional<ControlTrajectory> guess;
+  std::optional<InitialGuess> guess;
   if (!spec.initial_guess.empty()) guess = ReadInitialGuess(spec.initial_guess);
   p.ocp = MakeProblem(spec.problem, spec.set, spec.seed, &p.params);
   const int N = spec.intervals > 0 ? spec.intervals : pinfo.default_intervals;
@@ -84,22 +87,33 @@ PreparedCase Prepare(const CaseSpec& spec) {
   p.request.options = p.options.solver;
   if (guess) {
     CheckInitialGuess(*guess, *p.ocp, spec.initial_guess);
-    p.request.initial_guess = guess;
+    p.request.initial_guess = guess->controls;
+    p.request.initial_states = guess->states;
+    p.request.initial_costates = guess->costates;
   }
   return p;
 }
 
-// The solve, `repeats` times: the last result, and every repeat's CPU and wall seconds. An
-// invalid request propagates (bad input); any other exception is the result's error status.
+// The solve, `repeats` times: the last result, and every repeat's CPU and wall seconds (with a
+// continuation: both stages; `penalty_stage` gets the last repeat's first stage). An invalid
+// request propagates (bad input); any other exception is the result's error status.
 SolveResult SolveRepeatedly(const CaseSpec& spec,
                             const PreparedCase& p,
                             std::vector<double>* cpu,
-                            std::vector<double>* wall) {
+                            std::vector<double>* wall,
+                            std::optional<SolveResult>* penalty_stage) {
   const std::unique_ptr<Solver> solver = FindSolver(spec.solver).make();
   SolveResult result;
   for (int r = 0; r < spec.repeats; ++r) {
     try {
-      result = solver->Solve(*p.ocp, p.request);
+      if (spec.continuation == "penalty") {
+        ContinuationResult both = SolveHardFromPenalty(
+            *solver, *p.ocp, p.request, FindSolver(spec.solver).replan_defaults);
+        result = std::move(both.hard);
+        *penalty_stage = std::move(both.penalty);
+      } else {
+        result = solver->Solve(*p.ocp, p.request);
+      }
     } catch (const std::invalid_argument&) {
       throw;
     } catch (const std::exception& e) {
@@ -115,22 +129,24 @@ SolveResult SolveRepeatedly(const CaseSpec& spec,
   return result;
 }
 
-// The common evaluator's fields: the controls re-simulated on the method's grid (the case's
-// integrator) and with RK4 on a 10x finer grid, on the horizon the solution ends at.
+// The common evaluator's fields, by the one public judge (JudgeResult): the controls
+// re-simulated on the method's grid (the case's integrator) and with RK4 on a 10x finer grid, on
+// the horizon the solution ends at, and the warnings its status does not carry.
 void Judge(const CaseSpec& spec, const PreparedCase& p, const SolveResult& result, Record* rec) {
   const Ocp& ocp = *p.ocp;
-  // A method that did not run has nothing to judge (its "controls" would be the start).
-  const bool has_controls =
-      result.controls.nu() == ocp.nu() && result.status != SolveStatus::kNotApplicable;
   rec->final_time_free = ocp.free_final_time().has_value();
-  if (!has_controls) return;
-  // A free final time is judged on the solution's own horizon [t0, T] (the end of its
-  // state_grid): the request's grid stretched to T; a fixed horizon on the request's grid.
-  const bool free_time = rec->final_time_free && result.state_grid.size() >= 2;
-  const TimeGrid judged = free_time ? p.grid.StretchedTo(result.state_grid.tf()) : p.grid;
-  rec->final_time = judged.tf();
-  const Evaluation ev = Evaluate(ocp, result.controls, judged, spec.evaluate_with);
-  const Evaluation fine = Evaluate(ocp, result.controls, judged.Refined(10), Integrator::kRk4);
+  JudgeOptions options;
+  options.integrator = spec.evaluate_with;
+  const Judgement judged = JudgeResult(ocp, p.request, result, options);
+  if (!judged.accuracy_option.empty()) {
+    rec->stopping_tolerance = RecordStoppingTolerance{
+        judged.accuracy_option, judged.accuracy_value, judged.accuracy_note};
+  }
+  // A method that did not run has nothing to judge (its "controls" would be the start).
+  if (!judged.judged) return;
+  const Evaluation& ev = judged.own_grid;
+  const Evaluation& fine = judged.fine;
+  rec->final_time = judged.final_time;
   rec->J = ev.J;
   rec->Jbar = ev.Jbar;
   rec->terminal_violation = ev.terminal_violation;
@@ -143,24 +159,27 @@ void Judge(const CaseSpec& spec, const PreparedCase& p, const SolveResult& resul
   rec->J_fine = fine.J;
   rec->Jbar_fine = fine.Jbar;
   rec->terminal_violation_fine = fine.terminal_violation;
-  const bool has_states = result.states.rows() == ocp.nx() &&
-                          result.states.cols() == result.state_grid.size() &&
-                          result.state_grid.size() >= 2;
-  if (has_states) {
-    rec->resimulation_defect =
-        ResimulationDefect(ocp, result.controls, result.state_grid, result.states);
-  }
+  rec->resimulation_defect = judged.resimulation_defect;
+  rec->discretization_gap = judged.discretization_gap;
+  for (const JudgeWarning& w : judged.warnings) rec->warnings.push_back({w.code, w.message});
   if (!ev.finite && !IsFailure(result.status)) {
     rec->status = ToString(SolveStatus::kNumericalFailure);
     rec->message = result.message + " (evaluator: trajectory or cost not finite)";
   }
   if (spec.keep_trajectory) {
     RecordTrajectory traj;
-    traj.t = judged.points();
+    traj.t = judged.grid.points();
     traj.x = ev.X;
-    traj.u = result.controls.SampleIntervals(judged);
+    traj.u = result.controls.SampleIntervals(judged.grid);
     traj.u_rule = "value at each interval's left end; piecewise " +
                   std::string(result.controls.InterpolationName());
+    if (std::isfinite(judged.resimulation_defect)) {  // the method carries its own states
+      traj.own_t = result.state_grid.points();
+      traj.own_x = result.states;
+      if (result.costates.rows() == ocp.nx() && result.costates.cols() == result.states.cols()) {
+        traj.own_p = result.costates;
+      }
+    }
     rec->trajectory = std::move(traj);
     const ProblemInfo& pinfo = FindProblem(spec.problem);
     if (pinfo.sample_for_figures) {
@@ -319,7 +338,8 @@ Record RunCase(const CaseSpec& given) {
   const ProblemInfo& pinfo = FindProblem(spec.problem);
   const PreparedCase p = Prepare(spec);
   std::vector<double> cpu, wall;
-  const SolveResult result = SolveRepeatedly(spec, p, &cpu, &wall);
+  std::optional<SolveResult> penalty_stage;
+  const SolveResult result = SolveRepeatedly(spec, p, &cpu, &wall, &penalty_stage);
 
   Record rec = CaseIdentityRecord(spec);
   rec.parameters = p.params.values();
@@ -339,6 +359,14 @@ Record RunCase(const CaseSpec& given) {
   rec.wall_seconds = Median(wall);
   rec.solver_stats = result.solver_stats;
   rec.history = result.history;
+  if (penalty_stage) {
+    rec.continuation = RecordContinuation{spec.continuation,
+                                          ToString(penalty_stage->status),
+                                          penalty_stage->solver_status,
+                                          penalty_stage->message,
+                                          penalty_stage->iterations,
+                                          penalty_stage->cpu_seconds};
+  }
   Judge(spec, p, result, &rec);
   if (pinfo.reference_value) {
     RecordReference ref;

@@ -63,6 +63,7 @@ std::string CaseSpec::Key() const {
   for (const std::string& s : set) key += "|set:" + s;
   for (const auto& [k, v] : options) key += "|opt:" + k + "=" + v.ToText();
   if (!initial_guess.empty()) key += "|guess=" + initial_guess;
+  if (!continuation.empty()) key += "|continuation=" + continuation;
   if (kind != "solve") {
     key += "|kind=" + kind;
     for (const auto& [k, v] : online) key += "|online:" + k + "=" + v.ToText();
@@ -82,6 +83,18 @@ void CaseSpec::Validate() const {
   }
   if (kind == "solve" && (!online.empty() || !replan_options.empty())) {
     throw std::invalid_argument("online, replan_options: only for kind \"online\"");
+  }
+  if (!continuation.empty()) {
+    if (continuation != "penalty") {
+      throw std::invalid_argument("continuation: unknown '" + continuation +
+                                  "' (valid: penalty, or none)");
+    }
+    if (terminal != TerminalMode::kHard) {
+      throw std::invalid_argument(
+          "continuation: 'penalty' starts the hard form from the penalty solution, so it needs "
+          "terminal = hard");
+    }
+    if (kind != "solve") throw std::invalid_argument("continuation: only for kind \"solve\"");
   }
 }
 
@@ -241,7 +254,8 @@ CaseSpec ParseCaseSpec(const CaseFields& j, const std::string& where) {
                                               "keep_trajectory",
                                               "kind",
                                               "online",
-                                              "replan_options"};
+                                              "replan_options",
+                                              "continuation"};
   auto field = [&](const char* name) { return where + "." + name; };
   for (const std::string& k : j.Keys()) {
     if (!kKeys.count(k)) {
@@ -343,6 +357,8 @@ CaseSpec ParseCaseSpec(const CaseFields& j, const std::string& where) {
     }
   }
   get_string("kind", &spec.kind);
+  get_string("continuation", &spec.continuation);
+  if (spec.continuation == "none") spec.continuation.clear();
   auto get_map = [&](const char* name, OptionMap* out) {
     const json* opts = j.Find(name);
     if (opts == nullptr) return;

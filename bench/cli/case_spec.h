@@ -39,6 +39,9 @@ struct CaseSpec {
   /// A previous `ocpbench solve --json` record whose controls start the solve (empty: the
   /// solver's default start). Read and checked before solving (bench/cli/initial_guess.h).
   std::string initial_guess;
+  /// "" (none) or "penalty": solve the penalty form first and start the hard form from its
+  /// solution (SolveHardFromPenalty, solvers/continuation.h); needs terminal = hard.
+  std::string continuation;
   /// "solve" (one solve, the default) or "online" (re-planning with channel updates, paper
   /// Section IV: `options` are the solver options of every solve, `replan_options` override them
   /// for the re-plans, `online` holds the scenario settings (OnlineScenarioSchema)).

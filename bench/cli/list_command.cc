@@ -26,6 +26,7 @@ void DescribeProblem(const std::string& name) {
     std::cout << "reference " << p.reference_quantity << " = " << *p.reference_value << " ("
               << p.reference_source << "; " << p.reference_scheme << ")\n";
   }
+  if (!p.hamiltonian_note.empty()) std::cout << "hamiltonian: " << p.hamiltonian_note << "\n";
   std::cout << "parameters (--set key=value, suite \"set\"):\n" << parameters.Describe();
 }
 
@@ -34,6 +35,9 @@ void DescribeSolver(const std::string& name) {
   std::cout << "solver " << s.name << ": " << s.description << "\n";
   std::cout << (s.uses_transcription ? "needs a transcription (--transcription)\n"
                                      : "takes no transcription\n");
+  if (!s.accuracy_option.empty()) {
+    std::cout << "accuracy: option " << s.accuracy_option << ": " << s.accuracy_note << "\n";
+  }
   std::cout << "options (--option key=value, suite \"options\"):\n" << s.options.Describe();
   if (!s.replan_defaults.empty()) {
     std::cout << "re-plan defaults (online re-planning):";

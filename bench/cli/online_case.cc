@@ -37,13 +37,9 @@ json ChannelJson(const ChannelParameters& p) {
 }
 
 std::string AggregateStatus(const OnlineResult& r) {
-  for (const OnlineCycle& c : r.cycles) {
-    if (IsFailure(c.status)) return ToString(c.status);
-  }
-  for (const OnlineCycle& c : r.cycles) {
-    if (!IsSuccess(c.status)) return ToString(c.status);
-  }
-  return ToString(SolveStatus::kConverged);
+  std::vector<SolveStatus> statuses;
+  for (const OnlineCycle& c : r.cycles) statuses.push_back(c.status);
+  return WorstCycleStatus(statuses);
 }
 
 json CycleJson(const OnlineCycle& c, bool keep_trajectory) {
@@ -134,6 +130,19 @@ void FillOutcome(const OnlineResult& r, Record* rec) {
 }
 
 }  // namespace
+
+std::string WorstCycleStatus(const std::vector<SolveStatus>& cycles) {
+  for (SolveStatus c : cycles) {
+    if (IsFailure(c)) return ToString(c);
+  }
+  for (SolveStatus c : cycles) {
+    if (!IsSuccess(c)) return ToString(c);
+  }
+  for (SolveStatus c : cycles) {
+    if (c != SolveStatus::kConverged) return ToString(c);
+  }
+  return ToString(SolveStatus::kConverged);
+}
 
 CaseEstimate ValidateOnlineCase(const CaseSpec& spec) {
   const OnlineScenario s = Resolve(spec);

@@ -2,11 +2,20 @@
 // (paper Section IV), judged on the true channel, next to the offline plan made at t0 = 0.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "bench/cli/case_runner.h"
 #include "bench/cli/case_spec.h"
 #include "bench/cli/record.h"
+#include "core/solve_result.h"
 
 namespace ocpb {
+
+/// An online record's status from its cycles' statuses: the first failure (IsFailure), else the
+/// first limit (not IsSuccess), else "acceptable" when any cycle stopped at its solver's
+/// acceptable level (never reported as converged), else "converged".
+std::string WorstCycleStatus(const std::vector<SolveStatus>& cycles);
 
 /// Throws std::invalid_argument ("online.KEY: rule", or the problem's, the solver's message)
 /// unless `spec` (kind "online") is a valid online case: problem comm-path2d, a known solver

@@ -264,11 +264,35 @@ json Record::ToJson() const {
   r["resimulation_defect"] = JsonNumber(resimulation_defect);
   r["final_time"] = JsonNumber(final_time);
   r["final_time_free"] = final_time_free;
+  r["discretization_gap"] = JsonNumber(discretization_gap);
+  json warn = json::array();
+  for (const RecordWarning& w : warnings)
+    warn.push_back({{"code", w.code}, {"message", w.message}});
+  r["warnings"] = warn;
+  if (stopping_tolerance) {
+    r["stopping_tolerance"] = json{{"option", stopping_tolerance->option},
+                                   {"value", JsonNumber(stopping_tolerance->value)},
+                                   {"note", stopping_tolerance->note}};
+  }
+  if (continuation) {
+    r["continuation"] = json{{"from", continuation->from},
+                             {"status", continuation->status},
+                             {"solver_status", continuation->solver_status},
+                             {"message", continuation->message},
+                             {"iterations", continuation->iterations},
+                             {"cpu_seconds", JsonNumber(continuation->cpu_seconds)}};
+  }
   if (trajectory) {
-    r["trajectory"] = json{{"t", trajectory->t},
-                           {"x", JsonRows(trajectory->x)},
-                           {"u", JsonRows(trajectory->u)},
-                           {"u_rule", trajectory->u_rule}};
+    json t{{"t", trajectory->t},
+           {"x", JsonRows(trajectory->x)},
+           {"u", JsonRows(trajectory->u)},
+           {"u_rule", trajectory->u_rule}};
+    if (!trajectory->own_t.empty()) {
+      json own{{"t", trajectory->own_t}, {"x", JsonRows(trajectory->own_x)}};
+      if (trajectory->own_p.size() > 0) own["p"] = JsonRows(trajectory->own_p);
+      t["own"] = own;
+    }
+    r["trajectory"] = t;
   }
   if (!s_map.is_null()) r["s_map"] = s_map;
   if (reference) {
@@ -376,6 +400,41 @@ Record Record::Read(const json& j, json* movable) {
   r.Number("resimulation_defect", &rec.resimulation_defect);
   r.Number("final_time", &rec.final_time);
   r.Bool("final_time_free", &rec.final_time_free);
+  r.Number("discretization_gap", &rec.discretization_gap);
+  if (r.Has("warnings")) {
+    if (!j["warnings"].is_array()) r.Fail("warnings", "an array");
+    size_t i = 0;
+    for (const json& w : j["warnings"]) {
+      const std::string where = "warnings[" + std::to_string(i++) + "]";
+      if (!w.is_object()) r.Fail(where, "an object");
+      const Reader wr(w, where + ".");
+      RecordWarning out;
+      wr.Text("code", &out.code);
+      wr.Text("message", &out.message);
+      rec.warnings.push_back(out);
+    }
+  }
+  if (r.Has("stopping_tolerance")) {
+    if (!j["stopping_tolerance"].is_object()) r.Fail("stopping_tolerance", "an object");
+    const Reader st(j["stopping_tolerance"], "stopping_tolerance.");
+    RecordStoppingTolerance out;
+    st.Text("option", &out.option);
+    st.Number("value", &out.value);
+    st.Text("note", &out.note);
+    rec.stopping_tolerance = out;
+  }
+  if (r.Has("continuation")) {
+    if (!j["continuation"].is_object()) r.Fail("continuation", "an object");
+    const Reader c(j["continuation"], "continuation.");
+    RecordContinuation out;
+    c.Text("from", &out.from);
+    c.Text("status", &out.status);
+    c.Text("solver_status", &out.solver_status);
+    c.Text("message", &out.message);
+    c.Integer("iterations", &out.iterations);
+    c.Number("cpu_seconds", &out.cpu_seconds);
+    rec.continuation = out;
+  }
   if (r.Has("trajectory")) {
     const json& t = j["trajectory"];
     if (!t.is_object()) r.Fail("trajectory", "an object");
@@ -385,6 +444,14 @@ Record Record::Read(const json& j, json* movable) {
     if (tr.Has("x")) traj.x = tr.Rows(t["x"], "x");
     if (tr.Has("u")) traj.u = tr.Rows(t["u"], "u");
     tr.Text("u_rule", &traj.u_rule);
+    if (tr.Has("own")) {
+      const json& o = t["own"];
+      if (!o.is_object()) tr.Fail("own", "an object");
+      const Reader own(o, "trajectory.own.");
+      own.Numbers("t", &traj.own_t);
+      if (own.Has("x")) traj.own_x = own.Rows(o["x"], "x");
+      if (own.Has("p")) traj.own_p = own.Rows(o["p"], "p");
+    }
     rec.trajectory = std::move(traj);
   }
   r.Any("s_map", &rec.s_map);

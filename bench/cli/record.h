@@ -18,8 +18,10 @@ namespace ocpb {
 
 /// The version of the record format written by this build. 1: records before the typed record
 /// (they carry no schema_version); 2: the typed record (adds schema_version, solver_options,
-/// transcription_options). Readers take both.
-inline constexpr int kRecordSchemaVersion = 2;
+/// transcription_options); 3: adds warnings, discretization_gap, stopping_tolerance,
+/// continuation and trajectory.own (the method's own states and costates, a warm start's
+/// source). Readers take all three (fields a version lacks keep their defaults).
+inline constexpr int kRecordSchemaVersion = 3;
 
 /// The trajectory a record keeps (for figures): t (N + 1 grid points), states x (nx rows of
 /// N + 1), controls u (nu rows of N: each interval's left end) and the rule that says how u
@@ -29,6 +31,36 @@ struct RecordTrajectory {
   Mat x;
   Mat u;
   std::string u_rule;
+  /// The method's own states (and costates, where it has them) on its own state grid: what a
+  /// warm start from this record takes (`--initial-guess`). Empty when the method carries no
+  /// states (the Hamiltonian descent's are the evaluator's, single shooting has none).
+  std::vector<double> own_t;
+  Mat own_x;
+  Mat own_p;  ///< empty when the method has no costates
+};
+
+/// Something about the result that its status does not say (JudgeWarning: a stable code and a
+/// one-line message).
+struct RecordWarning {
+  std::string code;
+  std::string message;
+};
+
+/// The option that stops the solver and bounds its accuracy, as used (SolverInfo).
+struct RecordStoppingTolerance {
+  std::string option;
+  double value = NAN;
+  std::string note;
+};
+
+/// A solve that started from an earlier stage (CaseSpec::continuation): that stage's outcome.
+/// The record's own status, iterations and history are the final stage's; cpu_seconds counts
+/// both stages.
+struct RecordContinuation {
+  std::string from;  ///< "penalty": the penalty form solved first, its solution the start
+  std::string status, solver_status, message;
+  int iterations = -1;
+  double cpu_seconds = NAN;
 };
 
 /// A published optimum the record is compared with: value, quantity ("J", "tf"), source, the
@@ -106,6 +138,13 @@ struct Record {
   double resimulation_defect = NAN;
   double final_time = NAN;  ///< the horizon the controls were judged on
   bool final_time_free = false;
+  /// |objective - fine| / max(|objective|, |fine|, 1e-8), fine = J_fine (penalty form) or
+  /// Jbar_fine (hard form): how far the method's own discrete problem is from the continuous one
+  /// at its answer (Judgement::discretization_gap).
+  double discretization_gap = NAN;
+  std::vector<RecordWarning> warnings;
+  std::optional<RecordStoppingTolerance> stopping_tolerance;
+  std::optional<RecordContinuation> continuation;
 
   std::optional<RecordTrajectory> trajectory;
   nlohmann::json s_map;  ///< null, or the channel map for figures

@@ -52,6 +52,16 @@ void PrintReport(const Record& r) {
     std::cout << "  final state = " << nlohmann::json(r.final_state).dump() << "\n";
   }
   if (!r.message.empty()) std::cout << "  message: " << r.message << "\n";
+  if (r.continuation) {
+    std::cout << fmt::format("  continuation: the {} form first: status {} ({}), {} iterations\n",
+                             r.continuation->from,
+                             r.continuation->status,
+                             r.continuation->solver_status,
+                             r.continuation->iterations);
+  }
+  for (const RecordWarning& w : r.warnings) {
+    std::cout << "  warning (" << w.code << "): " << w.message << "\n";
+  }
 }
 
 }  // namespace
@@ -88,8 +98,13 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_flag("--no-trajectory", args->no_trajectory, "leave t, x, u out of the JSON");
   cmd->add_option("--initial-guess",
                   args->spec.initial_guess,
-                  "start from the controls (trajectory.u) of a previous `solve --json` record, "
-                  "sampled onto this grid");
+                  "start from a previous `solve --json` record: its controls (trajectory.u) "
+                  "and, for the methods that take them, its own states and costates "
+                  "(trajectory.own), sampled onto this grid");
+  cmd->add_option("--continuation",
+                  args->spec.continuation,
+                  "penalty: solve the penalty form first and start the hard form from its "
+                  "solution (needs --terminal hard)");
   cmd->callback([args, n_option]() {
     CaseSpec spec = args->spec;
     if (n_option->count() > 0 && spec.intervals < 1) {
@@ -105,6 +120,7 @@ void AddSolveCommand(CLI::App& app) {
     spec.seed = ParseSeed(args->seed, "--seed");
     spec.keep_trajectory = !args->no_trajectory;
     spec.options = ParseKeyValues(args->options, "--option");
+    if (spec.continuation == "none") spec.continuation.clear();
     // Every input and the output place are checked before anything is solved.
     ValidateCase(ResolveCase(spec));
     if (!args->json_path.empty()) CheckOutputFile(args->json_path, "--json");

@@ -260,7 +260,14 @@ std::string SummaryMarkdown(const std::string& suite_name,
         "1% of it; its time to target is then the CPU seconds at its first iterate whose own "
         "objective is within 1% of the target with primal infeasibility (where the solver "
         "reports one) at most 1e-6, or its total CPU time if no iterate qualifies; otherwise "
-        "never. n/m = reached in n of m cases.\n\n";
+        "never. n/m = reached in n of m cases.\n\n"
+        "Status is OCPBench's grouping of each solver's own code (an Ipopt stop at its acceptable "
+        "level stays `acceptable`, never `converged`). Warnings say what a status does not: "
+        "`discretization` when a method's own objective and the fine re-simulation of its "
+        "controls differ by more than 1% (the grid, not the method, limits the answer), "
+        "`terminal_weights_default` for the penalty form of a problem that never chose its "
+        "terminal weights. Each record's `stopping_tolerance` names the option that bounds its "
+        "accuracy (Ipopt: `tol`).\n\n";
   const Labels labels = LabelRecords(records);
   const std::vector<DerivedFields> derived = DeriveTargets(records);
   std::vector<std::string> sections;
@@ -284,21 +291,27 @@ std::string SummaryMarkdown(const std::string& suite_name,
       }
     }
     if (reference) md << ReferenceNote(*reference) << "\n\n";
-    md << "| method | cases | status | J | Jbar | J fine | Jbar fine | terminal viol. | "
+    md << "| method | cases | status | warnings | J | Jbar | J fine | Jbar fine | terminal viol. | "
           "terminal viol. fine | U viol. | path viol. | resim. defect | iterations | CPU s | "
           "time to target s |"
        << (free_time ? " final time T |" : "") << (reference ? " rel. error vs reference |" : "")
        << "\n";
-    md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
        << (free_time ? "---|" : "") << (reference ? "---|" : "") << "\n";
+    std::vector<std::string> notes;  // one line per row and warning code: its first message
     for (const std::string& m : methods) {
       const auto& rs = by_method[m];
       std::map<std::string, int> statuses;
+      std::map<std::string, int> warnings;
+      std::map<std::string, std::string> first_message;
       std::vector<double> J, Jbar, Jf, Jbarf, tv, tvf, cv, pv, defect, it, cpu, ttt, rel, T;
       int reached = 0;
       for (const size_t i : rs) {
         const Record& r = records[i];
         statuses[r.status]++;
+        for (const RecordWarning& w : r.warnings) {
+          if (warnings[w.code]++ == 0) first_message[w.code] = w.message;
+        }
         J.push_back(r.J);
         Jbar.push_back(r.Jbar);
         Jf.push_back(r.J_fine);
@@ -321,11 +334,23 @@ std::string SummaryMarkdown(const std::string& suite_name,
       std::string st;
       for (const auto& [s, n] : statuses)
         st += (st.empty() ? "" : ", ") + fmt::format("{} {}", n, s);
+      std::string wt;
+      for (const auto& [code, n] : warnings) {
+        wt += (wt.empty() ? "" : ", ") + fmt::format("{} {}", n, code);
+        notes.push_back(fmt::format("- {}: {} ({} of {} cases), for example: {}",
+                                    m,
+                                    code,
+                                    n,
+                                    rs.size(),
+                                    first_message[code]));
+      }
       md << fmt::format(
-          "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}/{}) |",
+          "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}/{}) "
+          "|",
           m,
           rs.size(),
           st,
+          wt.empty() ? "-" : wt,
           Spread(J),
           Spread(Jbar),
           Spread(Jf),
@@ -345,6 +370,11 @@ std::string SummaryMarkdown(const std::string& suite_name,
       md << "\n";
     }
     md << "\n";
+    if (!notes.empty()) {
+      md << "Warnings (the records' `warnings`):\n\n";
+      for (const std::string& n : notes) md << n << "\n";
+      md << "\n";
+    }
   }
   return md.str();
 }
@@ -376,7 +406,8 @@ std::string RecordsCsv(const std::vector<Record>& records) {
                                    "best_J",
                                    "reached_target",
                                    "time_to_target",
-                                   "final_time"};
+                                   "final_time",
+                                   "discretization_gap"};
   std::ostringstream csv;
   bool first = true;
   for (const char* c : kColumns) {

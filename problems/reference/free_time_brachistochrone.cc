@@ -53,7 +53,6 @@ ProblemInfo FreeTimeBrachistochroneProblemInfo() {
   p.reference_value = FreeTimeBrachistochrone::kReferenceTime;
   p.reference_source =
       "the cycloid through (2, 2), re-derived (project notes 2.10; PSOPT brac1: 0.8247591)";
-  p.hamiltonian_applicable = false;
   p.hamiltonian_note =
       "free final time: the descent keeps tf fixed (not applicable); indirect-newton and the NLP "
       "solvers on a collocation transcription take it; the time-scaled 'brachistochrone' poses it "

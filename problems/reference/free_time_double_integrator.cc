@@ -39,7 +39,6 @@ ProblemInfo FreeTimeDoubleIntegratorProblemInfo() {
   p.reference_source =
       "analytic: J(T) = T + 6/T^3, T* = 18^(1/4) = 2.0597671, J* = 4 T*/3 (maximum principle, "
       "H(T) = 0)";
-  p.hamiltonian_applicable = false;
   p.hamiltonian_note =
       "free final time: the descent keeps tf fixed (not applicable); indirect-newton (H(T) = 0) "
       "and the NLP solvers on a collocation transcription (T a variable) take it";

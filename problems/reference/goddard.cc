@@ -35,7 +35,6 @@ ProblemInfo GoddardProblemInfo() {
       "optimum of that discrete NLP";
   p.reference_scheme = "trapezoid";
   p.reference_intervals = Goddard::kCopsIntervals;
-  p.hamiltonian_applicable = false;
   p.hamiltonian_note =
       "not applicable: the method needs the penalty terminal form, and with C (m(T) - mf)^2 the "
       "rocket problem is unbounded below (burning past mf pays; the descent ran to h = 1e152)";

@@ -19,10 +19,11 @@
 
 namespace my_project {
 
+// The dimensions are stated once, as template arguments (NX, NU, and NPSI = 0 terminal and
+// NC = 0 path constraints by default); AutoDiffOcp sets them.
 class MyLqProblem final : public ocpb::AutoDiffOcp<MyLqProblem, /*NX=*/1, /*NU=*/1> {
  public:
   explicit MyLqProblem(double x0) {
-    SetDimensions(/*nx=*/1, /*nu=*/1, /*npsi=*/0, /*nc=*/0);
     SetHorizon(0.0, 1.0);
     SetInitialState(ocpb::Vec::Constant(1, x0));
     SetControlSet(ocpb::ControlSet::Box(ocpb::Vec::Constant(1, -2.0), ocpb::Vec::Constant(1, 2.0)));

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "core/evaluator.h"
 #include "my_lq_problem.h"
 #include "problems/registry.h"
+#include "solvers/judge.h"
 #include "solvers/registry.h"
 
 namespace {
@@ -64,17 +64,22 @@ int main() {
     if (m.solver == "hamiltonian") request.options.Set("theta_tolerance", 1e-12);
     const ocpb::SolveResult result = ocpb::FindSolver(m.solver).make()->Solve(*ocp, request);
     // 3. Judge the controls with the common evaluator, never by the method's own report.
-    const ocpb::Evaluation fine =
-        ocpb::Evaluate(*ocp, result.controls, request.grid.Refined(10), ocpb::Integrator::kRk4);
-    const double error = std::abs(fine.Jbar - reference) / reference;
-    const bool ok = ocpb::IsSuccess(result.status) && error < m.tolerance;
+    //    JudgeResult takes the result itself (a free final time is judged on the solution's own
+    //    horizon) and warns about what the status does not say.
+    const ocpb::Judgement judged = ocpb::JudgeResult(*ocp, request, result);
+    const double error = std::abs(judged.fine.Jbar - reference) / reference;
+    const bool ok = result.status == ocpb::SolveStatus::kConverged && judged.judged &&
+                    judged.warnings.empty() && error < m.tolerance;
+    for (const ocpb::JudgeWarning& w : judged.warnings) {
+      std::printf("  warning (%s): %s\n", w.code.c_str(), w.message.c_str());
+    }
     failures += ok ? 0 : 1;
     std::printf("%-12s %-16s %4d %-22s %-14.10f %-10.2e %s\n",
                 m.solver.c_str(),
                 m.transcription.c_str(),
                 m.N,
                 result.solver_status.c_str(),
-                fine.Jbar,
+                judged.fine.Jbar,
                 error,
                 ok ? "ok" : "FAILED");
   }

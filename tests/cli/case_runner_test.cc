@@ -2,10 +2,15 @@
 // failures turned into records.
 #include "bench/cli/case_runner.h"
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "bench/cli/online_case.h"
+#include "problems/registry.h"
+#include "tests/core/user_double_integrator.h"
 
 namespace ocpb {
 namespace {
@@ -159,6 +164,57 @@ TEST(Record, RoundTripsThroughJsonAndNamesTheFieldOfAWrongType) {
   json old = j;  // a record from before the typed record: no schema_version
   old.erase("schema_version");
   EXPECT_EQ(Record::FromJson(old).schema_version, 1);
+}
+
+// A user's problem whose SetDimensions disagrees with its AutoDiffOcp template arguments: the
+// case is refused before anything runs (ocpbench exits 2), naming the dimension.
+TEST(ValidateCase, RefusesAProblemThatStatesItsDimensionsTwiceDifferently) {
+  ProblemInfo info;
+  info.name = "case-runner-test-two-dimensions";
+  info.make = [](const Parameters&, std::uint64_t) -> std::unique_ptr<Ocp> {
+    return std::make_unique<testing::UserDoubleIntegrator>(/*declared_npsi=*/1);
+  };
+  RegisterProblem(info);
+  CaseSpec spec = Spec(info.name, "ipopt");
+  spec.transcription = "euler";
+  const std::string error = ErrorOf(spec);
+  EXPECT_NE(error.find("SetDimensions gives npsi = 1 but AutoDiffOcp's template argument says 2"),
+            std::string::npos)
+      << error;
+  EXPECT_THROW(RunCase(spec), std::invalid_argument);
+}
+
+TEST(WorstCycleStatus, KeepsAnAcceptableStopApartFromConverged) {
+  using S = SolveStatus;
+  EXPECT_EQ(WorstCycleStatus({S::kConverged, S::kConverged}), "converged");
+  EXPECT_EQ(WorstCycleStatus({S::kConverged, S::kAcceptable}), "acceptable");
+  EXPECT_EQ(WorstCycleStatus({S::kAcceptable, S::kMaxIterations}), "max_iterations");
+  EXPECT_EQ(WorstCycleStatus({S::kMaxIterations, S::kNumericalFailure}), "numerical_failure");
+}
+
+// A continuation's record keeps the penalty stage, the warnings and the method's own states and
+// costates through JSON (summary, merge and --initial-guess read them back).
+TEST(Record, ContinuationWarningsAndOwnTrajectoryRoundTrip) {
+  CaseSpec spec = Spec("zermelo", "ipopt");
+  spec.transcription = "trapezoid";
+  spec.intervals = 20;
+  spec.terminal = TerminalMode::kHard;
+  spec.continuation = "penalty";
+  const Record r = RunCase(spec);
+  ASSERT_TRUE(r.continuation.has_value());
+  EXPECT_EQ(r.continuation->from, "penalty");
+  ASSERT_TRUE(r.trajectory.has_value());
+  EXPECT_EQ(r.trajectory->own_x.rows(), 3);  // zermelo: x, y and the clock
+  EXPECT_EQ(r.trajectory->own_p.rows(), 3);
+  ASSERT_TRUE(r.stopping_tolerance.has_value());
+  const json j = r.ToJson();
+  const Record back = Record::FromJson(j);
+  EXPECT_EQ(back.ToJson(), j);
+  EXPECT_EQ(back.continuation->iterations, r.continuation->iterations);
+  EXPECT_EQ(back.trajectory->own_p, r.trajectory->own_p);
+  json bad = j;
+  bad["warnings"] = json::array({"a string"});
+  EXPECT_THROW(Record::FromJson(bad), std::invalid_argument);
 }
 
 TEST(IsFailure, StatusNamesMatchTheEnum) {

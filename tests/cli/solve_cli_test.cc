@@ -287,15 +287,15 @@ TEST(InitialGuess, KeepsTheRecordsInterpolationRule) {
   testing::WriteText(dir + "/pl.json",
                      R"({"trajectory": {"t": [0, 1, 2], "u": [[1, 3]],
                          "u_rule": "value at each interval's left end; piecewise linear"}})");
-  const ControlTrajectory pc = ReadInitialGuess(dir + "/pc.json");
-  const ControlTrajectory pl = ReadInitialGuess(dir + "/pl.json");
+  const ControlTrajectory pc = ReadInitialGuess(dir + "/pc.json").controls;
+  const ControlTrajectory pl = ReadInitialGuess(dir + "/pl.json").controls;
   EXPECT_EQ(pc.nu(), 1);
   EXPECT_EQ(pc(0.5)[0], 1.0);
   EXPECT_EQ(pc(1.5)[0], 3.0);
   EXPECT_DOUBLE_EQ(pl(0.5)[0], 2.0);
   EXPECT_DOUBLE_EQ(pl(1.5)[0], 3.0);                         // the last sample held to tf
   const auto ocp = MakeProblem("double-integrator", {}, 0);  // horizon [0, 1]
-  EXPECT_THROW(CheckInitialGuess(pc, *ocp, "pc.json"), std::invalid_argument);
+  EXPECT_THROW(CheckInitialGuess({pc, {}, {}}, *ocp, "pc.json"), std::invalid_argument);
 }
 
 }  // namespace

@@ -242,5 +242,37 @@ TEST(SummaryMarkdown, RowsShowJbarAndTheResimulationDefect) {
   EXPECT_NE(md.find("| 0.0015 |"), std::string::npos);            // the worst defect
 }
 
+// An Ipopt stop at its acceptable level is its own status in the table, never counted as
+// converged (the case: neighbouring runs 30x more accurate), and it is not a best in
+// the hard form.
+TEST(SummaryMarkdown, KeepsAcceptableApartFromConverged) {
+  json a = MakeRecord("ipopt", "euler", 474.3, 474.30, "hard", "converged");
+  json b = a;
+  b["seed"] = 2;
+  b["status"] = "acceptable";
+  const std::string md = SummaryMarkdown("s", {a, b});
+  EXPECT_NE(md.find("| 1 acceptable, 1 converged |"), std::string::npos) << md;
+  json c = b;
+  c["seed"] = 1;
+  c["transcription"] = "trapezoid";
+  c["J_fine"] = 474.0;  // lower, but acceptable only: not the hard form's best
+  const auto d = Derived({a, c});
+  EXPECT_DOUBLE_EQ(d[0]["best_J"].get<double>(), 474.30);
+}
+
+TEST(SummaryMarkdown, ShowsEachRowsWarningsAndTheirFirstMessage) {
+  json a = MakeRecord("indirect-newton", "", 15.8, 114.2);
+  a["warnings"] = json::array({{{"code", "discretization"}, {"message", "7x off on this grid"}}});
+  json b = MakeRecord("ipopt", "euler", 6.0, 6.0);
+  b["warnings"] = json::array();
+  const std::string md = SummaryMarkdown("s", {a, b});
+  EXPECT_NE(md.find("| status | warnings |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 1 converged | 1 discretization |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 1 converged | - |"), std::string::npos) << md;
+  EXPECT_NE(md.find("discretization (1 of 1 cases), for example: 7x off on this grid"),
+            std::string::npos)
+      << md;
+}
+
 }  // namespace
 }  // namespace ocpb

@@ -24,13 +24,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   }
   try {
-    const ocpb::ControlTrajectory guess = ocpb::ReadInitialGuess(path);
-    // Whatever is accepted is a usable control: finite values on a grid of >= 1 interval.
-    if (guess.nu() < 1 || guess.grid().intervals() < 1) std::abort();
-    const ocpb::Vec u = guess(guess.grid().t0());
-    for (Eigen::Index i = 0; i < u.size(); ++i) {
-      if (!std::isfinite(u[i])) std::abort();
-    }
+    const ocpb::InitialGuess guess = ocpb::ReadInitialGuess(path);
+    // Whatever is accepted is usable: finite values on grids of >= 1 interval, the controls and
+    // (where present) the states and costates.
+    auto check = [](const ocpb::ControlTrajectory& c) {
+      if (c.nu() < 1 || c.grid().intervals() < 1) std::abort();
+      for (double t : {c.grid().t0(), c.grid().tf()}) {
+        const ocpb::Vec v = c(t);
+        for (Eigen::Index i = 0; i < v.size(); ++i) {
+          if (!std::isfinite(v[i])) std::abort();
+        }
+      }
+    };
+    check(guess.controls);
+    if (guess.states) check(*guess.states);
+    if (guess.costates) check(*guess.costates);
   } catch (const std::invalid_argument&) {
   }
   return 0;

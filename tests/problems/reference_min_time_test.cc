@@ -36,7 +36,6 @@ TEST(MinTimeProblems, AreRegisteredWithTheirReferenceTimes) {
   for (const std::string& name : kMinTimeNames) {
     SCOPED_TRACE(name);
     const ProblemInfo& info = FindProblem(name);
-    EXPECT_TRUE(info.hamiltonian_applicable);
     EXPECT_FALSE(info.hamiltonian_note.empty());
     const auto ocp = MakeProblem(name, {}, 0);
     EXPECT_EQ(ocp->name(), name);

@@ -42,7 +42,6 @@ TEST(ReferenceProblems, AreRegisteredWithTheirReferenceValuesAndSources) {
     EXPECT_EQ(info.reference_quantity, "J");
     EXPECT_FALSE(info.reference_source.empty());
     EXPECT_FALSE(info.uses_seed);
-    EXPECT_TRUE(info.hamiltonian_applicable);
     EXPECT_EQ(info.default_intervals, 100);
     const auto ocp = MakeProblem(name, {}, 0);
     EXPECT_EQ(ocp->name(), name);
@@ -269,6 +268,27 @@ TEST(ReferenceProblems, HamiltonianSolverSolvesTheReformulation) {
     EXPECT_EQ(through.iterations, direct.iterations);
     EXPECT_EQ(through.objective, direct.objective);
     EXPECT_EQ(through.controls.values(), direct.controls.values());
+  }
+}
+
+// ProblemInfo::hamiltonian_note is documentation; the solver decides from the problem itself.
+// Every registered problem's note must agree with that verdict: "not applicable" exactly where
+// the descent refuses (a stale note would tell users the wrong thing).
+TEST(ProblemRegistry, EveryHamiltonianNoteAgreesWithTheSolversVerdict) {
+  for (const ProblemInfo& info : Problems()) {
+    SCOPED_TRACE(info.name);
+    Parameters params(info.parameters);
+    // make_for_checks: the same problem without its expensive parts (no channel simulated).
+    const auto ocp = info.make_for_checks ? info.make_for_checks(params, 1) : info.make(params, 1);
+    ASSERT_NE(ocp, nullptr);
+    SolveRequest request;
+    request.grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 10);
+    request.options.Set("max_iterations", 0);
+    const SolveResult r = FindSolver("hamiltonian").make()->Solve(*ocp, request);
+    const bool says_not_applicable =
+        info.hamiltonian_note.find("not applicable") != std::string::npos;
+    EXPECT_EQ(r.status == SolveStatus::kNotApplicable, says_not_applicable)
+        << ToString(r.status) << ": " << r.message << " / note: " << info.hamiltonian_note;
   }
 }
 

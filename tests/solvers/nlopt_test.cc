@@ -46,6 +46,33 @@ class NoisyQuadratic final : public Nlp {
   bool JacobianValues(ConstVecRef, VecRef) const override { return true; }
 };
 
+// f = 1e20 + |x - (1, 2)|^2 with its exact gradient: in double precision f is the constant
+// 1e20 near the start (its spacing there is 16384), so no step decreases it and NLopt cannot
+// leave the start although the gradient is far from zero (a stand-in for a start where
+// roundoff stops the first line search: NLopt's ROUNDOFF_LIMITED after one evaluation).
+class FlatToRoundoffQuadratic final : public Nlp {
+ public:
+  int num_variables() const override { return 2; }
+  int num_constraints() const override { return 0; }
+  void Bounds(Vec* zl, Vec* zu, Vec* gl, Vec* gu) const override {
+    *zl = Vec::Constant(2, -INFINITY);
+    *zu = Vec::Constant(2, INFINITY);
+    gl->resize(0);
+    gu->resize(0);
+  }
+  Vec StartingPoint() const override { return Eigen::Vector2d(3.0, 2.0); }
+  bool Objective(ConstVecRef x, double* f) const override {
+    *f = 1e20 + (x - Eigen::Vector2d(1.0, 2.0)).squaredNorm();
+    return true;
+  }
+  bool Gradient(ConstVecRef x, VecRef g) const override {
+    g = 2.0 * (x - Eigen::Vector2d(1.0, 2.0));
+    return true;
+  }
+  bool Constraints(ConstVecRef, VecRef) const override { return true; }
+  bool JacobianValues(ConstVecRef, VecRef) const override { return true; }
+};
+
 NlpSolution RunNlopt(const Nlp& nlp,
                      const std::string& algorithm,
                      const std::string& local = "LD_LBFGS") {
@@ -121,6 +148,25 @@ TEST(NloptAdapter, InfeasibleProblemIsNeverReportedConverged) {
   EXPECT_EQ(s.status, SolveStatus::kInfeasible);
   EXPECT_EQ(s.solver_status, "XTOL_REACHED");
   EXPECT_NE(s.message.find("violating"), std::string::npos);
+}
+
+// A stop at the starting point is no answer: whatever code NLopt returns there, the status is
+// a failure (the start is not stationary), never "converged" or a limit that reads as usable.
+// (Measured codes at this start: FTOL_REACHED after 25 evaluations (SLSQP) and after 2 (MMA,
+// CCSAQ); the ROUNDOFF_LIMITED after one evaluation takes the same path.)
+TEST(NloptAdapter, AStopAtTheStartIsAFailure) {
+  const FlatToRoundoffQuadratic nlp;
+  for (const std::string alg : {"LD_SLSQP", "LD_MMA", "LD_CCSAQ"}) {
+    const NlpSolution s = RunNlopt(nlp, alg);
+    SCOPED_TRACE(alg + ": " + s.solver_status + ", " + s.message);
+    EXPECT_EQ(s.z, nlp.StartingPoint()) << "the premise: NLopt did not move";
+    EXPECT_EQ(s.status, SolveStatus::kNumericalFailure);
+    EXPECT_NE(s.message.find("stopped at the starting point"), std::string::npos);
+  }
+  // The same start on the true gradient: NLopt moves and converges (the check is not a
+  // blanket refusal).
+  const RosenbrockDisc moving;
+  EXPECT_EQ(RunNlopt(moving, "LD_SLSQP").status, SolveStatus::kConverged);
 }
 
 TEST(NloptAdapter, RoundoffLimitedResultIsKeptAndLabelled) {

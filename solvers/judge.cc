@@ -1,0 +1,127 @@
+#include "solvers/judge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "solvers/registry.h"
+
+namespace ocpb {
+namespace {
+
+std::string G(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
+
+// The horizon the solution ends at: for a free final time the end of the method's own state
+// grid (collocation, indirect Newton), else of its controls' grid; the problem's tf otherwise.
+TimeGrid JudgedGrid(const Ocp& ocp, const SolveRequest& request, const SolveResult& result) {
+  if (!ocp.free_final_time()) return request.grid;
+  const double T =
+      result.state_grid.size() >= 2 ? result.state_grid.tf() : result.controls.grid().tf();
+  return request.grid.StretchedTo(T);
+}
+
+// The solver's stopping tolerance as used: the request's value, else its schema's default.
+void RecordAccuracyOption(const SolveRequest& request, const SolveResult& result, Judgement* j) {
+  const SolverInfo* info = nullptr;
+  for (const SolverInfo& s : Solvers()) {
+    if (s.name == result.solver) info = &s;
+  }
+  if (!info || info->accuracy_option.empty()) return;
+  j->accuracy_option = info->accuracy_option;
+  j->accuracy_note = info->accuracy_note;
+  const OptionSpec* spec = info->options.Find(info->accuracy_option);
+  if (!spec) return;
+  OptionValue value = spec->default_value;
+  if (const OptionValue* given = request.options.Find(info->accuracy_option)) {
+    value = spec->Resolve(*given);
+  }
+  if (value.kind() == OptionValue::Kind::kNumber) j->accuracy_value = value.number();
+  if (value.kind() == OptionValue::Kind::kInteger) {
+    j->accuracy_value = static_cast<double>(value.integer());
+  }
+}
+
+void AddDiscretizationWarning(const SolveRequest& request,
+                              const SolveResult& result,
+                              const JudgeOptions& options,
+                              Judgement* j) {
+  // A failed solve has no objective of its own to compare (SolveResult's -1: not computed).
+  if (result.status == SolveStatus::kNumericalFailure || result.status == SolveStatus::kError ||
+      result.status == SolveStatus::kInvalidInput) {
+    return;
+  }
+  const bool penalty = request.terminal == TerminalMode::kPenalty;
+  const double fine = penalty ? j->fine.J : j->fine.Jbar;
+  const double own = result.objective;
+  if (!std::isfinite(fine) || !std::isfinite(own)) return;
+  j->discretization_gap = std::abs(own - fine) / std::max({std::abs(own), std::abs(fine), 1e-8});
+  if (!(j->discretization_gap > options.discretization_tolerance)) return;
+  const auto reformulated = result.solver_stats.find("reformulated");
+  const bool reform = reformulated != result.solver_stats.end() && reformulated->second == 1.0;
+  j->warnings.push_back(
+      {"discretization",
+       "the method's own objective " + G(own) + " and the fine re-simulation's " +
+           (penalty ? "J " : "Jbar ") + G(fine) + " differ by " + G(j->discretization_gap) +
+           " relative (> " + G(options.discretization_tolerance) + "): on this grid" +
+           (reform ? " (and through the reformulation the method solved)" : "") +
+           " the discrete problem is not the continuous one; refine the grid or use a "
+           "higher-order scheme"});
+}
+
+}  // namespace
+
+bool Judgement::HasWarning(const std::string& code) const {
+  return std::any_of(
+      warnings.begin(), warnings.end(), [&](const JudgeWarning& w) { return w.code == code; });
+}
+
+Judgement JudgeResult(const Ocp& ocp,
+                      const SolveRequest& request,
+                      const SolveResult& result,
+                      const JudgeOptions& options) {
+  if (options.refine < 1) throw std::invalid_argument("JudgeOptions.refine: must be >= 1");
+  if (!(options.discretization_tolerance > 0.0) ||
+      !std::isfinite(options.discretization_tolerance)) {
+    throw std::invalid_argument("JudgeOptions.discretization_tolerance: must be a number > 0");
+  }
+  Judgement j;
+  if (result.status == SolveStatus::kNotApplicable) {
+    j.not_judged = "the method did not run (not applicable)";
+    return j;
+  }
+  if (result.controls.nu() != ocp.nu()) {
+    j.not_judged = "the result has controls of dimension " + std::to_string(result.controls.nu()) +
+                   ", the problem nu = " + std::to_string(ocp.nu());
+    return j;
+  }
+  j.judged = true;
+  j.grid = JudgedGrid(ocp, request, result);
+  j.final_time = j.grid.tf();
+  j.own_grid = Evaluate(ocp, result.controls, j.grid, options.integrator);
+  j.fine = Evaluate(ocp, result.controls, j.grid.Refined(options.refine), Integrator::kRk4);
+  const bool has_states = result.states.rows() == ocp.nx() &&
+                          result.states.cols() == result.state_grid.size() &&
+                          result.state_grid.size() >= 2;
+  if (has_states) {
+    j.resimulation_defect =
+        ResimulationDefect(ocp, result.controls, result.state_grid, result.states, options.refine);
+  }
+  RecordAccuracyOption(request, result, &j);
+  if (request.terminal == TerminalMode::kPenalty && !ocp.terminal_weights_chosen()) {
+    j.warnings.push_back(
+        {"terminal_weights_default",
+         "penalty form, and problem " + ocp.name() +
+             " never chose its terminal weights (w = 1 by default): terminal violation " +
+             G(j.fine.terminal_violation) +
+             " on the fine grid; set them (SetTerminalWeights) or solve the hard form"});
+  }
+  AddDiscretizationWarning(request, result, options, &j);
+  return j;
+}
+
+}  // namespace ocpb
