@@ -45,6 +45,11 @@ struct ProblemInfo {
   /// How it applies (for example "path constraint as penalty rho max(0, c)^2, rho = 1e4"), or
   /// why it does not; empty when it applies to the problem as stated.
   std::string hamiltonian_note;
+  /// Optional: the optimal costate p*(t) (nx values, convention H = p^T f + L) of the problem
+  /// at its default parameters, as posed (hard terminal form), on [t0, tf]. Records of cases
+  /// that keep the defaults get a costate error against it (core/costate_error.h). Empty
+  /// when unknown.
+  std::function<Vec(double t)> reference_costate;
   /// Optional: a field to draw a solution over (comm-path2d: its channel map), kept in records
   /// that keep their trajectory (field s_map). Empty, or nullopt for a given problem: none.
   std::function<std::optional<FieldSample>(const Ocp& ocp)> sample_for_figures;

@@ -335,7 +335,10 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
   result.controls = ControlTrajectory::PiecewiseConstant(grid, U);
   result.state_grid = grid;
   result.states = std::move(X);
-  if (have_costates) result.costates = std::move(Lambda);
+  if (have_costates) {
+    result.costates = std::move(Lambda);
+    result.costate_source = "discrete adjoint (" + std::string(ToString(request.integrator)) + ")";
+  }
   result.objective = J;
   result.solver_stats["final_theta"] = theta;
   result.solver_stats["simulations"] = simulations;
