@@ -2,6 +2,7 @@
 // failures turned into records.
 #include "bench/cli/case_runner.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -159,6 +160,40 @@ TEST(Record, RoundTripsThroughJsonAndNamesTheFieldOfAWrongType) {
   json old = j;  // a record from before the typed record: no schema_version
   old.erase("schema_version");
   EXPECT_EQ(Record::FromJson(old).schema_version, 1);
+}
+
+// The costate fields round-trip, and a costate matrix that does not fit its times is refused by
+// field.
+TEST(Record, CostatesRoundTripAndMustFitTheirTimes) {
+  CaseSpec spec = Spec("hager", "ipopt");
+  spec.transcription = "hermite-simpson";
+  spec.intervals = 8;
+  spec.keep_trajectory = true;
+  const Record r = RunCase(spec);
+  EXPECT_EQ(r.costate_source, "NLP multipliers (hermite-simpson)");
+  ASSERT_TRUE(r.costates);
+  EXPECT_EQ(r.costates->t.size(), 17u);  // nodes and midpoints
+  EXPECT_LT(r.costate_error, 1e-5);      // 1.6e-6 measured at N = 8
+  const json j = r.ToJson();
+  const Record back = Record::FromJson(j);
+  EXPECT_EQ(back.ToJson(), j);
+  EXPECT_EQ(back.costate_error, r.costate_error);
+  json bad = j;
+  bad["costates"]["t"].erase(0);
+  try {
+    Record::FromJson(bad);
+    ADD_FAILURE() << "accepted costates with one time too few";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "costates.p: must be rows of as many values as t");
+  }
+  json old = j;  // records from before the costate fields read without them
+  old.erase("costates");
+  old.erase("costate_error");
+  old.erase("costate_source");
+  const Record plain = Record::FromJson(old);
+  EXPECT_FALSE(plain.costates);
+  EXPECT_TRUE(std::isnan(plain.costate_error));
+  EXPECT_EQ(plain.ToJson(), old);
 }
 
 TEST(IsFailure, StatusNamesMatchTheEnum) {
