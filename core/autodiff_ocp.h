@@ -50,7 +50,7 @@ class AutoDiffOcp : public Ocp {
   void Dynamics(double t, ConstVecRef x, ConstVecRef u, VecRef f) const override {
     VecT<double, NX> fx;
     self().EvalDynamics(t, VecT<double, NX>(x), VecT<double, NU>(u), &fx);
-    f = fx;
+    CopyTo(fx, f);
   }
   double RunningCost(double t, ConstVecRef x, ConstVecRef u) const override {
     return self().EvalRunningCost(t, VecT<double, NX>(x), VecT<double, NU>(u));
@@ -62,14 +62,14 @@ class AutoDiffOcp : public Ocp {
     if constexpr (NPSI > 0) {
       VecT<double, NPSI> out;
       self().EvalTerminalConstraints(VecT<double, NX>(x), &out);
-      psi = out;
+      CopyTo(out, psi);
     }
   }
   void PathConstraints(double t, ConstVecRef x, ConstVecRef u, VecRef c) const override {
     if constexpr (NC > 0) {
       VecT<double, NC> out;
       self().EvalPathConstraints(t, VecT<double, NX>(x), VecT<double, NU>(u), &out);
-      c = out;
+      CopyTo(out, c);
     }
   }
 
@@ -164,13 +164,18 @@ class AutoDiffOcp : public Ocp {
   }
 
  private:
-  // Element-wise copy: GCC 12 warns (falsely, -Warray-bounds) on Eigen's vectorized copy of
-  // 1x1 fixed-size matrices into a Ref, which -Werror would turn into a build failure.
+  // Element-wise copies: GCC 12 warns (falsely, -Warray-bounds) on Eigen's vectorized copy of
+  // small fixed-size matrices into a Ref (1x1 at -O2; 3-vectors with AVX, -march=x86-64-v3),
+  // which -Werror would turn into a build failure.
   template <class Fixed>
   static void CopyTo(const Fixed& from, MatRef to) {
     for (int j = 0; j < from.cols(); ++j) {
       for (int i = 0; i < from.rows(); ++i) to(i, j) = from(i, j);
     }
+  }
+  template <class Fixed>
+  static void CopyTo(const Fixed& from, VecRef to) {
+    for (int i = 0; i < from.size(); ++i) to[i] = from[i];
   }
 
   const Derived& self() const { return static_cast<const Derived&>(*this); }

@@ -16,7 +16,9 @@ Integrator ParseIntegrator(const std::string& name) {
   throw std::invalid_argument("unknown integrator '" + name + "' (valid: euler, rk4)");
 }
 
-DiscreteOcp::DiscreteOcp(const Ocp& ocp, const TimeGrid& grid, Integrator integrator,
+DiscreteOcp::DiscreteOcp(const Ocp& ocp,
+                         const TimeGrid& grid,
+                         Integrator integrator,
                          TerminalMode mode)
     : ocp_(ocp), grid_(grid), integrator_(integrator), mode_(mode) {}
 
@@ -39,8 +41,8 @@ void DiscreteOcp::Rk4Step(int k, const Vec& x, const Vec& u, Vec* x_next, double
   *ell = (h / 6.0) * (l1 + 2.0 * l2 + 2.0 * l3 + l4);
 }
 
-void DiscreteOcp::Rk4StepAdjoint(int k, const Vec& x, const Vec& u, const Vec& bar_next,
-                                 Vec* bar_x, Vec* bar_u) const {
+void DiscreteOcp::Rk4StepAdjoint(
+    int k, const Vec& x, const Vec& u, const Vec& bar_next, Vec* bar_x, Vec* bar_u) const {
   const int nx = ocp_.nx(), nu = ocp_.nu();
   const double t = grid_.t(k), h = grid_.h(k);
   const double ts[4] = {t, t + 0.5 * h, t + 0.5 * h, t + h};
@@ -105,6 +107,24 @@ double DiscreteOcp::Simulate(const Mat& U, Mat* X, double* running) const {
   if (running) *running = sum;
   const double J = sum + ocp_.TerminalObjective(x, mode_);
   return std::isfinite(J) && x.allFinite() ? J : std::numeric_limits<double>::quiet_NaN();
+}
+
+void DiscreteOcp::SimulateStates(const Mat& U, Mat* X) const {
+  if (integrator_ != Integrator::kEuler) {
+    Simulate(U, X);
+    return;
+  }
+  const int nx = ocp_.nx(), N = grid_.intervals();
+  if (U.rows() != ocp_.nu() || U.cols() != N) {
+    throw std::invalid_argument("DiscreteOcp::SimulateStates: U must be nu x N");
+  }
+  Vec f(nx);
+  X->resize(nx, N + 1);
+  X->col(0) = ocp_.x0();
+  for (int k = 0; k < N; ++k) {
+    ocp_.Dynamics(grid_.t(k), X->col(k), U.col(k), f);
+    X->col(k + 1).noalias() = X->col(k) + grid_.h(k) * f;  // Simulate's x += h f
+  }
 }
 
 void DiscreteOcp::Adjoint(const Mat& U, const Mat& X, Mat* Lambda, Mat* G) const {

@@ -35,6 +35,11 @@ class DiscreteOcp {
   /// trajectory is not finite (callers treat that as a failed evaluation).
   double Simulate(const Mat& U, Mat* X, double* running = nullptr) const;
 
+  /// The states X (nx x (N+1)) of Simulate(U, X) without the cost: for Euler the same
+  /// operations, so bitwise the same X (RK4 calls Simulate). Methods that evaluate the cost on
+  /// states they already have (an Armijo prefilter, the descent's trials) start here.
+  void SimulateStates(const Mat& U, Mat* X) const;
+
   /// Costates Lambda (nx x (N+1)) and gradient G = dJ/dU (nu x N) at U, given X from Simulate.
   void Adjoint(const Mat& U, const Mat& X, Mat* Lambda, Mat* G) const;
 
@@ -42,8 +47,8 @@ class DiscreteOcp {
   // One RK4 step: x_next and the cost increment; with `bar_x`, `bar_u` non-null also the
   // reverse sweep for the cotangent `bar_next` of x_next (and 1 for the cost increment).
   void Rk4Step(int k, const Vec& x, const Vec& u, Vec* x_next, double* ell) const;
-  void Rk4StepAdjoint(int k, const Vec& x, const Vec& u, const Vec& bar_next, Vec* bar_x,
-                      Vec* bar_u) const;
+  void Rk4StepAdjoint(
+      int k, const Vec& x, const Vec& u, const Vec& bar_next, Vec* bar_x, Vec* bar_u) const;
 
   const Ocp& ocp_;
   TimeGrid grid_;

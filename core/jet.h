@@ -119,39 +119,42 @@ J operator/(const J& x, const J& y) {
   return x * Reciprocal(y);
 }
 
-// Mixed jet/double arithmetic.
-template <JetType J>
-J operator+(const J& x, double c) {
-  J r = x;
+// Mixed jet/double arithmetic. These operators deduce the jet as JetT<N>, not as a J constrained
+// by JetType: clang 14 substitutes a deduced J = int into an operator's signature before checking
+// the constraint and then rejects `int <= enum` (or `i += enum`) in any file of namespace ocpb that
+// includes this header.
+template <template <int> class JetT, int N>
+JetT<N> operator+(const JetT<N>& x, double c) requires JetType<JetT<N>> {
+  JetT<N> r = x;
   r.a += c;
   return r;
 }
-template <JetType J>
-J operator+(double c, const J& x) {
+template <template <int> class JetT, int N>
+JetT<N> operator+(double c, const JetT<N>& x) requires JetType<JetT<N>> {
   return x + c;
 }
-template <JetType J>
-J operator-(const J& x, double c) {
+template <template <int> class JetT, int N>
+JetT<N> operator-(const JetT<N>& x, double c) requires JetType<JetT<N>> {
   return x + (-c);
 }
-template <JetType J>
-J operator-(double c, const J& x) {
+template <template <int> class JetT, int N>
+JetT<N> operator-(double c, const JetT<N>& x) requires JetType<JetT<N>> {
   return (-x) + c;
 }
-template <JetType J>
-J operator*(const J& x, double c) {
+template <template <int> class JetT, int N>
+JetT<N> operator*(const JetT<N>& x, double c) requires JetType<JetT<N>> {
   return x.Chain(x.a * c, c, 0.0);
 }
-template <JetType J>
-J operator*(double c, const J& x) {
+template <template <int> class JetT, int N>
+JetT<N> operator*(double c, const JetT<N>& x) requires JetType<JetT<N>> {
   return x * c;
 }
-template <JetType J>
-J operator/(const J& x, double c) {
+template <template <int> class JetT, int N>
+JetT<N> operator/(const JetT<N>& x, double c) requires JetType<JetT<N>> {
   return x * (1.0 / c);
 }
-template <JetType J>
-J operator/(double c, const J& x) {
+template <template <int> class JetT, int N>
+JetT<N> operator/(double c, const JetT<N>& x) requires JetType<JetT<N>> {
   return c * Reciprocal(x);
 }
 template <JetType J>
@@ -166,16 +169,17 @@ template <JetType J>
 J& operator*=(J& x, const J& y) {
   return x = x * y;
 }
-template <JetType J>
-J& operator+=(J& x, double c) {
+template <template <int> class JetT, int N>
+JetT<N>& operator+=(JetT<N>& x, double c) requires JetType<JetT<N>> {
   return x = x + c;
 }
-template <JetType J>
-J& operator*=(J& x, double c) {
+template <template <int> class JetT, int N>
+JetT<N>& operator*=(JetT<N>& x, double c) requires JetType<JetT<N>> {
   return x = x * c;
 }
 
-// Comparisons look at values only (branches are taken on the value).
+// Comparisons look at values only (branches are taken on the value); the mixed ones deduce
+// JetT<N> as above.
 template <JetType J>
 bool operator<(const J& x, const J& y) {
   return x.a < y.a;
@@ -184,20 +188,20 @@ template <JetType J>
 bool operator>(const J& x, const J& y) {
   return x.a > y.a;
 }
-template <JetType J>
-bool operator<(const J& x, double c) {
+template <template <int> class JetT, int N>
+bool operator<(const JetT<N>& x, double c) requires JetType<JetT<N>> {
   return x.a < c;
 }
-template <JetType J>
-bool operator>(const J& x, double c) {
+template <template <int> class JetT, int N>
+bool operator>(const JetT<N>& x, double c) requires JetType<JetT<N>> {
   return x.a > c;
 }
-template <JetType J>
-bool operator<=(const J& x, double c) {
+template <template <int> class JetT, int N>
+bool operator<=(const JetT<N>& x, double c) requires JetType<JetT<N>> {
   return x.a <= c;
 }
-template <JetType J>
-bool operator>=(const J& x, double c) {
+template <template <int> class JetT, int N>
+bool operator>=(const JetT<N>& x, double c) requires JetType<JetT<N>> {
   return x.a >= c;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace ocpb {
@@ -90,7 +91,10 @@ void Ocp::SetFreeFinalTime(double lower, double upper) {
     throw std::invalid_argument("free final time: the bounds must be finite");
   }
   if (!(t0_ < lower && lower <= tf_ && tf_ <= upper)) {
-    throw std::invalid_argument("free final time: need t0 < lower <= tf <= upper");
+    std::ostringstream os;
+    os << "free final time: need t0 < lower <= tf <= upper (got t0 = " << t0_
+       << ", lower = " << lower << ", tf = " << tf_ << ", upper = " << upper << ")";
+    throw std::invalid_argument(os.str());
   }
   free_final_time_ = FreeFinalTime{lower, upper};
 }

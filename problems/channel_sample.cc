@@ -8,6 +8,9 @@
 namespace ocpb {
 
 FieldSample SampleChannel(const ChannelQuality& channel, double workspace, double spacing) {
+  // At most kMaxFieldSamplePoints nodes: a coarser spacing for a workspace beyond 500 spacings.
+  const double per_side = std::sqrt(kMaxFieldSamplePoints) - 1.0;
+  if (workspace / spacing > per_side) spacing = workspace / per_side;
   const int n = static_cast<int>(std::floor(workspace / spacing + 1e-9)) + 1;
   FieldSample f;
   f.quantity = "log10_s";

@@ -9,7 +9,7 @@ namespace ocpb {
 namespace {
 
 // "C1", "k3": built with a stream (GCC 12 warns falsely on "C" + std::to_string(i)).
-std::string Indexed(const char* name, int i) {
+std::string IndexedName(const char* name, int i) {
   std::ostringstream os;
   os << name << i;
   return os.str();
@@ -117,7 +117,7 @@ bool CommFixedPath::Options::IsValid(std::string* error) const {
   if (!(rmax > 0.0) || !std::isfinite(rmax)) return fail("Rmax must be finite and > 0");
   for (int i = 0; i < 3; ++i) {
     if (!(penalty[i] > 0.0) || !std::isfinite(penalty[i])) {
-      return fail(Indexed("C", i + 1) + " must be finite and > 0");
+      return fail(IndexedName("C", i + 1) + " must be finite and > 0");
     }
   }
   return power.IsValid(error);

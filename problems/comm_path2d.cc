@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "problems/channel/channel_memory.h"
+#include "problems/channel/measurement_sampling.h"
 #include "problems/channel/paper_channel.h"
 #include "problems/comm_channel_cache.h"
 
@@ -56,8 +58,15 @@ bool CommPowerModel::IsValid(std::string* error) const {
 }
 
 double CommPowerModel::AccelerationMagnitude(double a, double nv, double rmax) const {
+  return AccelerationMagnitude(a, nv, rmax, 0.0);
+}
+
+double CommPowerModel::AccelerationMagnitude(double a,
+                                             double nv,
+                                             double rmax,
+                                             double extra_curvature) const {
   if (!(a > 0.0)) return a == 0.0 ? 0.0 : a;  // NaN propagates
-  const double c2 = 2.0 * gamma * k[0];
+  const double c2 = 2.0 * gamma * k[0] + extra_curvature;
   const double b = gamma * (k[4] + k[5] * nv);
   if (b == 0.0) return c2 > 0.0 ? std::min(a / c2, rmax) : rmax;
   // Stationarity of the smoothed H along -p_u: g(r) = c2 r + b r / sqrt(r^2 + eps^2) - a = 0.
@@ -75,12 +84,48 @@ double CommPowerModel::AccelerationMagnitude(double a, double nv, double rmax) c
 }
 
 double CommPowerModel::Rate(double p3, double s, double rmax) const {
+  return Rate(p3, s, rmax, K());
+}
+
+double CommPowerModel::Rate(double p3, double s, double rmax, double k_mqam) const {
   if (std::isnan(p3) || std::isnan(s)) return NAN;
   if (s <= 0.0) return p3 < 0.0 ? rmax : 0.0;
   // dH/dR = p3 + ln2 2^R s / K = 0  =>  2^R = -p3 K / (ln2 s).
-  const double arg = -p3 * K() / (kLn2 * s);
+  const double arg = -p3 * k_mqam / (kLn2 * s);
   if (!(arg > 1.0)) return 0.0;
   return std::min(std::log2(arg), rmax);
+}
+
+double CommPowerModel::ProximalRate(
+    double p3, double s, double rmax, double k_mqam, double center, double eps) const {
+  if (std::isnan(p3) || std::isnan(s) || std::isnan(center)) return NAN;
+  const double c = kLn2 * s / k_mqam;  // d/dR (2^R - 1) s / K = c 2^R
+  auto slope = [&](double r) { return p3 + c * std::exp2(r) + (r - center) / eps; };
+  if (slope(0.0) >= 0.0) return 0.0;
+  if (slope(rmax) <= 0.0) return rmax;
+  double r = rmax;
+  for (int i = 0; i < 100; ++i) {
+    const double step = slope(r) / (kLn2 * c * std::exp2(r) + 1.0 / eps);
+    r -= step;
+    if (!(std::abs(step) > 1e-15 * (1.0 + r))) break;
+  }
+  return std::clamp(r, 0.0, rmax);
+}
+
+double CommPowerModel::Motion(double acc2, double speed2, double nv) const {
+  // Motion<double>(acc2, speed2) with SmoothNorm(speed2) replaced by nv: the same operations.
+  double m = k[0] * acc2 + k[1] * speed2 + k[3];
+  if (k[2] != 0.0 || k[5] != 0.0) {
+    if (k[2] != 0.0) m += k[2] * nv;
+    if (k[4] != 0.0 || k[5] != 0.0) {
+      const double na = SmoothNorm(acc2);
+      if (k[4] != 0.0) m += k[4] * na;
+      if (k[5] != 0.0) m += k[5] * (na * nv);
+    }
+  } else if (k[4] != 0.0) {
+    m += k[4] * SmoothNorm(acc2);
+  }
+  return gamma * m;
 }
 
 // ---- PathLossChannel ----------------------------------------------------------------------
@@ -151,7 +196,7 @@ bool CommPath2d::Options::IsValid(std::string* error) const {
 }
 
 CommPath2d::CommPath2d(const Options& options, std::shared_ptr<const ChannelQuality> channel)
-    : options_(options), inv_k_(1.0 / options.power.K()), channel_(std::move(channel)) {
+    : options_(options), k_(options.power.K()), inv_k_(1.0 / k_), channel_(std::move(channel)) {
   std::string error;
   if (!options_.IsValid(&error)) throw std::invalid_argument("comm-path2d: " + error);
   if (!channel_) throw std::invalid_argument("comm-path2d: channel must not be null");
@@ -229,9 +274,13 @@ void CommPath2d::RunningCostGradient(
 }
 
 void CommPath2d::MinimizerGivenChannel(ConstVecRef x, ConstVecRef p, double s, VecRef u) const {
+  MinimizerGivenChannel(
+      p.data(), s, options_.power.SmoothNorm(x[2] * x[2] + x[3] * x[3]), u.data());
+}
+
+void CommPath2d::MinimizerGivenChannel(const double* p, double s, double nv, double* u) const {
   // H = p1.x2 + p2.u + p3 R + (2^R - 1)/K s(x1) + motion(u, x2): separable in u and R.
   const double a = std::sqrt(p[2] * p[2] + p[3] * p[3]);
-  const double nv = options_.power.SmoothNorm(x[2] * x[2] + x[3] * x[3]);
   const double r = options_.power.AccelerationMagnitude(a, nv, options_.umax);
   if (a > 0.0) {
     u[0] = -r * p[2] / a;
@@ -239,7 +288,35 @@ void CommPath2d::MinimizerGivenChannel(ConstVecRef x, ConstVecRef p, double s, V
   } else {
     u[0] = u[1] = (a == 0.0 ? 0.0 : a);
   }
-  u[2] = options_.power.Rate(p[4], s, options_.rmax);
+  u[2] = options_.power.Rate(p[4], s, options_.rmax, k_);
+}
+
+void CommPath2d::ProximalMinimizerGivenChannel(
+    const double* p, double s, double nv, const double* center, double eps, double* w) const {
+  // The u-part of H + |w - center|^2/(2 eps), up to constants: (gamma k1 + 1/(2 eps)) |w_u|^2
+  // + q.w_u + gamma (k5 + k6 nv) n(w_u) with q = p2 - center_u / eps: u*'s form with q for p2.
+  const double q0 = p[2] - center[0] / eps, q1 = p[3] - center[1] / eps;
+  const double a = std::sqrt(q0 * q0 + q1 * q1);
+  const double r = options_.power.AccelerationMagnitude(a, nv, options_.umax, 1.0 / eps);
+  if (a > 0.0) {
+    w[0] = -r * q0 / a;
+    w[1] = -r * q1 / a;
+  } else {
+    w[0] = w[1] = (a == 0.0 ? 0.0 : a);
+  }
+  w[2] = options_.power.ProximalRate(p[4], s, options_.rmax, k_, center[2], eps);
+}
+
+void CommPath2d::MinimizeProximalHamiltonian(
+    double, ConstVecRef x, ConstVecRef p, ConstVecRef center, double eps, VecRef w) const {
+  double s = 0.0;
+  channel_->Evaluate(Eigen::Vector2d(x[0], x[1]), &s, nullptr, nullptr);
+  ProximalMinimizerGivenChannel(p.data(),
+                                s,
+                                options_.power.SmoothNorm(x[2] * x[2] + x[3] * x[3]),
+                                center.data(),
+                                eps,
+                                w.data());
 }
 
 double CommPath2d::HamiltonianGivenChannel(ConstVecRef x,
@@ -271,6 +348,97 @@ void CommPath2d::MinimizeAndCompareHamiltonian(double,
   MinimizerGivenChannel(x, p, s, u_star);
   *h_star = HamiltonianGivenChannel(x, p, u_star, s);
   *h_now = HamiltonianGivenChannel(x, p, u, s);
+}
+
+// ---- EulerStageModel ------------------------------------------------------------------------
+// Each value below repeats the operations of RunningCost, RunningCostGradient,
+// MinimizeHamiltonian and HamiltonianGivenChannel on the cached numbers, so the descent's
+// numbers are bitwise those of the generic path (tests/problems/comm_path2d_test.cc).
+
+void CommPath2d::EulerStep(
+    double, double h, const double* x, const double* u, double* x_next) const {
+  x_next[0] = x[0] + h * x[2];
+  x_next[1] = x[1] + h * x[3];
+  x_next[2] = x[2] + h * u[0];
+  x_next[3] = x[3] + h * u[1];
+  x_next[4] = x[4] + h * u[2];
+}
+
+double CommPath2d::RunningCostCaching(double,
+                                      const double* x,
+                                      const double* u,
+                                      double* cache) const {
+  double s = 0.0;
+  Eigen::Vector2d grad_s;
+  channel_->Evaluate(Eigen::Vector2d(x[0], x[1]), &s, &grad_s, nullptr);
+  const CommPowerModel& m = options_.power;
+  const double acc2 = u[0] * u[0] + u[1] * u[1];
+  const double speed2 = x[2] * x[2] + x[3] * x[3];
+  const double rate_factor = std::exp2(u[2]) - 1.0;
+  const double root_v = std::sqrt(speed2 + m.eps * m.eps);
+  const double motion = m.Motion(acc2, speed2, root_v - m.eps);
+  cache[0] = s;
+  cache[1] = grad_s[0];
+  cache[2] = grad_s[1];
+  cache[3] = rate_factor;
+  cache[4] = motion;
+  cache[5] = root_v;
+  return rate_factor * (s * inv_k_) + motion;  // Transmission() + Motion()
+}
+
+double CommPath2d::PointwiseRunningCostBound(double, const double* x, const double* u) const {
+  return options_.power.Motion(u[0] * u[0] + u[1] * u[1], x[2] * x[2] + x[3] * x[3]);
+}
+
+void CommPath2d::BackwardPoint(double,
+                               double h,
+                               const double* x,
+                               const double* u,
+                               const double* cache,
+                               double eps,
+                               double* p,
+                               double* u_star,
+                               double* h_star,
+                               double* h_now,
+                               double* h_min) const {
+  const CommPowerModel& m = options_.power;
+  const double s = cache[0], rate_factor = cache[3], motion = cache[4], root_v = cache[5];
+  const double nv = root_v - m.eps;
+  // HamiltonianGivenChannel(x, p, w, s) with the cached n(x2).
+  auto hamiltonian = [&](const double* w) {
+    const double pf = p[0] * x[2] + p[1] * x[3] + p[2] * w[0] + p[3] * w[1] + p[4] * w[2];
+    return pf + m.Transmission(w[2], s, inv_k_) +
+           m.Motion(w[0] * w[0] + w[1] * w[1], x[2] * x[2] + x[3] * x[3], nv);
+  };
+  if (std::isfinite(eps)) {
+    ProximalMinimizerGivenChannel(p, s, nv, u, eps, u_star);
+    if (h_min) {
+      double w[3];
+      MinimizerGivenChannel(p, s, nv, w);
+      *h_min = hamiltonian(w);
+    }
+    *h_star = hamiltonian(u_star);
+  } else {
+    MinimizerGivenChannel(p, s, nv, u_star);
+    *h_star = hamiltonian(u_star);
+    if (h_min) *h_min = *h_star;
+  }
+  const double pf = p[0] * x[2] + p[1] * x[3] + p[2] * u[0] + p[3] * u[1] + p[4] * u[2];
+  *h_now = pf + rate_factor * (s * inv_k_) + motion;
+  // H_x = f_x^T p + L_x with f_x^T p = (0, 0, p1, p2, 0) and L_x as in RunningCostGradient;
+  // then the Euler adjoint step p += h H_x (H_x,4 = 0 leaves p[4]).
+  const double factor = rate_factor * inv_k_;
+  const auto& k = m.k;
+  double na = 0.0;
+  if (k[5] != 0.0) na = std::sqrt(u[0] * u[0] + u[1] * u[1] + m.eps * m.eps) - m.eps;
+  const double cv = m.gamma * (2.0 * k[1]), dv = m.gamma * (k[2] + k[5] * na) / root_v;
+  const double hx0 = factor * cache[1], hx1 = factor * cache[2];
+  const double hx2 = p[0] + (cv + dv) * x[2], hx3 = p[1] + (cv + dv) * x[3];
+  p[0] += h * hx0;
+  p[1] += h * hx1;
+  p[2] += h * hx2;
+  p[3] += h * hx3;
+  p[4] += h * 0.0;
 }
 
 // ---- registry support -------------------------------------------------------------------------
@@ -481,7 +649,22 @@ std::string CommChannelKey(const Parameters& params, std::uint64_t seed) {
 std::shared_ptr<const ChannelQuality> MakeCommChannelForChecks(const Parameters& params) {
   const int model = params.Integer("channel");
   CheckChannelGeometry(params);
-  if (model != 0) CommPaperChannelOptions(params, model);
+  if (model != 0) {
+    // What MakePaperChannel would refuse or run out of memory on, found before simulating.
+    const PaperChannelOptions options = CommPaperChannelOptions(params, model);
+    const GridSpec& grid = options.simulation.grid;
+    const int samples = params.Integer("samples");
+    CheckChannelMemory(samples, "samples", static_cast<double>(grid.num_points()), "grid_step");
+    const long eligible = EligibleMeasurementPoints(grid, options.truth);
+    if (2L * samples > eligible) {
+      throw std::invalid_argument(
+          "samples: " + std::to_string(samples) + " measurements need " +
+          std::to_string(2L * samples) +
+          " grid points beyond the distance floor of the base station (twice as many); the "
+          "channel grid (workspace / grid_step) has " +
+          std::to_string(eligible));
+    }
+  }
   return std::make_shared<PathLossChannel>(params.Vector("base"),
                                            params.Scalar("K_PL"),
                                            params.Scalar("n_PL"),

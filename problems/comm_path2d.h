@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "core/autodiff_ocp.h"
+#include "core/euler_stage_model.h"
 #include "core/parameters.h"
+#include "core/proximal_hamiltonian.h"
 #include "problems/channel/channel_quality.h"
 #include "problems/registry.h"
 
@@ -83,9 +85,24 @@ struct CommPowerModel {
   /// below the root; the left side is concave and increasing, so the iterates increase
   /// monotonically to the root (exact minimizer of the smoothed H, to roundoff).
   double AccelerationMagnitude(double a, double nv, double rmax) const;
+  /// The same with `extra_curvature` c added to the quadratic: the minimizer of
+  ///   -a r + gamma (k1 r^2 + (k5 + k6 nv) n(r)) + c r^2 / 2  over [0, rmax]
+  /// (the proximal direction's magnitude, c = 1/eps; c = 0 gives AccelerationMagnitude's numbers).
+  double AccelerationMagnitude(double a, double nv, double rmax, double extra_curvature) const;
+  /// R = argmin_{0 <= R <= rmax} p3 R + (2^R - 1)/K s + (R - center)^2 / (2 eps), for eps > 0:
+  /// the root of the increasing convex g'(R) = p3 + ln2 2^R s / K + (R - center) / eps, 0 when
+  /// g'(0) >= 0, rmax when g'(rmax) <= 0, otherwise by Newton's method from rmax (where g' > 0;
+  /// g' convex, so the iterates decrease monotonically to the root) until a step is below
+  /// 1e-15 (1 + R). k = K().
+  double ProximalRate(double p3, double s, double rmax, double k, double center, double eps) const;
   /// R* = argmin_{0 <= R <= rmax} p3 R + (2^R - 1)/K s = clip(log2(-p3 K / (ln2 s)), 0, rmax)
   /// (0 when p3 >= -ln2 s / K).
   double Rate(double p3, double s, double rmax) const;
+  /// Rate() given k = K() (cached by the caller: K() takes a logarithm); the same numbers.
+  double Rate(double p3, double s, double rmax, double k) const;
+  /// Motion(acc2, speed2) given also nv = n(v) = SmoothNorm(speed2), computed by the caller
+  /// (for a double, with the same operations: the same numbers, bitwise).
+  double Motion(double acc2, double speed2, double nv) const;
 };
 
 /// A deterministic path-loss-only channel (no shadowing, no multipath), for tests and as the
@@ -132,7 +149,15 @@ class PathLossChannel final : public ChannelQuality {
 /// Paper defaults: S = (20, 40), D = (10, 5), c = 150, tf = 40 s, umax = 0.5, Rmax = 6,
 /// gamma = 0.01, C = (10, 50, 10), k = (17.75, 1.16, 10.46, 1175, 0, 0), N = 400 (dt = 0.1).
 /// From u = 0, R = 0 the cost is C1 |S - D|^2 + C3 c^2 + gamma k4 tf = 238720 (paper: 2.3872e5).
-class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0> {
+///
+/// EulerStageModel (the descent's fast path on a forward-Euler grid): a trial's running-cost
+/// pass keeps, per grid point, s(x1) and grad s (one channel evaluation), 2^R - 1, the motion
+/// power and sqrt(|x2|^2 + eps^2); the backward sweep at the accepted points reuses them, so the
+/// channel is not evaluated again there. The pointwise bound is the motion power (the
+/// transmission term, >= 0 on U, is what it leaves out).
+class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0>,
+                         public EulerStageModel,
+                         public ProximalHamiltonianMinimizer {
  public:
   struct Options {
     Eigen::Vector2d start{20.0, 40.0};          ///< S, in the workspace
@@ -222,6 +247,40 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0> {
     return options_.power.gamma * options_.power.k[3];
   }
 
+  // ---- EulerStageModel (see the class comment) ----
+  /// s, ds/dq1, ds/dq2, 2^R - 1, the motion power, sqrt(|x2|^2 + eps^2).
+  int StageCacheSize() const override { return kStageCache; }
+  void EulerStep(
+      double t, double h, const double* x, const double* u, double* x_next) const override;
+  double RunningCostCaching(double t,
+                            const double* x,
+                            const double* u,
+                            double* cache) const override;
+  /// The motion power gamma (k1 |u|^2 + ...): L minus the transmission term (2^R - 1)/K s >= 0.
+  double PointwiseRunningCostBound(double t, const double* x, const double* u) const override;
+  void BackwardPoint(double t,
+                     double h,
+                     const double* x,
+                     const double* u,
+                     const double* cache,
+                     double eps,
+                     double* p,
+                     double* u_star,
+                     double* h_star,
+                     double* h_now,
+                     double* h_min) const override;
+
+  /// The proximal minimizer of the smoothed H (exact, any k5, k6 >= 0): separable like u*, with
+  /// q = p2 - center_u / eps in place of p2 and 2 gamma k1 + 1/eps as the quadratic's curvature,
+  ///   w_u = -r q/|q|,  r = CommPowerModel::AccelerationMagnitude(|q|, n(x2), umax, 1/eps),
+  ///   w_R = CommPowerModel::ProximalRate(p3, s(x1), Rmax, K, center_R, eps).
+  void MinimizeProximalHamiltonian(double t,
+                                   ConstVecRef x,
+                                   ConstVecRef p,
+                                   ConstVecRef center,
+                                   double eps,
+                                   VecRef w) const override;
+
   /// s(q) as a double or a jet (value, gradient and Hessian from the channel, by the chain rule).
   template <class T>
   T ChannelAt(const T& qx, const T& qy) const {
@@ -243,13 +302,19 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0> {
   }
 
  private:
+  static constexpr int kStageCache = 6;
   /// u* of MinimizeHamiltonian given s = s(x1).
   void MinimizerGivenChannel(ConstVecRef x, ConstVecRef p, double s, VecRef u) const;
+  /// The same given also nv = n(x2), the smoothed speed (p, u: raw arrays of 5 and 3).
+  void MinimizerGivenChannel(const double* p, double s, double nv, double* u) const;
+  /// MinimizeProximalHamiltonian given s and nv (raw arrays of 5, 3 and 3).
+  void ProximalMinimizerGivenChannel(
+      const double* p, double s, double nv, const double* center, double eps, double* w) const;
   /// H(x, u, p) given s = s(x1), with the operations of Dynamics and RunningCost.
   double HamiltonianGivenChannel(ConstVecRef x, ConstVecRef p, ConstVecRef u, double s) const;
 
   Options options_;
-  double inv_k_;
+  double k_, inv_k_;  // K() and 1 / K()
   std::shared_ptr<const ChannelQuality> channel_;
 };
 

@@ -12,7 +12,7 @@
 namespace ocpb {
 namespace {
 
-constexpr double kLn2 = 0.69314718055994530942;
+constexpr double kLnTwo = 0.69314718055994530942;
 
 // n(w) = sqrt(|w|^2 + e^2) - e: gradient w / r and Hessian (I - w w^T / r^2) / r, r = sqrt(...).
 struct SmoothNormDerivatives {
@@ -57,12 +57,12 @@ void CommPath2d::PointHessian(double,
   channel_->Evaluate(Eigen::Vector2d(x[0], x[1]), &s, &gs, &hs);
   const double two_r = std::exp2(u[2]);
   const double factor = sigma * (two_r - 1.0) * inv_k_;
-  const double rate = sigma * kLn2 * two_r * inv_k_;
+  const double rate = sigma * kLnTwo * two_r * inv_k_;
   for (int j = 0; j < 2; ++j) {
     for (int i = 0; i < 2; ++i) hess(i, j) = factor * hs(i, j);
     hess(7, j) = hess(j, 7) = rate * gs[j];
   }
-  hess(7, 7) = rate * kLn2 * s;
+  hess(7, 7) = rate * kLnTwo * s;
 
   const CommPowerModel& m = options_.power;
   const auto& k = m.k;

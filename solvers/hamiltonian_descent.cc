@@ -9,30 +9,11 @@
 
 #include "core/option_binding.h"
 #include "core/timer.h"
+#include "solvers/descent_loop.h"
+#include "solvers/descent_passes.h"
 
 namespace ocpb {
 namespace {
-
-// A lower bound on the discrete J of U under forward Euler: the states x_N by exactly
-// DiscreteOcp's Euler update (x += h f, same calls, so the same x_N), the running part by
-// sum_k h_k m with m <= L. `x` and `f` are scratch of size nx.
-// The forward-Euler final state x_N of the controls U (states only: no running cost).
-void EulerFinalState(const Ocp& ocp, const TimeGrid& grid, const Mat& U, Vec* x, Vec* f) {
-  *x = ocp.x0();
-  const int N = grid.intervals();
-  for (int k = 0; k < N; ++k) {
-    const double h = grid.h(k);
-    ocp.Dynamics(grid.t(k), *x, U.col(k), *f);
-    *x += h * *f;
-  }
-}
-
-// sum_k h_k m: the running cost's lower bound over the grid.
-double RunningLowerBound(const TimeGrid& grid, double m) {
-  double running = 0.0;
-  for (int k = 0; k < grid.intervals(); ++k) running += grid.h(k) * m;
-  return running;
-}
 
 std::string Format(double v) {
   std::ostringstream os;
@@ -87,7 +68,7 @@ double HamiltonianDescent::Direction(const DiscreteOcp& docp,
 
 namespace {
 
-const OptionBinding<HamiltonianDescentOptions>& Binding() {
+const OptionBinding<HamiltonianDescentOptions>& DescentBinding() {
   static const OptionBinding<HamiltonianDescentOptions> table = [] {
     using O = HamiltonianDescentOptions;
     OptionBinding<O> t("hamiltonian");
@@ -128,7 +109,7 @@ const OptionBinding<HamiltonianDescentOptions>& Binding() {
 }  // namespace
 
 bool HamiltonianDescentOptions::IsValid(std::string* error) const {
-  return Binding().Check(*this, error);
+  return DescentBinding().Check(*this, error);
 }
 
 HamiltonianDescent::HamiltonianDescent(const Options& options) : options_(options) {
@@ -136,19 +117,19 @@ HamiltonianDescent::HamiltonianDescent(const Options& options) : options_(option
   if (!options_.IsValid(&error)) throw std::invalid_argument(error);
 }
 
-const OptionSchema& HamiltonianDescent::Schema() { return Binding().schema(); }
+const OptionSchema& HamiltonianDescent::Schema() { return DescentBinding().schema(); }
 
 HamiltonianDescent::Options HamiltonianDescent::ApplyOptions(const OptionMap& options,
                                                              const Options& base) {
-  return Binding().ApplyValidated(options, base);
+  return DescentBinding().ApplyValidated(options, base);
 }
 
-SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& request) const {
-  // ---- the request (throws) ------------------------------------------------------------
-  const Options opt = ApplyOptions(request.options, options_);
+namespace {
+
+// The request's checks that throw (options are parsed by the caller).
+void CheckRequest(const Ocp& ocp, const SolveRequest& request) {
   const TimeGrid& grid = request.grid;
   if (grid.size() < 2) throw std::invalid_argument("hamiltonian: the request's grid is empty");
-  const Ocp& ocp = original;  // the request is checked against the problem as given
   const double tol = 1e-9 * std::max(1.0, std::abs(ocp.tf() - ocp.t0()));
   if (std::abs(grid.t0() - ocp.t0()) > tol || std::abs(grid.tf() - ocp.tf()) > tol) {
     throw std::invalid_argument("hamiltonian: the grid [" + Format(grid.t0()) + ", " +
@@ -160,191 +141,111 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
                                 std::to_string(request.initial_guess->nu()) +
                                 " control components, the problem " + std::to_string(ocp.nu()));
   }
+}
 
-  // ---- applicability (status) -------------------------------------------------------------
-  if (auto refused = FreeFinalTimeNotApplicable(ocp, "hamiltonian")) return *refused;
+// The problem the descent solves: the original or its Hamiltonian reformulation, or the
+// reason it cannot.
+struct Target {
+  std::unique_ptr<Ocp> reformulated;
+  const Ocp* ocp = nullptr;
+  std::string note;  // "solved the problem's Hamiltonian reformulation '...'; " or empty
+  std::optional<SolveResult> not_applicable;
+};
+
+Target ResolveTarget(const Ocp& original,
+                     const SolveRequest& request,
+                     const HamiltonianDescentOptions& opt) {
+  Target t;
+  if (auto refused = FreeFinalTimeNotApplicable(original, "hamiltonian")) {
+    t.not_applicable = std::move(refused);
+    return t;
+  }
   if (request.terminal != TerminalMode::kPenalty) {
-    return NotApplicable(
+    t.not_applicable = NotApplicable(
         "the Hamiltonian descent handles terminal constraints only in penalty form "
         "(terminal = penalty); the hard form psi(x(tf)) = 0 is not applicable");
+    return t;
   }
-  const Stopwatch clock;
   HamiltonianReformulationOptions reformulation_options;
   reformulation_options.path_penalty = opt.path_penalty;
   reformulation_options.regularization = opt.regularization;
-  const std::unique_ptr<Ocp> reformulated =
-      original.HamiltonianReformulation(reformulation_options);
-  const Ocp& target = reformulated ? *reformulated : original;
-  const std::string solved =
-      reformulated ? "solved the problem's Hamiltonian reformulation '" + target.name() + "'; "
-                   : std::string();
-  if (!target.HasHamiltonianMinimizer()) {
-    return NotApplicable(solved + "problem '" + target.name() +
-                         "' has no pointwise Hamiltonian minimizer (Ocp::MinimizeHamiltonian)");
+  t.reformulated = original.HamiltonianReformulation(reformulation_options);
+  t.ocp = t.reformulated ? t.reformulated.get() : &original;
+  if (t.reformulated) {
+    t.note = "solved the problem's Hamiltonian reformulation '" + t.ocp->name() + "'; ";
   }
-  if (target.num_path() > 0) {
-    return NotApplicable(solved +
-                         "path constraints c(t, x, u) <= 0 are not handled by the Hamiltonian "
-                         "descent, and the problem offers no reformulation that folds them into L");
-  }
-  if (target.nu() != original.nu() || target.nx() != original.nx()) {
+  if (!t.ocp->HasHamiltonianMinimizer()) {
+    t.not_applicable = NotApplicable(t.note + "problem '" + t.ocp->name() +
+                                     "' has no pointwise Hamiltonian minimizer "
+                                     "(Ocp::MinimizeHamiltonian)");
+  } else if (t.ocp->num_path() > 0) {
+    t.not_applicable =
+        NotApplicable(t.note +
+                      "path constraints c(t, x, u) <= 0 are not handled by the Hamiltonian "
+                      "descent, and the problem offers no reformulation that folds them into L");
+  } else if (t.ocp->nu() != original.nu() || t.ocp->nx() != original.nx()) {
     throw std::logic_error("problem '" + original.name() +
                            "': its Hamiltonian reformulation changed nx or nu");
   }
+  return t;
+}
 
-  const DiscreteOcp docp(target, grid, request.integrator, TerminalMode::kPenalty);
-  const int N = grid.intervals(), nu = target.nu(), nx = target.nx();
-  const ControlSet& set = target.control_set();
+}  // namespace
 
-  // Workspace, allocated once.
-  Mat U = request.initial_guess ? request.initial_guess->SampleIntervals(grid)
-                                : DefaultInitialGuess(target, grid).values();
-  for (int k = 0; k < N; ++k) set.Project(U.col(k));
-  Mat trial(nu, N), D(nu, N), X(nx, N + 1), X_trial(nx, N + 1), Lambda(nx, N + 1), G(nu, N);
-  Vec f(nx), x_bound(nx), f_bound(nx);
-  const std::optional<double> lower_bound =
-      opt.armijo_prefilter && request.integrator == Integrator::kEuler
-          ? target.RunningCostLowerBound()
-          : std::nullopt;
-  // The prefilter's bound J(U') >= sum_k h m + Phi(x_N(U')). With affine dynamics,
-  // x_N(U + s D) = x_N(U) + s (x_N(U + D) - x_N(U)) exactly, so one states-only simulation per
-  // iteration serves every trial; otherwise each trial simulates its states.
-  const double running_bound = lower_bound ? RunningLowerBound(grid, *lower_bound) : 0.0;
-  const bool affine_final_state = lower_bound && target.HasAffineDynamics();
-  Vec final_step(nx);
+SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& request) const {
+  const Options opt = ApplyOptions(request.options, options_);
+  CheckRequest(original, request);
+  const Stopwatch clock;
+  Target target = ResolveTarget(original, request, opt);
+  if (target.not_applicable) return *target.not_applicable;
+  const Ocp& ocp = *target.ocp;
+  const TimeGrid& grid = request.grid;
+  const DiscreteOcp docp(ocp, grid, request.integrator, TerminalMode::kPenalty);
+
+  Mat U0 = request.initial_guess ? request.initial_guess->SampleIntervals(grid)
+                                 : DefaultInitialGuess(ocp, grid).values();
+  for (int k = 0; k < grid.intervals(); ++k) ocp.control_set().Project(U0.col(k));
+  DescentPasses passes(docp, opt.armijo_prefilter);
+  passes.Start(U0);
 
   SolveResult result;
   result.solver = "hamiltonian";
   result.history.reserve(static_cast<size_t>(opt.max_iterations) + 1);
+  DescentLoopOptions loop;
+  loop.armijo = ArmijoRule{opt.alpha, opt.beta, opt.max_armijo_exponent};
+  loop.max_iterations = opt.max_iterations;
+  loop.theta_tolerance = opt.theta_tolerance;
+  loop.max_cpu_seconds = opt.max_cpu_seconds;
+  const DescentLoopOutcome outcome = RunDescentLoop(loop, clock, &passes, &result.history);
+  const double theta = outcome.theta;
+  const bool have_costates = outcome.have_costates;
+  result.status = outcome.stop.status;
+  result.solver_status = outcome.stop.code;
+  result.message = outcome.stop.why;
+  result.iterations = outcome.iterations;
 
-  double J = docp.Simulate(U, &X);
-  int iteration = 0, last_j = -1, simulations = 1, rejections = 0;
-  double theta = NAN;
-  bool have_costates = false;
-  auto stop = [&](SolveStatus status, const char* code, const std::string& why) {
-    result.status = status;
-    result.solver_status = code;
-    result.message = why;
-  };
-
-  if (!std::isfinite(J)) {
-    stop(SolveStatus::kNumericalFailure,
-         "nonfinite_cost",
-         "the cost of the starting control is not finite");
-    result.history.push_back({0, J, NAN, -1, NAN, NAN, clock.cpu()});
-  } else {
-    for (;;) {
-      docp.Adjoint(U, X, &Lambda, &G);
-      have_costates = true;
-      double theta_scale = 0.0;
-      theta = Direction(docp, U, X, Lambda, &D, &f, &theta_scale);
-      result.history.push_back({iteration, J, theta, last_j, NAN, NAN, clock.cpu()});
-
-      if (!std::isfinite(theta)) {
-        stop(SolveStatus::kNumericalFailure,
-             "nonfinite_theta",
-             "theta is not finite at iteration " + std::to_string(iteration));
-        break;
-      }
-      // At a stationary point every term H(u*) - H(u) is zero up to rounding, and their sum can
-      // come out as +1e-17: that is convergence to machine precision, not a failed minimizer.
-      const double roundoff = 64.0 * std::numeric_limits<double>::epsilon() * theta_scale;
-      if (theta > 0.0 && theta <= roundoff) {
-        stop(SolveStatus::kConverged,
-             "theta_at_roundoff",
-             "theta = " + Format(theta) + " is at the rounding level " + Format(roundoff) +
-                 " of the Hamiltonian sums: stationary to machine precision");
-        break;
-      }
-      if (theta > 0.0) {
-        stop(SolveStatus::kError,
-             "theta_positive",
-             "theta = " + Format(theta) +
-                 " > 0: the problem's Hamiltonian minimizer did not minimize H");
-        break;
-      }
-      if (std::abs(theta) <= opt.theta_tolerance) {
-        stop(SolveStatus::kConverged,
-             "theta_below_tolerance",
-             "|theta| = " + Format(std::abs(theta)) + " <= " + Format(opt.theta_tolerance));
-        break;
-      }
-      if (iteration >= opt.max_iterations) {
-        stop(SolveStatus::kMaxIterations,
-             "max_iterations",
-             "reached max_iterations = " + std::to_string(opt.max_iterations));
-        break;
-      }
-      if (clock.cpu() >= opt.max_cpu_seconds) {
-        stop(SolveStatus::kMaxTime,
-             "max_cpu_seconds",
-             "reached max_cpu_seconds = " + Format(opt.max_cpu_seconds));
-        break;
-      }
-      // Armijo search.
-      if (affine_final_state) {
-        trial.noalias() = U + D;
-        EulerFinalState(target, grid, trial, &final_step, &f_bound);
-        final_step -= X.col(N);
-      }
-      int accepted = -1;
-      double step = 1.0, J_trial = NAN;
-      for (int j = 0; j <= opt.max_armijo_exponent; ++j, step *= opt.beta) {
-        if (lower_bound) {
-          const double threshold = J + opt.alpha * step * theta;
-          if (affine_final_state) {
-            x_bound = X.col(N) + step * final_step;
-          } else {
-            trial.noalias() = U + step * D;
-            EulerFinalState(target, grid, trial, &x_bound, &f_bound);
-          }
-          const double bound =
-              running_bound + target.TerminalObjective(x_bound, TerminalMode::kPenalty);
-          if (bound > threshold + 1e-10 * std::max(1.0, std::abs(threshold))) {
-            ++rejections;  // J(trial) >= bound > threshold: the Armijo test fails
-            continue;
-          }
-        }
-        trial.noalias() = U + step * D;
-        J_trial = docp.Simulate(trial, &X_trial);
-        ++simulations;
-        if (std::isfinite(J_trial) && J_trial - J <= opt.alpha * step * theta) {
-          accepted = j;
-          break;
-        }
-      }
-      if (accepted < 0) {
-        stop(SolveStatus::kStepTooSmall,
-             "armijo_exponent_exceeded",
-             "no Armijo exponent j <= " + std::to_string(opt.max_armijo_exponent) +
-                 " gave sufficient decrease at iteration " + std::to_string(iteration));
-        break;
-      }
-      U.swap(trial);
-      X.swap(X_trial);
-      J = J_trial;
-      last_j = accepted;
-      ++iteration;
-    }
-  }
-
+  const double J = passes.J();
   if (std::isfinite(theta)) {
     result.message += "; final J = " + Format(J) + ", theta = " + Format(theta);
   }
-  result.message = solved + result.message;
-  result.controls = ControlTrajectory::PiecewiseConstant(grid, U);
+  result.message = target.note + result.message;
+  const DescentWork work = passes.work();
+  result.controls = ControlTrajectory::PiecewiseConstant(grid, passes.TakeU());
   result.state_grid = grid;
-  result.states = std::move(X);
+  result.states = passes.TakeX();
   if (have_costates) {
-    result.costates = std::move(Lambda);
+    result.costates = passes.TakeLambda();
     result.costate_source = "discrete adjoint (" + std::string(ToString(request.integrator)) + ")";
   }
   result.objective = J;
   result.solver_stats["final_theta"] = theta;
-  result.solver_stats["simulations"] = simulations;
-  result.solver_stats["prefilter_rejections"] = rejections;
-  result.solver_stats["reformulated"] = reformulated ? 1.0 : 0.0;
-  result.iterations = iteration;
+  result.solver_stats["simulations"] = work.simulations;
+  result.solver_stats["prefilter_rejections"] = work.rejections;
+  result.solver_stats["constant_bound_rejections"] = work.constant_bound_rejections;
+  result.solver_stats["pointwise_bound_rejections"] = work.pointwise_bound_rejections;
+  result.solver_stats["partial_rejections"] = work.partial_rejections;
+  result.solver_stats["cost_point_evaluations"] = static_cast<double>(work.cost_points);
+  result.solver_stats["reformulated"] = target.reformulated ? 1.0 : 0.0;
   result.cpu_seconds = clock.cpu();
   result.wall_seconds = clock.wall();
   return result;

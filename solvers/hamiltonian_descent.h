@@ -40,6 +40,8 @@ struct HamiltonianDescentOptions {
   /// margin for summation roundoff) fails the Armijo test without its running cost being computed.
   /// When Ocp::HasAffineDynamics(), x_N is affine in the controls and one states-only simulation
   /// per iteration (of U + d) gives x_N of every trial.
+  /// Problems with an EulerStageModel add a pointwise bound and a running-cost pass that stops
+  /// once its partial sum fails the test (DescentPasses).
   /// The accepted exponents and iterates are exactly those without it (tested); it only saves
   /// time.
   bool armijo_prefilter = true;
@@ -107,10 +109,16 @@ struct HamiltonianDescentOptions {
 /// accepted steps. history[i] describes iterate U_i (i = 0 is the starting control): J(U_i),
 /// theta(U_i), the Armijo exponent that produced U_i (-1 for i = 0) and the cumulative CPU time.
 /// The stopping test is made on the last record, so its theta is the final stationarity measure.
-/// solver_stats: "final_theta" (theta of the returned controls), "simulations" (full forward
-/// simulations: 1 + every Armijo trial not rejected by the prefilter), "prefilter_rejections"
-/// (trials rejected by the states-only bound), "reformulated" (1 when a reformulation was solved).
+/// solver_stats: "final_theta" (theta of the returned controls), "simulations" (full
+/// evaluations of J: 1 + every Armijo trial not rejected by the prefilter), "prefilter_rejections"
+/// (trials rejected by a lower bound: the sum of "constant_bound_rejections",
+/// "pointwise_bound_rejections" and "partial_rejections"), "cost_point_evaluations" (grid points
+/// at which L was evaluated), "reformulated" (1 when a reformulation was solved).
 /// `message` ends with the final J and theta.
+///
+/// The passes (simulation, the fused adjoint-and-direction sweep, the Armijo trials with their
+/// bounds) are DescentPasses (solvers/descent_passes.h); a problem may speed them up with an
+/// EulerStageModel (core/euler_stage_model.h) without changing a number.
 class HamiltonianDescent final : public Solver {
  public:
   using Options = HamiltonianDescentOptions;

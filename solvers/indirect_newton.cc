@@ -26,7 +26,7 @@ namespace ocpb {
 namespace {
 
 constexpr const char* kName = "indirect-newton";
-std::string Format(double v) {
+std::string NewtonNumber(double v) {
   std::ostringstream os;
   os.precision(3);
   os << v;
@@ -294,14 +294,14 @@ class NewtonIteration {
       if (residual <= o.tolerance) {
         Stop(SolveStatus::kConverged,
              "converged",
-             "||F||_inf = " + Format(residual) + " <= " + Format(o.tolerance) + " after " +
-                 std::to_string(iterations_) + " Newton steps (" + lu_name_ + ")");
+             "||F||_inf = " + NewtonNumber(residual) + " <= " + NewtonNumber(o.tolerance) +
+                 " after " + std::to_string(iterations_) + " Newton steps (" + lu_name_ + ")");
         return;
       }
       if (iterations_ >= o.max_iterations) {
         Stop(SolveStatus::kMaxIterations,
              "max_iterations",
-             "||F||_inf = " + Format(residual) +
+             "||F||_inf = " + NewtonNumber(residual) +
                  " after max_iterations = " + std::to_string(o.max_iterations) + " Newton steps");
         return;
       }
@@ -326,7 +326,7 @@ class NewtonIteration {
     r->status = status_;
     r->solver_status = solver_status_;
     r->message = r->message.empty() ? message_ : r->message + "; Newton: " + message_;
-    r->controls = ControlTrajectory::PiecewiseLinear(solution_grid, pmp_.Controls(z_));
+    r->controls = pmp_.ControlFunction(z_);
     r->state_grid = solution_grid;
     r->states = std::move(X);
     r->costates = std::move(P);
@@ -431,9 +431,9 @@ class NewtonIteration {
     }
     Stop(SolveStatus::kStepTooSmall,
          "line_search_failed",
-         "no step >= min_step = " + Format(o.min_step) +
+         "no step >= min_step = " + NewtonNumber(o.min_step) +
              " decreased 1/2 ||F||^2 enough at iterate " + std::to_string(iterations_) +
-             " (||F||_inf = " + Format(residual) + ")");
+             " (||F||_inf = " + NewtonNumber(residual) + ")");
     return false;
   }
 
@@ -452,7 +452,12 @@ class NewtonIteration {
 
 void RunNewton(const NewtonRun& run, const Mat& X0, const Mat& P0, const Vec* nu0, SolveResult* r) {
   const double newton_cpu0 = CpuSeconds();
-  PmpResidual pmp(run.ocp, run.request.grid, run.request.terminal);
+  PmpResidual pmp(run.ocp,
+                  run.request.grid,
+                  run.request.terminal,
+                  run.options.scheme == IndirectNewtonOptions::Scheme::kEuler
+                      ? PmpResidual::Scheme::kEuler
+                      : PmpResidual::Scheme::kTrapezoid);
   NewtonIteration newton(run, pmp);
   newton.Start(X0, P0, nu0);
   newton.Run(r);
@@ -491,7 +496,7 @@ const char* ToString(IndirectNewtonOptions::Costates costates) {
 
 namespace {
 
-const OptionBinding<IndirectNewtonOptions>& Binding() {
+const OptionBinding<IndirectNewtonOptions>& NewtonBinding() {
   static const OptionBinding<IndirectNewtonOptions> table = [] {
     using O = IndirectNewtonOptions;
     OptionBinding<O> t(kName);
@@ -546,7 +551,7 @@ const OptionBinding<IndirectNewtonOptions>& Binding() {
 }  // namespace
 
 bool IndirectNewtonOptions::IsValid(std::string* error) const {
-  if (!Binding().Check(*this, error)) return false;
+  if (!NewtonBinding().Check(*this, error)) return false;
   if (warm_start != WarmStart::kHamiltonian && !warm_start_options.empty()) {
     if (error)
       *error = std::string(kName) + ": hamiltonian.<key> options need warm_start = hamiltonian";
@@ -560,11 +565,11 @@ IndirectNewton::IndirectNewton(const Options& options) : options_(options) {
   if (!options_.IsValid(&error)) throw std::invalid_argument(error);
 }
 
-const OptionSchema& IndirectNewton::Schema() { return Binding().schema(); }
+const OptionSchema& IndirectNewton::Schema() { return NewtonBinding().schema(); }
 
 IndirectNewton::Options IndirectNewton::ApplyOptions(const OptionMap& options,
                                                      const Options& base) {
-  return Binding().ApplyValidated(options, base);
+  return NewtonBinding().ApplyValidated(options, base);
 }
 
 void IndirectNewton::StartFromControls(const Ocp& ocp,
@@ -668,7 +673,7 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
     r.solver_stats["warm_start_objective"] = start.objective;
     const std::string summary = "warm start: " + warm_name + " " + start.solver_status + " after " +
                                 std::to_string(start.iterations) +
-                                " iterations, J = " + Format(start.objective);
+                                " iterations, J = " + NewtonNumber(start.objective);
     const int N = request.grid.intervals();
     if (start.states.rows() != ocp.nx() || start.states.cols() != N + 1 ||
         start.state_grid.size() != N + 1 || !ocp.AdmitsFinalTime(start.state_grid.tf()) ||

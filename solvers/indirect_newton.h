@@ -81,6 +81,13 @@ struct IndirectNewtonOptions {
   /// default, stated in its header). Keys "path_penalty", "regularization".
   std::optional<double> path_penalty;
   std::optional<double> regularization;
+  /// The discretization of the boundary-value problem (PmpResidual::Scheme): the trapezoid
+  /// (default), or forward Euler with its exact discrete adjoint, whose solutions are the
+  /// stationary points of the Euler discrete cost (what the Hamiltonian family's polish stage
+  /// uses with SolveFrom; the result's controls are then u*(t_k, x_k, p_{k+1}), piecewise
+  /// constant, and its objective the Euler J). Not a string option yet (no key): set it in code.
+  enum class Scheme { kTrapezoid, kEuler };
+  Scheme scheme = Scheme::kTrapezoid;
 
   /// False, with a one-line reason in *error, when a field violates its rule above.
   bool IsValid(std::string* error) const;

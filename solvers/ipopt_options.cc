@@ -71,7 +71,7 @@ void BindPassThrough(OptionBinding<IpoptOptions>* t, const IpoptOptionSpec& ipop
       });
 }
 
-const OptionBinding<IpoptOptions>& Binding() {
+const OptionBinding<IpoptOptions>& IpoptBinding() {
   static const OptionBinding<IpoptOptions> table = [] {
     using O = IpoptOptions;
     OptionBinding<O> t("ipopt");
@@ -119,7 +119,7 @@ const OptionBinding<IpoptOptions>& Binding() {
 }  // namespace
 
 bool IpoptOptions::IsValid(std::string* error) const {
-  if (!Binding().Check(*this, error)) return false;
+  if (!IpoptBinding().Check(*this, error)) return false;
   // The field (not the pass-through option of the same name, which overrides it).
   if (mumps_pivot_order < -1 || mumps_pivot_order > 7) {
     if (error) *error = "ipopt: mumps_pivot_order must be in -1..7 (-1: by problem class)";
@@ -139,10 +139,10 @@ bool IpoptOptions::IsValid(std::string* error) const {
   return true;
 }
 
-const OptionSchema& IpoptOptions::Schema() { return Binding().schema(); }
+const OptionSchema& IpoptOptions::Schema() { return IpoptBinding().schema(); }
 
 IpoptOptions IpoptOptions::Apply(const OptionMap& options, IpoptOptions base) {
-  return Binding().ApplyValidated(options, std::move(base));
+  return IpoptBinding().ApplyValidated(options, std::move(base));
 }
 
 }  // namespace ocpb

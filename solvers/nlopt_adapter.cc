@@ -283,7 +283,7 @@ std::vector<std::string> LocalAlgorithmNames() {
   return names;
 }
 
-const OptionBinding<NloptOptions>& Binding() {
+const OptionBinding<NloptOptions>& NloptBinding() {
   static const OptionBinding<NloptOptions> table = [] {
     using O = NloptOptions;
     OptionBinding<O> t("nlopt");
@@ -341,12 +341,12 @@ const OptionBinding<NloptOptions>& Binding() {
 
 }  // namespace
 
-bool NloptOptions::IsValid(std::string* error) const { return Binding().Check(*this, error); }
+bool NloptOptions::IsValid(std::string* error) const { return NloptBinding().Check(*this, error); }
 
-const OptionSchema& NloptOptions::Schema() { return Binding().schema(); }
+const OptionSchema& NloptOptions::Schema() { return NloptBinding().schema(); }
 
 NloptOptions NloptOptions::Apply(const OptionMap& options, NloptOptions base) {
-  return Binding().ApplyValidated(options, std::move(base));
+  return NloptBinding().ApplyValidated(options, std::move(base));
 }
 
 std::string NloptResultName(int code) {

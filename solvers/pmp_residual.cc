@@ -11,10 +11,11 @@ bool SameTime(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.
 
 }  // namespace
 
-PmpResidual::PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode)
+PmpResidual::PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode, Scheme scheme)
     : ocp_(ocp),
       grid_(grid),
       mode_(mode),
+      scheme_(scheme),
       free_time_(ocp.free_final_time().has_value()),
       nx_(ocp.nx()),
       nu_(ocp.nu()),
@@ -96,7 +97,11 @@ void PmpResidual::BuildStructure() {
     for (int k = 0; k < N_; ++k) {
       for (int r = 0; r < 2 * nx; ++r) t.emplace_back(Row(k) + r, last, 0.0);
     }
-    for (int c = 0; c < 2 * nx; ++c) t.emplace_back(last, Col(N_) + c, 0.0);
+    // The H row: node N's (x, p) for the trapezoid; every node's for Euler (the row sums H_k
+    // over the intervals, each depending on x_k and p_{k+1}).
+    for (int k = scheme_ == Scheme::kEuler ? 0 : N_; k <= N_; ++k) {
+      for (int c = 0; c < 2 * nx; ++c) t.emplace_back(last, Col(k) + c, 0.0);
+    }
   }
   jacobian_.resize(size_, size_);
   jacobian_.setFromTriplets(t.begin(), t.end());
@@ -150,15 +155,23 @@ TimeGrid PmpResidual::GridOf(ConstVecRef z) const {
 }
 
 Mat PmpResidual::Controls(ConstVecRef z) const {
-  Mat U(nu_, N_ + 1);
+  const bool euler = scheme_ == Scheme::kEuler;
+  Mat U(nu_, euler ? N_ : N_ + 1);
   Vec u(nu_);
   const double T = FinalTime(z);
-  for (int k = 0; k <= N_; ++k) {
+  for (int k = 0; k < U.cols(); ++k) {
+    // Euler pairs x_k with p_{k+1}; the trapezoid x_k with p_k.
+    const int kp = euler ? k + 1 : k;
     ocp_.MinimizeHamiltonian(
-        NodeTime(k, T), z.segment(Col(k), nx_), z.segment(Col(k) + nx_, nx_), u);
+        NodeTime(k, T), z.segment(Col(k), nx_), z.segment(Col(kp) + nx_, nx_), u);
     U.col(k) = u;
   }
   return U;
+}
+
+ControlTrajectory PmpResidual::ControlFunction(ConstVecRef z) const {
+  return scheme_ == Scheme::kEuler ? ControlTrajectory::PiecewiseConstant(GridOf(z), Controls(z))
+                                   : ControlTrajectory::PiecewiseLinear(GridOf(z), Controls(z));
 }
 
 bool PmpResidual::EvaluateNode(
@@ -196,25 +209,13 @@ bool PmpResidual::EvaluateNode(
   return true;
 }
 
-bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jacobian) {
+bool PmpResidual::EvaluateTrapezoid(
+    ConstVecRef z, VecRef F, double T, bool with_jacobian, double* cost) {
   const int nx = nx_, W = 4 * nx_;
-  failure_ = Failure::kNone;
-  failure_node_ = -1;
   double* v = jacobian_.valuePtr();
   auto put = [&](int e, double value) { v[value_index_[e]] = value; };
-
-  F.head(nx) = z.head(nx) - ocp_.x0();
-  if (with_jacobian) {
-    for (int i = 0; i < nx; ++i) put(i, 1.0);
-  }
-  double J = 0.0;
-  const double T = FinalTime(z);
-  if (free_time_ && !(T > grid_.t0() && ocp_.AdmitsFinalTime(T))) {
-    failure_ = Failure::kBadFinalTime;
-    failure_node_ = N_ + 1;
-    return false;
-  }
   const double duration = T - grid_.t0();
+  double J = 0.0;
   if (!EvaluateNode(
           0, NodeTime(0, T), z.segment(0, nx), z.segment(nx, nx), with_jacobian, &nodes_[0])) {
     return false;
@@ -256,6 +257,101 @@ bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jaco
       }
     }
   }
+
+  *cost = J;
+  return true;
+}
+
+bool PmpResidual::EvaluateEuler(
+    ConstVecRef z, VecRef F, double T, bool with_jacobian, double* cost) {
+  const int nx = nx_, W = 4 * nx_;
+  double* v = jacobian_.valuePtr();
+  auto put = [&](int e, double value) { v[value_index_[e]] = value; };
+  const double duration = T - grid_.t0();
+  double J = 0.0, dJdT = 0.0;
+  Node& a = nodes_[0];
+  for (int k = 0; k < N_; ++k) {
+    const auto xa = z.segment(Col(k), nx), pa = z.segment(Col(k) + nx, nx);
+    const auto xb = z.segment(Col(k + 1), nx), pb = z.segment(Col(k + 1) + nx, nx);
+    // u_k = u*(t_k, x_k, p_{k+1}): the node evaluation with the next costate.
+    if (!EvaluateNode(k, NodeTime(k, T), xa, pb, with_jacobian, &a)) return false;
+    const double ds = free_time_ ? s_[k + 1] - s_[k] : 0.0;
+    const double h = free_time_ ? duration * ds : grid_.h(k);
+    F.segment(Row(k), nx) = xb - xa - h * a.f;
+    F.segment(Row(k) + nx, nx) = pa - pb - h * a.Hx;
+    J += h * a.L;
+    if (free_time_) dJdT += ds * (pb.dot(a.f) + a.L);
+    if (!with_jacobian) continue;
+    const int base = nx + k * interval_entries_;
+    for (int i = 0; i < nx; ++i) {
+      const int s = base + i * W;         // state row i: columns x_k, p_k, x_{k+1}, p_{k+1}
+      const int c = base + (nx + i) * W;  // costate row i
+      for (int j = 0; j < nx; ++j) {
+        const double eye = i == j ? 1.0 : 0.0;
+        put(s + j, -h * a.Gx(i, j) - eye);
+        put(s + nx + j, 0.0);
+        put(s + 2 * nx + j, eye);
+        put(s + 3 * nx + j, -h * a.Gp(i, j));
+        put(c + j, -h * a.Ex(i, j));
+        put(c + nx + j, eye);
+        put(c + 2 * nx + j, 0.0);
+        put(c + 3 * nx + j, -h * a.Ep(i, j) - eye);
+      }
+    }
+    if (free_time_) {
+      // d/dT of h_k (...) with h_k = (T - t0) ds_k (autonomous: f, H_x do not depend on t).
+      const int e = time_offset_ + 2 * nx * k;
+      for (int i = 0; i < nx; ++i) {
+        put(e + i, -ds * a.f[i]);
+        put(e + nx + i, -ds * a.Hx[i]);
+      }
+      // The H row: d(ds_k H_k)/dx_k = ds_k (H_x + U_x^T H_u), d/dp_{k+1} = ds_k (f + U_p^T H_u)
+      // (H_u = 0 at an interior u*; kept for exactness on the active set).
+      const int row = time_offset_ + 2 * nx * N_;
+      const Vec dx = a.Hx + a.Ux.transpose() * a.Hu;
+      const Vec dp = a.f + a.Up.transpose() * a.Hu;
+      for (int j = 0; j < nx; ++j) {
+        put(row + 2 * nx * k + j, ds * dx[j]);
+        put(row + 2 * nx * (k + 1) + nx + j, ds * dp[j]);
+      }
+    }
+  }
+  if (free_time_) {
+    F[size_ - 1] = dJdT;
+    if (with_jacobian) {
+      // Columns the sum does not touch (p_0, x_N) stay structural zeros.
+      const int row = time_offset_ + 2 * nx * N_;
+      for (int j = 0; j < nx; ++j) {
+        put(row + nx + j, 0.0);
+        put(row + 2 * nx * N_ + j, 0.0);
+      }
+    }
+  }
+  *cost = J;
+  return true;
+}
+
+bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jacobian) {
+  const int nx = nx_;
+  failure_ = Failure::kNone;
+  failure_node_ = -1;
+  double* v = jacobian_.valuePtr();
+  auto put = [&](int e, double value) { v[value_index_[e]] = value; };
+
+  F.head(nx) = z.head(nx) - ocp_.x0();
+  if (with_jacobian) {
+    for (int i = 0; i < nx; ++i) put(i, 1.0);
+  }
+  double J = 0.0;
+  const double T = FinalTime(z);
+  if (free_time_ && !(T > grid_.t0() && ocp_.AdmitsFinalTime(T))) {
+    failure_ = Failure::kBadFinalTime;
+    failure_node_ = N_ + 1;
+    return false;
+  }
+  const bool ok = scheme_ == Scheme::kEuler ? EvaluateEuler(z, F, T, with_jacobian, &J)
+                                            : EvaluateTrapezoid(z, F, T, with_jacobian, &J);
+  if (!ok) return false;
 
   // Terminal rows.
   failure_node_ = N_ + 1;
@@ -310,7 +406,7 @@ bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jaco
       for (int j = 0; j < nx; ++j) put(Tpsi + i * nx + j, psix(i, j));
     }
   }
-  if (free_time_) {
+  if (free_time_ && scheme_ == Scheme::kTrapezoid) {
     // H(t_N) = p_N^T f_N + L_N at u_N = u*(t_N, x_N, p_N): the node N scratch of the loop.
     const Node& n = nodes_[N_ % 2];
     F[size_ - 1] = pN.dot(n.f) + n.L;

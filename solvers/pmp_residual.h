@@ -8,6 +8,7 @@
 
 #include <Eigen/SparseCore>
 
+#include "core/control_trajectory.h"
 #include "core/ocp.h"
 #include "core/time_grid.h"
 #include "solvers/minimizer_derivative.h"
@@ -65,10 +66,33 @@ namespace ocpb {
 /// The discrete cost reported with F is the trapezoidal one,
 ///   J = sum_k h_k/2 (L_k + L_{k+1}) + Phi(x_N)    (phi(x_N) in the hard form).
 ///
+/// Scheme::kEuler discretizes instead by forward Euler with the exact discrete adjoint of
+/// DiscreteOcp (the Hamiltonian descent's discrete problem, and the Euler transcription's): with
+/// u_k = u*(t_k, x_k, p_{k+1}) for k < N,
+///
+///   interval k, state rows:         x_{k+1} - x_k - h_k f(t_k, x_k, u_k)
+///   interval k, costate rows:       p_k - p_{k+1} - h_k H_x(t_k, x_k, u_k, p_{k+1})
+///   terminal rows:                  as above
+///   free final time only (1 row):   sum_k (s_{k+1} - s_k) H(t_k, x_k, u_k, p_{k+1})
+///
+/// whose solutions are the stationary points of the Euler discrete cost J = sum_k h_k L(t_k, x_k,
+/// u_k) + Phi(x_N) (phi in the hard form) over the controls (and T): the costate rows are
+/// DiscreteOcp::Adjoint's recursion, u_k minimizes H_k as the descent's direction does, and the
+/// last row is the exact derivative dJ/dT / (T - t0) for an autonomous problem (each h_k is
+/// (T - t0)(s_{k+1} - s_k), so dJ/dT = sum_k (s_{k+1} - s_k) H_k at the discrete adjoint; u_k
+/// drops out because it minimizes H_k). So Newton on it polishes a descent result to the optimum
+/// of the same discrete problem (J equal to the Euler transcription's NLP optimum). The unknowns
+/// and the sparsity are the trapezoid's (interval k couples nodes k and k+1); the free-time row is
+/// dense (every node's x and p). The controls are piecewise constant, u_k on [t_k, t_{k+1})
+/// (nu x N in Controls()), and the reported cost is the Euler J.
+///
 /// Requires Ocp::HasHamiltonianMinimizer() and num_path() == 0 (the constructor throws
 /// std::invalid_argument otherwise). Not thread-safe (keeps scratch); one object per solve.
 class PmpResidual {
  public:
+  /// The discretization of the boundary-value problem (see the class comment).
+  enum class Scheme { kTrapezoid, kEuler };
+
   /// Why an evaluation failed.
   enum class Failure {
     kNone,
@@ -80,7 +104,10 @@ class PmpResidual {
   /// Throws std::invalid_argument when the grid does not span [t0, tf] (to 1e-9 relative; for a
   /// free final time [t0, T] with T within its bounds, the start's final time) or
   /// the problem has no closed-form minimizer or has path constraints.
-  PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode);
+  PmpResidual(const Ocp& ocp,
+              const TimeGrid& grid,
+              TerminalMode mode,
+              Scheme scheme = Scheme::kTrapezoid);
 
   /// The constructor's checks alone (no structure is built), throwing the same errors.
   static void CheckApplicable(const Ocp& ocp, const TimeGrid& grid);
@@ -88,6 +115,7 @@ class PmpResidual {
   const Ocp& ocp() const { return ocp_; }
   const TimeGrid& grid() const { return grid_; }
   TerminalMode mode() const { return mode_; }
+  Scheme scheme() const { return scheme_; }
   /// Number of unknowns, equal to the number of equations.
   int size() const { return size_; }
   /// Number of multipliers nu (npsi in the hard form, else 0).
@@ -115,8 +143,12 @@ class PmpResidual {
   /// The Jacobian of the last Evaluate(..., with_jacobian = true): column-major, compressed, with
   /// the fixed structure described above.
   const Eigen::SparseMatrix<double>& jacobian() const { return jacobian_; }
-  /// u*(t_k, x_k, p_k) at every node of GridOf(z) (nu x N+1).
+  /// The trapezoid's u*(t_k, x_k, p_k) at every node of GridOf(z) (nu x N+1); Euler's
+  /// u*(t_k, x_k, p_{k+1}) on every interval (nu x N).
   Mat Controls(ConstVecRef z) const;
+  /// The control function the scheme means: piecewise linear through the trapezoid's node values,
+  /// piecewise constant on Euler's intervals, on GridOf(z).
+  ControlTrajectory ControlFunction(ConstVecRef z) const;
 
   Failure failure() const { return failure_; }
   int failure_node() const { return failure_node_; }
@@ -131,6 +163,9 @@ class PmpResidual {
     double L = 0.0;
   };
   bool EvaluateNode(int k, double t, ConstVecRef x, ConstVecRef p, bool with_jacobian, Node* node);
+  // The interval rows (and the free-time column and row) of each scheme; false on failure.
+  bool EvaluateTrapezoid(ConstVecRef z, VecRef F, double T, bool with_jacobian, double* J);
+  bool EvaluateEuler(ConstVecRef z, VecRef F, double T, bool with_jacobian, double* J);
   double NodeTime(int k, double T) const;
   void BuildStructure();
   int Row(int k) const { return nx_ + 2 * nx_ * k; }  // first row of interval k
@@ -139,6 +174,7 @@ class PmpResidual {
   const Ocp& ocp_;
   TimeGrid grid_;
   TerminalMode mode_;
+  Scheme scheme_;
   bool free_time_;
   int nx_, nu_, npsi_, nnu_, N_, size_;
   std::vector<double> s_;  // free final time: the nodes' relative positions on [0, 1]

@@ -4,6 +4,7 @@
 
 #include "core/named_registry.h"
 #include "solvers/hamiltonian_descent.h"
+#include "solvers/hamiltonian_family.h"
 #include "solvers/indirect_newton.h"
 #include "solvers/ipopt_solver.h"
 #include "solvers/nlopt_solver.h"
@@ -25,6 +26,22 @@ std::vector<SolverInfo> BuildSolvers() {
     s.check_options = [](const OptionMap& resolved) { HamiltonianDescent::ApplyOptions(resolved); };
     // The paper's re-plans take "under 50 iterations" (Sec. IV).
     s.replan_defaults = {{"max_iterations", 50}};
+    list.push_back(std::move(s));
+  }
+  // The Hamiltonian family (solvers/README-family.md): one solver, three presets.
+  for (const auto preset : {HamiltonianFamily::Preset::kProximal,
+                            HamiltonianFamily::Preset::kAugmentedLagrangian,
+                            HamiltonianFamily::Preset::kPolish}) {
+    SolverInfo s;
+    s.name = HamiltonianFamily::Name(preset);
+    s.description = HamiltonianFamily::Description(preset);
+    s.make = [preset] { return std::make_unique<HamiltonianFamily>(preset); };
+    s.options = HamiltonianFamily::Schema(preset);
+    s.check_options = [preset](const OptionMap& resolved) {
+      HamiltonianFamily::ApplyOptions(preset, resolved, HamiltonianFamily::Defaults(preset));
+    };
+    s.replan_defaults = {{"max_iterations", 50}};
+    s.factorizes_sparse_matrices = preset == HamiltonianFamily::Preset::kPolish;
     list.push_back(std::move(s));
   }
   {

@@ -36,11 +36,14 @@ bool NlpScaling::IsValid(std::string* error) const {
 bool NlpScaling::IsValidFor(int nx, int nu, std::string* error) const {
   if (!IsValid(error)) return false;
   if (state.size() != 0 && state.size() != nx) {
-    *error = "scaling: state scales must be empty or of size nx = " + std::to_string(nx);
+    *error =
+        "scaling: state scales (state_scale) must be empty or of size nx = " + std::to_string(nx) +
+        " (got " + std::to_string(state.size()) + ")";
     return false;
   }
   if (control.size() != 0 && control.size() != nu) {
-    *error = "scaling: control scales must be empty or of size nu = " + std::to_string(nu);
+    *error = "scaling: control scales (control_scale) must be empty or of size nu = " +
+             std::to_string(nu) + " (got " + std::to_string(control.size()) + ")";
     return false;
   }
   return true;

@@ -8,7 +8,7 @@
 namespace ocpb {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 bool SpansHorizon(const TimeGrid& grid, const Ocp& ocp) {
   const double scale = std::max({1.0, std::abs(ocp.t0()), std::abs(ocp.tf())});
@@ -49,7 +49,7 @@ SingleShootingNlp::SingleShootingNlp(const Ocp& ocp,
   }
 
   // Bounds: the control set's bounding box at every interval.
-  Vec lo = Vec::Constant(nu_, -kInf), hi = Vec::Constant(nu_, kInf);
+  Vec lo = Vec::Constant(nu_, -kInfinity), hi = Vec::Constant(nu_, kInfinity);
   if (U.dimension() == nu_) U.BoundingBox(&lo, &hi);
   z_lower_ = lo.replicate(N_, 1).cwiseQuotient(column_scale_);
   z_upper_ = hi.replicate(N_, 1).cwiseQuotient(column_scale_);
@@ -109,11 +109,11 @@ void SingleShootingNlp::Bounds(Vec* z_lower, Vec* z_upper, Vec* g_lower, Vec* g_
   for (int k = 0; k < N_; ++k) {
     for (size_t b = 0; b < balls_.size(); ++b) {
       const int row = ball_row() + k * static_cast<int>(balls_.size()) + static_cast<int>(b);
-      (*g_lower)[row] = -kInf;
+      (*g_lower)[row] = -kInfinity;
       (*g_upper)[row] = balls_[b].radius * balls_[b].radius;
     }
   }
-  g_lower->tail(num_path_rows()).setConstant(-kInf);
+  g_lower->tail(num_path_rows()).setConstant(-kInfinity);
   g_upper->tail(num_path_rows()).setZero();
 }
 

@@ -1,5 +1,6 @@
 #include "bench/cli/app.h"
 
+#include <csignal>
 #include <exception>
 #include <iostream>
 #include <stdexcept>
@@ -9,6 +10,7 @@
 
 #include "bench/cli/main.h"
 #include "bench/cli/version.h"
+#include "core/input_file.h"
 
 namespace ocpb {
 namespace {
@@ -18,6 +20,14 @@ bool g_incomplete = false;
 
 void ReportSomeFailed() { g_some_failed = true; }
 void ReportIncomplete() { g_incomplete = true; }
+
+Integrator ParseFlagIntegrator(const std::string& flag, const std::string& text) {
+  try {
+    return ParseIntegrator(text);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(flag + ": " + e.what());
+  }
+}
 
 OptionMap ParseKeyValues(const std::vector<std::string>& items, const std::string& flag) {
   OptionMap out;
@@ -34,6 +44,10 @@ OptionMap ParseKeyValues(const std::vector<std::string>& items, const std::strin
 int Main(int argc, char** argv) {
   g_some_failed = false;
   g_incomplete = false;
+  // Past a file-size limit (RLIMIT_FSIZE) a write then fails with EFBIG, which the writers turn
+  // into an error that keeps the records file whole, instead of the signal killing the process
+  // mid-record.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{
       "OCPBench: optimal-control problems solved by Hamiltonian descent and by sparse NLPs",
       "ocpbench"};
@@ -68,13 +82,14 @@ int Main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "ocpbench: error: " << e.what() << " (see ocpbench --help)\n";
+    // Every message is one line, whatever the input it quotes holds (OneLine escapes newlines).
+    std::cerr << "ocpbench: error: " << OneLine(e.what()) << " (see ocpbench --help)\n";
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {
-    std::cerr << "ocpbench: error: " << e.what() << "\n";
+    std::cerr << "ocpbench: error: " << OneLine(e.what()) << "\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "ocpbench: error: " << e.what() << "\n";
+    std::cerr << "ocpbench: error: " << OneLine(e.what()) << "\n";
     return kExitInternalError;
   }
   if (g_incomplete) return kExitIncomplete;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/integrator.h"
 #include "core/option_value.h"
 
 namespace CLI {
@@ -41,6 +42,10 @@ void AddOnlineCommand(CLI::App& app);
 /// `ocpbench compare BASE NEW [...]`: two runs of one suite, case by case
 /// (bench/cli/compare_command.cc).
 void AddCompareCommand(CLI::App& app);
+
+/// ParseIntegrator with the flag's name in the message: "--evaluate-with: unknown integrator
+/// 'rk45' (valid: euler, rk4)".
+Integrator ParseFlagIntegrator(const std::string& flag, const std::string& text);
 
 /// Subcommands set this when their work ran but some cases failed.
 void ReportSomeFailed();

@@ -14,6 +14,8 @@
 #include "bench/cli/online_case.h"
 #include "core/costate_error.h"
 #include "core/evaluator.h"
+#include "core/field_sample.h"
+#include "core/memory_budget.h"
 #include "core/parameters.h"
 #include "problems/registry.h"
 #include "solvers/registry.h"
@@ -196,6 +198,16 @@ void RecordCostateFields(const CaseSpec& spec,
 
 }  // namespace
 
+void CheckTranscriptionFits(const CaseSpec& spec, int nx, int nu) {
+  if (spec.transcription.empty() || !FindSolver(spec.solver).uses_transcription) return;
+  const TranscriptionInfo& tinfo = FindTranscription(spec.transcription);
+  const TranscriptionOptions options = tinfo.Configure(ResolveMethodOptions(spec).transcription);
+  std::string error;
+  if (!options.scaling.IsValidFor(nx, nu, &error)) {
+    throw std::invalid_argument("options: " + tinfo.name + " " + error);
+  }
+}
+
 bool IsFailure(SolveStatus status) {
   return status == SolveStatus::kNumericalFailure || status == SolveStatus::kInfeasible ||
          status == SolveStatus::kError || status == SolveStatus::kInvalidInput;
@@ -226,19 +238,20 @@ double EstimateCaseMemoryBytes(const CaseSpec& spec, int nx, int nu, int interva
   return bytes;
 }
 
-double CaseMemoryBudgetBytes() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES);
-  const long page_size = ::sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page_size <= 0) return 4.0 * (1 << 30);
-  return 0.5 * static_cast<double>(pages) * static_cast<double>(page_size);
+double CaseMemoryBudgetBytes() { return MemoryBudgetBytes(); }
+
+double EstimateRecordBytes(const CaseSpec& spec, int nx, int nu, int intervals) {
+  double bytes = 4096.0 + 16.0 * 8.0 * 1000.0;
+  if (spec.keep_trajectory) {
+    bytes += 16.0 * (intervals + 1.0) * (1.0 + nx + nu);
+    bytes += 16.0 * kMaxFieldSamplePoints;
+  }
+  return bytes;
 }
 
-void ValidateCase(const CaseSpec& spec) {
+CaseEstimate ValidateCase(const CaseSpec& spec) {
   spec.Validate();
-  if (spec.kind == "online") {
-    ValidateOnlineCase(spec);
-    return;
-  }
+  if (spec.kind == "online") return ValidateOnlineCase(spec);
   const ProblemInfo& pinfo = FindProblem(spec.problem);
   const SolverInfo& sinfo = FindSolver(spec.solver);
   if (sinfo.uses_transcription) {
@@ -258,12 +271,16 @@ void ValidateCase(const CaseSpec& spec) {
   const std::unique_ptr<Ocp> ocp = pinfo.make_for_checks ? pinfo.make_for_checks(params, spec.seed)
                                                          : pinfo.make(params, spec.seed);
   if (!ocp) throw std::logic_error("problem '" + spec.problem + "': make returned no problem");
+  CheckTranscriptionFits(spec, ocp->nx(), ocp->nu());
   if (!spec.initial_guess.empty()) {
     CheckInitialGuess(ReadInitialGuess(spec.initial_guess), *ocp, spec.initial_guess);
   }
   const int N = spec.intervals > 0 ? spec.intervals : pinfo.default_intervals;
   const double need = EstimateCaseMemoryBytes(spec, ocp->nx(), ocp->nu(), N);
   const double budget = CaseMemoryBudgetBytes();
+  CaseEstimate estimate;
+  estimate.memory_bytes = need;
+  estimate.record_bytes = EstimateRecordBytes(spec, ocp->nx(), ocp->nu(), N);
   if (need > budget) {
     throw std::invalid_argument(fmt::format(
         "N: {} intervals need about {} by OCPBench's estimate (nx = {}, nu = {}, {}), beyond this "
@@ -275,6 +292,7 @@ void ValidateCase(const CaseSpec& spec) {
         spec.solver + (spec.transcription.empty() ? "" : " + " + spec.transcription),
         Bytes(budget)));
   }
+  return estimate;
 }
 
 Record CaseIdentityRecord(const CaseSpec& spec) {

@@ -11,6 +11,12 @@
 
 namespace ocpb {
 
+/// What ValidateCase estimated for a valid case.
+struct CaseEstimate {
+  double memory_bytes = 0.0;  ///< EstimateCaseMemoryBytes plus the problem's own
+  double record_bytes = 0.0;  ///< EstimateRecordBytes
+};
+
 /// Everything about a case that can be checked before solving, cheaply (no channel is
 /// simulated): Validate(); the problem, solver and transcription names; the method's options
 /// by their schemas (ResolveMethodOptions); the parameters and the problem's own cross-field
@@ -18,7 +24,20 @@ namespace ocpb {
 /// grid needs (EstimateCaseMemoryBytes against CaseMemoryBudgetBytes). Throws
 /// std::invalid_argument "FIELD: rule". `ocpbench run` calls it for every case of a suite
 /// before running any; RunCase calls it first.
-void ValidateCase(const CaseSpec& spec);
+CaseEstimate ValidateCase(const CaseSpec& spec);
+
+/// The rules of the case's transcription options that depend on the problem (a state_scale
+/// or control_scale of nx or nu entries), checked before solving; the transcription checks
+/// them again when it builds its NLP. Throws std::invalid_argument "options: SCHEME scaling:
+/// ...". Nothing for a case without a transcription.
+void CheckTranscriptionFits(const CaseSpec& spec, int nx, int nu);
+
+/// The memory one case's record takes while `ocpbench run` holds it for the summary: 4 kB of
+/// fields, 16 bytes per value of its history (8 values a row, one row per iteration bound by
+/// the options when known, else 1000) and, with keep_trajectory, of its trajectory ((N + 1)
+/// (1 + nx + nu) values) and channel map. Deliberately generous (doubles as JSON text are
+/// about 18 bytes, as a Mat 8).
+double EstimateRecordBytes(const CaseSpec& spec, int nx, int nu, int intervals);
 
 /// OCPBench's rough, deliberately generous estimate of the memory one case needs, in bytes.
 /// With m the transcription's points per interval (TranscriptionInfo::PointsPerInterval: 1,
@@ -38,7 +57,8 @@ void ValidateCase(const CaseSpec& spec);
 /// (826 MB), ipopt + hermite-simpson N = 1e5 905 MB (2.04 GB): about 2.3 times generous.
 double EstimateCaseMemoryBytes(const CaseSpec& spec, int nx, int nu, int intervals);
 
-/// The memory one case may use: half the physical memory (sysconf), 4 GiB when unknown.
+/// The memory one case may use: half the physical memory (sysconf), 4 GiB when unknown
+/// (MemoryBudgetBytes, core/memory_budget.h).
 double CaseMemoryBudgetBytes();
 
 /// Statuses that count as failures for the exit code (limits and "not applicable" do not).

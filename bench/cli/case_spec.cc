@@ -1,5 +1,6 @@
 #include "bench/cli/case_spec.h"
 
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -164,8 +165,66 @@ CaseSpec ResolveCase(CaseSpec spec) {
   return spec;
 }
 
+const json* CaseFields::Find(const std::string& key) const {
+  if (key == "seed" && seed_ != nullptr) return seed_;
+  if (key == "N" && n_ != nullptr) return n_;
+  if (method_->is_object()) {
+    const auto it = method_->find(key);
+    if (it != method_->end()) return &*it;
+  }
+  if (group_ != nullptr && key != "methods" && key != "seeds" && key != "N") {
+    const auto it = group_->find(key);
+    if (it != group_->end()) return &*it;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> CaseFields::Keys() const {
+  std::set<std::string> keys;
+  if (method_->is_object()) {
+    for (const auto& [k, v] : method_->items()) keys.insert(k);
+  }
+  if (group_ != nullptr) {
+    for (const auto& [k, v] : group_->items()) {
+      if (k != "methods" && k != "seeds" && k != "N") keys.insert(k);
+    }
+  }
+  if (seed_ != nullptr) keys.insert("seed");
+  if (n_ != nullptr) keys.insert("N");
+  return {keys.begin(), keys.end()};
+}
+
+namespace {
+
+constexpr const char* kSeedRule = "must be an integer from 0 to 18446744073709551615";
+
+}  // namespace
+
+std::uint64_t ParseSeed(const std::string& text, const std::string& field) {
+  const bool digits_only =
+      !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (!digits_only || error != std::errc() || end != text.data() + text.size()) {
+    throw std::invalid_argument(field + ": " + kSeedRule + " (got '" + text + "')");
+  }
+  return value;
+}
+
+std::uint64_t SeedFromJson(const json& value, const std::string& field) {
+  if (value.is_number_unsigned()) return value.get<std::uint64_t>();
+  // A negative integer, or a number written with a fraction or beyond 2^64 (a double): the
+  // library's text of it (a double's shortest form), never a wrapped value.
+  const std::string given = value.is_string() ? "'" + value.get<std::string>() + "'" : value.dump();
+  throw std::invalid_argument(field + ": " + kSeedRule + " (got " + given + ")");
+}
+
 CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
   if (!j.is_object()) throw std::invalid_argument(where + ": a case must be a JSON object");
+  return ParseCaseSpec(CaseFields(j), where);
+}
+
+CaseSpec ParseCaseSpec(const CaseFields& j, const std::string& where) {
   static const std::set<std::string> kKeys = {"problem",
                                               "set",
                                               "seed",
@@ -183,48 +242,58 @@ CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
                                               "kind",
                                               "online",
                                               "replan_options"};
-  for (const auto& [k, v] : j.items()) {
+  auto field = [&](const char* name) { return where + "." + name; };
+  for (const std::string& k : j.Keys()) {
     if (!kKeys.count(k)) {
       std::string valid;
       for (const auto& key : kKeys) valid += (valid.empty() ? "" : ", ") + key;
       throw std::invalid_argument(where + ": unknown key '" + k + "' (valid: " + valid + ")");
     }
+    // A null is no value: omitting the key is how a case takes the default.
+    if (j.Find(k)->is_null()) {
+      throw std::invalid_argument(field(k.c_str()) +
+                                  ": null is not a value (omit the key for the default)");
+    }
   }
-  auto field = [&](const char* name) { return where + "." + name; };
   auto get_string = [&](const char* name, std::string* out) {
-    if (!j.contains(name)) return;
-    if (!j[name].is_string()) throw std::invalid_argument(field(name) + ": must be a string");
-    *out = j[name].get<std::string>();
+    const json* v = j.Find(name);
+    if (v == nullptr) return;
+    if (!v->is_string()) throw std::invalid_argument(field(name) + ": must be a string");
+    *out = v->get<std::string>();
   };
   auto get_int = [&](const char* name, long long lo, long long hi, long long* out) {
-    if (!j.contains(name)) return;
-    const json& v = j[name];
-    if (!v.is_number_integer()) {
+    const json* v = j.Find(name);
+    if (v == nullptr) return;
+    if (!v->is_number_integer()) {
       throw std::invalid_argument(field(name) + ": must be an integer");
     }
-    const long long x = v.get<long long>();
-    if (x < lo || x > hi) {
+    // Compared as given: a value beyond the 64-bit range of its sign is never wrapped.
+    const bool in_range =
+        v->is_number_unsigned()
+            ? v->get<std::uint64_t>() <= static_cast<std::uint64_t>(hi) &&
+                  (lo <= 0 || v->get<std::uint64_t>() >= static_cast<std::uint64_t>(lo))
+            : v->get<std::int64_t>() >= lo && v->get<std::int64_t>() <= hi;
+    if (!in_range) {
       throw std::invalid_argument(
-          fmt::format("{}: {} out of range [{}, {}]", field(name), x, lo, hi));
+          fmt::format("{}: {} out of range [{}, {}]", field(name), v->dump(), lo, hi));
     }
-    *out = x;
+    *out = v->get<long long>();
   };
   CaseSpec spec;
   get_string("problem", &spec.problem);
   get_string("solver", &spec.solver);
   get_string("transcription", &spec.transcription);
   get_string("algorithm", &spec.algorithm);
-  long long seed = 1, n = 0, degree = 3, repeats = 1;
-  get_int("seed", 0, (1LL << 53), &seed);
+  long long n = 0, degree = 3, repeats = 1;
+  if (const json* seed = j.Find("seed")) spec.seed = SeedFromJson(*seed, field("seed"));
   get_int("N", 1, std::numeric_limits<int>::max(), &n);  // the memory check is ValidateCase's
   get_int("degree", 1, 1000, &degree);                   // the transcription's rule follows
   get_int("repeats", 1, 1000, &repeats);
-  spec.seed = static_cast<std::uint64_t>(seed);
   spec.intervals = static_cast<int>(n);
   spec.degree = static_cast<int>(degree);
   spec.repeats = static_cast<int>(repeats);
   std::string s;
-  if (j.contains("terminal")) {
+  if (j.Find("terminal") != nullptr) {
     get_string("terminal", &s);
     try {
       spec.terminal = ParseTerminal(s);
@@ -233,7 +302,7 @@ CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
     }
   }
   for (const char* name : {"integrator", "evaluate_with"}) {
-    if (!j.contains(name)) continue;
+    if (j.Find(name) == nullptr) continue;
     s.clear();
     get_string(name, &s);
     try {
@@ -243,19 +312,18 @@ CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
       throw std::invalid_argument(field(name) + ": " + e.what());
     }
   }
-  if (j.contains("keep_trajectory")) {
-    if (!j["keep_trajectory"].is_boolean()) {
+  if (const json* keep = j.Find("keep_trajectory")) {
+    if (!keep->is_boolean()) {
       throw std::invalid_argument(field("keep_trajectory") + ": must be true or false");
     }
-    spec.keep_trajectory = j["keep_trajectory"].get<bool>();
+    spec.keep_trajectory = keep->get<bool>();
   }
-  if (j.contains("set")) {
-    const json& set = j["set"];
-    if (!set.is_object()) {
+  if (const json* set = j.Find("set")) {
+    if (!set->is_object()) {
       throw std::invalid_argument(field("set") +
                                   ": must be an object {\"key\": value or [values]}");
     }
-    for (const auto& [k, v] : set.items()) {
+    for (const auto& [k, v] : set->items()) {
       const std::string where_k = field("set") + "." + k;
       std::vector<double> values;
       auto push = [&](const json& x) {
@@ -276,10 +344,10 @@ CaseSpec ParseCaseSpec(const json& j, const std::string& where) {
   }
   get_string("kind", &spec.kind);
   auto get_map = [&](const char* name, OptionMap* out) {
-    if (!j.contains(name)) return;
-    const json& opts = j[name];
-    if (!opts.is_object()) throw std::invalid_argument(field(name) + ": must be an object");
-    for (const auto& [k, v] : opts.items()) {
+    const json* opts = j.Find(name);
+    if (opts == nullptr) return;
+    if (!opts->is_object()) throw std::invalid_argument(field(name) + ": must be an object");
+    for (const auto& [k, v] : opts->items()) {
       out->Set(k, OptionValueFromJson(v, field(name) + "." + k));
     }
   };

@@ -71,11 +71,48 @@ MethodOptions ResolveMethodOptions(const CaseSpec& spec);
 /// ResolveMethodOptions, and for unknown solvers or transcriptions.
 CaseSpec ResolveCase(CaseSpec spec);
 
-/// Parses one suite case (JSON object) strictly and resolves it (ResolveCase): unknown keys,
-/// wrong types and invalid values throw std::invalid_argument "FIELD: rule" prefixed by `where`.
+/// The fields of one suite case, read in place from the suite document (never copied out of
+/// it): the method's own fields over its group's, and the seed and N the case takes from the
+/// group's lists. A view: the document must outlive it.
+class CaseFields {
+ public:
+  /// One JSON object's fields (the C++ API, a test).
+  explicit CaseFields(const nlohmann::json& fields) : method_(&fields) {}
+  /// A suite case: `method` over `group` (whose "methods", "seeds" and "N" are not case
+  /// fields), with `seed` and `n` (nullptr: none) from the group's lists.
+  CaseFields(const nlohmann::json& method,
+             const nlohmann::json& group,
+             const nlohmann::json* seed,
+             const nlohmann::json* n)
+      : method_(&method), group_(&group), seed_(seed), n_(n) {}
+
+  /// The value of field `key`, or nullptr when the case does not give it.
+  const nlohmann::json* Find(const std::string& key) const;
+  /// Every field the case gives, each once, sorted.
+  std::vector<std::string> Keys() const;
+
+ private:
+  const nlohmann::json* method_;
+  const nlohmann::json* group_ = nullptr;
+  const nlohmann::json* seed_ = nullptr;
+  const nlohmann::json* n_ = nullptr;
+};
+
+/// Parses one suite case strictly and resolves it (ResolveCase): unknown keys, wrong types,
+/// null values (omit a key for its default) and invalid values throw std::invalid_argument
+/// "FIELD: rule" prefixed by `where`.
+CaseSpec ParseCaseSpec(const CaseFields& fields, const std::string& where);
+/// The same for one JSON object holding every field of the case.
 CaseSpec ParseCaseSpec(const nlohmann::json& j, const std::string& where);
 
 /// "penalty" or "hard"; std::invalid_argument otherwise.
 TerminalMode ParseTerminal(const std::string& text);
+
+/// A seed written as text (`--seed`): decimal digits only, 0 to 2^64 - 1 =
+/// 18446744073709551615, never wrapped (-1) or saturated (1e30). Throws std::invalid_argument
+/// "FIELD: must be an integer from 0 to 18446744073709551615 (got 'TEXT')".
+std::uint64_t ParseSeed(const std::string& text, const std::string& field);
+/// The same rule for a seed in a suite file (a JSON integer).
+std::uint64_t SeedFromJson(const nlohmann::json& value, const std::string& field);
 
 }  // namespace ocpb

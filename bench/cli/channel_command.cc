@@ -17,8 +17,13 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bench/cli/case_spec.h"
 #include "bench/cli/io.h"
+#include "bench/cli/output_place.h"
+#include "core/input_file.h"
+#include "core/memory_budget.h"
 #include "core/timer.h"
+#include "problems/channel/channel_memory.h"
 #include "problems/channel/measurement_file.h"
 #include "problems/channel/measurement_sampling.h"
 #include "problems/channel/paper_channel.h"
@@ -29,7 +34,8 @@ namespace {
 
 // Options shared by both subcommands.
 struct CommonArgs {
-  std::uint64_t seed = 1;
+  std::string seed_text = "1";
+  std::uint64_t seed = 1;  ///< seed_text, parsed (ParseSeed) when the command runs
   std::string out = "results/channel";
   std::string json_path;
   double width = 50.0, height = 50.0, resolution = 0.1;
@@ -55,7 +61,9 @@ struct PredictArgs {
 };
 
 void AddCommonOptions(CLI::App* cmd, CommonArgs* a) {
-  cmd->add_option("--seed", a->seed, "realization seed (shadowing, multipath, sample positions)")
+  cmd->add_option("--seed",
+                  a->seed_text,
+                  "realization seed (shadowing, multipath, sample positions; 0 to 2^64 - 1)")
       ->capture_default_str();
   cmd->add_option("--out", a->out, "directory for the maps and the JSON")->capture_default_str();
   cmd->add_option("--json", a->json_path, "also write the JSON report to this file");
@@ -179,8 +187,21 @@ std::string Join(const std::string& dir, const std::string& name) {
   return dir.empty() || dir.back() == '/' ? dir + name : dir + "/" + name;
 }
 
+// The output places, checked and claimed before anything is simulated: the --json file, and
+// the --out folder with the files written there (unless --no-files).
+OutputFolderLock ClaimOutputs(const CommonArgs& a, const std::vector<std::string>& files) {
+  if (!a.json_path.empty()) CheckOutputFile(a.json_path, "--json");
+  if (a.no_files) return {};
+  CheckOutputFolder(a.out, "--out");
+  OutputFolderLock lock = OutputFolderLock::Acquire(a.out, "--out", FolderAccess::kExclusive);
+  for (const std::string& f : files) CheckOutputFile(Join(a.out, f), "--out");
+  return lock;
+}
+
 void RunSimulate(const CommonArgs& a) {
   const PaperChannelOptions o = ToOptions(a);
+  CheckChannelMemory(0, "--samples", o.simulation.grid.num_points(), "--resolution");
+  const OutputFolderLock lock = ClaimOutputs(a, {"true_gain_db.npy", "simulate.json"});
   const Stopwatch watch;
   const SimulatedChannel c = SimulateChannel(o.truth, o.simulation, a.seed);
   const double seconds = watch.wall();
@@ -404,14 +425,37 @@ void RunPredict(const CommonArgs& a, const PredictArgs& p) {
   const PaperChannelOptions o = PredictOptions(a, p);
   // Measurements from a file are read and checked before anything is simulated.
   MeasurementSet from_file;
+  const GridSpec& grid = o.simulation.grid;
   if (!p.measurements_csv.empty()) {
     from_file = LoadMeasurementsCsv(p.measurements_csv);
-    const GridSpec& grid = o.simulation.grid;
     CheckMeasurementsInside(from_file,
                             Eigen::Vector2d(grid.x_min, grid.y_min),
                             Eigen::Vector2d(grid.x_max(), grid.y_max()),
                             p.measurements_csv);
+    CheckChannelMemory(static_cast<double>(from_file.positions.size()),
+                       "--measurements " + OneLine(p.measurements_csv),
+                       grid.num_points(),
+                       "--resolution");
+  } else {
+    CheckChannelMemory(p.samples, "--samples", grid.num_points(), "--resolution");
+    const long eligible = EligibleMeasurementPoints(grid, o.truth);
+    if (2L * p.samples > eligible) {
+      throw std::invalid_argument(fmt::format(
+          "--samples: {} measurements need {} grid points beyond the distance floor of the base "
+          "station (twice as many); the grid has {} (--width, --height, --resolution)",
+          p.samples,
+          2L * p.samples,
+          eligible));
+    }
   }
+  CheckMemoryEstimate(8.0 * p.check_points, "--check-points", "the comparison's points");
+  const OutputFolderLock lock = ClaimOutputs(a,
+                                             {"true_gain_db.npy",
+                                              "predicted_mean_db.npy",
+                                              "predicted_variance_db2.npy",
+                                              "s_map.npy",
+                                              "measurements.npy",
+                                              "predict.json"});
   const PaperChannel c = BuildChannel(a.seed, o, p, std::move(from_file));
   nlohmann::json j = PredictJson(a, p, o, c);
   if (p.check_points > 0) j["check"] = CheckAgainstExact(a.seed, p.check_points, o, c);
@@ -429,7 +473,10 @@ void AddChannelCommand(CLI::App& app) {
   auto sim_args = std::make_shared<CommonArgs>();
   CLI::App* simulate = channel->add_subcommand("simulate", "Simulate one channel realization");
   AddCommonOptions(simulate, sim_args.get());
-  simulate->callback([sim_args]() { RunSimulate(*sim_args); });
+  simulate->callback([sim_args]() {
+    sim_args->seed = ParseSeed(sim_args->seed_text, "--seed");
+    RunSimulate(*sim_args);
+  });
 
   auto common = std::make_shared<CommonArgs>();
   auto args = std::make_shared<PredictArgs>();
@@ -469,7 +516,10 @@ void AddChannelCommand(CLI::App& app) {
                    args->check_points,
                    "compare grid and map with the exact predictor at this many random points")
       ->capture_default_str();
-  predict->callback([common, args]() { RunPredict(*common, *args); });
+  predict->callback([common, args]() {
+    common->seed = ParseSeed(common->seed_text, "--seed");
+    RunPredict(*common, *args);
+  });
 }
 
 }  // namespace ocpb

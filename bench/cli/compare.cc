@@ -11,6 +11,7 @@
 
 #include "bench/cli/case_runner.h"
 #include "bench/cli/io.h"
+#include "bench/cli/json_input.h"
 #include "bench/cli/json_values.h"
 #include "bench/cli/performance_profile.h"
 #include "bench/cli/records_file.h"
@@ -85,12 +86,8 @@ const OptionBinding<CompareThresholds>& Binding() {
 std::string SuiteName(const std::string& dir) {
   const std::string path = (fs::path(dir) / "suite.json").string();
   if (!fs::exists(path)) return "";
-  json meta;
-  try {
-    meta = json::parse(ReadFile(path));
-  } catch (const json::exception&) {
-    throw std::invalid_argument(path + ": not a JSON object");
-  }
+  // Size and nesting limits, errors "PATH:LINE: ..." (bench/cli/json_input.h).
+  const json meta = LoadJsonFile(path, kMaxSuiteFileBytes, "suite.json");
   if (!meta.is_object()) throw std::invalid_argument(path + ": not a JSON object");
   if (!meta.contains("suite") || !meta["suite"].is_string()) {
     throw std::invalid_argument(path + ": suite: must be a string (the suite's name)");
@@ -422,24 +419,26 @@ CompareSide LoadCompareSide(const std::string& path) {
   RecordFile file = ReadRecords(side.records_path);
   side.dropped_partial = file.dropped_partial;
   side.records = std::move(file.records);
+  // Errors name the record's line in the file, as the records reader does ("FILE:LINE: ...").
+  const std::vector<int>& line = file.line_numbers;
   if (side.records.empty()) throw std::invalid_argument(side.records_path + ": no records");
   std::map<std::string, size_t> seen;
   for (size_t i = 0; i < side.records.size(); ++i) {
     const std::string& key = side.records[i].key;
     if (key.empty()) {
       throw std::invalid_argument(
-          fmt::format("{}: line {}: key: missing (a record without a case key cannot be matched)",
+          fmt::format("{}:{}: key: missing (a record without a case key cannot be matched)",
                       side.records_path,
-                      i + 1));
+                      line[i]));
     }
     const auto [it, inserted] = seen.emplace(key, i);
     if (!inserted) {
       throw std::invalid_argument(
-          fmt::format("{}: line {}: key: the case of line {} again "
+          fmt::format("{}:{}: key: the case of line {} again "
                       "(a case recorded twice)",
                       side.records_path,
-                      i + 1,
-                      it->second + 1));
+                      line[i],
+                      line[it->second]));
     }
   }
   return side;

@@ -13,13 +13,13 @@ namespace {
 
 using nlohmann::json;
 
-std::string G(double v) {
+std::string ReportNumber(double v) {
   if (std::isnan(v)) return "-";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   return fmt::format("{:.4g}", v);
 }
 
-std::string Percent(double relative) {
+std::string PercentText(double relative) {
   if (std::isnan(relative)) return "-";
   if (relative == 0.0) return "0";
   if (std::isinf(relative)) return relative > 0 ? "+inf" : "-inf";
@@ -40,7 +40,7 @@ std::string P(const RankTestResult& t) {
   return fmt::format("{:.2g}{}", t.p_value, t.exact ? "" : " (normal approx.)");
 }
 
-std::string Commits(const std::vector<std::string>& commits) {
+std::string CommitList(const std::vector<std::string>& commits) {
   std::string s;
   for (const std::string& c : commits) s += (s.empty() ? "" : ", ") + (c.empty() ? "?" : c);
   return s.empty() ? "-" : s;
@@ -69,8 +69,8 @@ std::string StatusChanges(const MethodComparison& m) {
 
 std::string Range(double median, double lo, double hi) {
   if (std::isnan(median)) return "-";
-  if (lo == hi) return Percent(median);
-  return fmt::format("{} [{}, {}]", Percent(median), Percent(lo), Percent(hi));
+  if (lo == hi) return PercentText(median);
+  return fmt::format("{} [{}, {}]", PercentText(median), PercentText(lo), PercentText(hi));
 }
 
 void Verdict(const Comparison& c, std::ostringstream& md) {
@@ -103,7 +103,8 @@ void Header(const Comparison& c, std::ostringstream& md) {
                     c.base_suite.empty() ? "(a records file)" : c.base_suite,
                     c.new_suite.empty() ? "(a records file)" : c.new_suite);
   md << fmt::format("| records | {} | {} |\n", c.base_records, c.new_records);
-  md << fmt::format("| commit | {} | {} |\n\n", Commits(c.base_commits), Commits(c.new_commits));
+  md << fmt::format(
+      "| commit | {} | {} |\n\n", CommitList(c.base_commits), CommitList(c.new_commits));
   for (const auto& [dropped, path] :
        {std::pair{c.base_dropped_partial, c.base_path}, {c.new_dropped_partial, c.new_path}}) {
     if (dropped) {
@@ -222,22 +223,22 @@ void Methods(const Comparison& c, std::ostringstream& md) {
         StatusChanges(m),
         Range(m.cost_change_median, m.cost_change_min, m.cost_change_max),
         Range(m.Jbar_fine_change_median, m.Jbar_fine_change_min, m.Jbar_fine_change_max),
-        Arrow(G(m.terminal_violation_base), G(m.terminal_violation_new)),
-        Arrow(G(m.path_violation_base), G(m.path_violation_new)),
-        Arrow(G(m.iterations_base), G(m.iterations_new)),
-        G(m.cpu_ratio),
+        Arrow(ReportNumber(m.terminal_violation_base), ReportNumber(m.terminal_violation_new)),
+        Arrow(ReportNumber(m.path_violation_base), ReportNumber(m.path_violation_new)),
+        Arrow(ReportNumber(m.iterations_base), ReportNumber(m.iterations_new)),
+        ReportNumber(m.cpu_ratio),
         P(m.cpu_test),
-        G(m.time_to_target_base),
+        ReportNumber(m.time_to_target_base),
         m.reached_base,
         m.cases,
-        G(m.time_to_target_new),
+        ReportNumber(m.time_to_target_new),
         m.reached_new,
         m.cases);
   }
   md << "\n";
 }
 
-void Profiles(const Comparison& c, std::ostringstream& md) {
+void WriteProfiles(const Comparison& c, std::ostringstream& md) {
   md << "## Time to target: performance profiles\n\n"
         "Dolan-More profile of the CPU time to target over the matched cases' target groups "
         "(problem, seed, parameters, terminal form), every method on each side one solver of a "
@@ -279,19 +280,20 @@ void Cases(const Comparison& c, std::ostringstream& md) {
       }
       md << " " << o << " |";
     }
-    md << fmt::format(" {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
-                      Arrow(cc.base.status, cc.next.status),
-                      Arrow(G(cc.base.cost), G(cc.next.cost)),
-                      Percent(cc.cost_change),
-                      Percent(cc.Jbar_fine_change),
-                      Arrow(G(cc.base.terminal_violation), G(cc.next.terminal_violation)),
-                      Arrow(G(cc.base.path_violation), G(cc.next.path_violation)),
-                      Arrow(cc.base.iterations >= 0 ? std::to_string(cc.base.iterations) : "-",
-                            cc.next.iterations >= 0 ? std::to_string(cc.next.iterations) : "-"),
-                      Arrow(G(cc.base.cpu_seconds), G(cc.next.cpu_seconds)),
-                      G(cc.cpu_ratio),
-                      P(cc.cpu_test),
-                      Arrow(G(cc.base.time_to_target), G(cc.next.time_to_target)));
+    md << fmt::format(
+        " {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+        Arrow(cc.base.status, cc.next.status),
+        Arrow(ReportNumber(cc.base.cost), ReportNumber(cc.next.cost)),
+        PercentText(cc.cost_change),
+        PercentText(cc.Jbar_fine_change),
+        Arrow(ReportNumber(cc.base.terminal_violation), ReportNumber(cc.next.terminal_violation)),
+        Arrow(ReportNumber(cc.base.path_violation), ReportNumber(cc.next.path_violation)),
+        Arrow(cc.base.iterations >= 0 ? std::to_string(cc.base.iterations) : "-",
+              cc.next.iterations >= 0 ? std::to_string(cc.next.iterations) : "-"),
+        Arrow(ReportNumber(cc.base.cpu_seconds), ReportNumber(cc.next.cpu_seconds)),
+        ReportNumber(cc.cpu_ratio),
+        P(cc.cpu_test),
+        Arrow(ReportNumber(cc.base.time_to_target), ReportNumber(cc.next.time_to_target)));
   }
   md << "\n";
 }
@@ -390,7 +392,7 @@ std::string CompareMarkdown(const Comparison& c) {
   Unmatched(c, md);
   FindingsSection(c, /*worse=*/false, md);
   Methods(c, md);
-  Profiles(c, md);
+  WriteProfiles(c, md);
   Cases(c, md);
   HowToRead(c, md);
   return md.str();

@@ -1,14 +1,13 @@
 #include "bench/cli/initial_guess.h"
 
 #include <cmath>
-#include <filesystem>
 #include <stdexcept>
 #include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "bench/cli/io.h"
+#include "bench/cli/json_input.h"
 
 namespace ocpb {
 namespace {
@@ -19,14 +18,15 @@ using nlohmann::json;
   throw std::invalid_argument("--initial-guess " + path + ": " + why);
 }
 
-// A JSON array of finite numbers (null stands for NaN in our records: not a usable control).
-std::vector<double> Numbers(const json& a, const std::string& path, const std::string& what) {
-  if (!a.is_array()) Fail(path, what + " must be an array of numbers");
+// A JSON array of finite numbers (null stands for NaN in our records: not a usable control);
+// errors name the file, the line and the field (bench/cli/json_input.h).
+std::vector<double> Numbers(const JsonInputFile& in, const json& a, const std::string& what) {
+  if (!a.is_array()) in.Fail(a, what, "must be an array of numbers");
   std::vector<double> v;
   v.reserve(a.size());
   for (size_t i = 0; i < a.size(); ++i) {
     if (!a[i].is_number() || !std::isfinite(a[i].get<double>())) {
-      Fail(path, fmt::format("{}[{}] is not a finite number", what, i));
+      in.Fail(a[i], fmt::format("{}[{}]", what, i), "is not a finite number");
     }
     v.push_back(a[i].get<double>());
   }
@@ -36,14 +36,9 @@ std::vector<double> Numbers(const json& a, const std::string& path, const std::s
 }  // namespace
 
 ControlTrajectory ReadInitialGuess(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) Fail(path, "no such file");
-  json record;
-  try {
-    record = json::parse(ReadFile(path));
-  } catch (const json::parse_error& e) {
-    Fail(path, std::string("not valid JSON (") + e.what() + ")");
-  }
+  // Size and nesting limits; every error "--initial-guess FILE:LINE: FIELD: rule".
+  const JsonInputFile in(path, kMaxRecordBytes, "record", "--initial-guess " + OneLine(path));
+  const json& record = in.document();
   if (!record.is_object() || !record.contains("trajectory") || !record["trajectory"].is_object()) {
     Fail(path,
          "no \"trajectory\" object (expected an `ocpbench solve --json` record written without "
@@ -51,7 +46,7 @@ ControlTrajectory ReadInitialGuess(const std::string& path) {
   }
   const json& traj = record["trajectory"];
   if (!traj.contains("t") || !traj.contains("u")) Fail(path, "trajectory needs \"t\" and \"u\"");
-  const std::vector<double> t = Numbers(traj["t"], path, "trajectory.t");
+  const std::vector<double> t = Numbers(in, traj["t"], "trajectory.t");
   if (t.size() < 2) Fail(path, "trajectory.t needs at least 2 points");
   for (size_t k = 1; k < t.size(); ++k) {
     if (!(t[k] > t[k - 1])) Fail(path, "trajectory.t is not strictly increasing");
@@ -61,7 +56,7 @@ ControlTrajectory ReadInitialGuess(const std::string& path) {
   const int N = static_cast<int>(t.size()) - 1;
   Mat values(static_cast<int>(u.size()), N + 1);
   for (size_t i = 0; i < u.size(); ++i) {
-    const std::vector<double> row = Numbers(u[i], path, fmt::format("trajectory.u[{}]", i));
+    const std::vector<double> row = Numbers(in, u[i], fmt::format("trajectory.u[{}]", i));
     if (static_cast<int>(row.size()) != N) {
       Fail(path,
            fmt::format(
@@ -73,6 +68,9 @@ ControlTrajectory ReadInitialGuess(const std::string& path) {
   const TimeGrid grid = TimeGrid::FromPoints(t);
   // The record keeps one sample per interval: exact for piecewise-constant controls; for the
   // others (collocation polynomials) the linear interpolant of the samples is the closer guess.
+  if (traj.contains("u_rule") && !traj["u_rule"].is_string()) {
+    in.Fail(traj["u_rule"], "trajectory.u_rule", "must be a string");
+  }
   const std::string rule = traj.value("u_rule", std::string());
   if (rule.find("constant") != std::string::npos) {
     return ControlTrajectory::PiecewiseConstant(grid, values.leftCols(N));

@@ -13,6 +13,7 @@
 #include "bench/cli/app.h"
 #include "bench/cli/case_runner.h"
 #include "bench/cli/io.h"
+#include "bench/cli/output_place.h"
 #include "bench/cli/records_file.h"
 #include "bench/cli/run_outputs.h"
 #include "bench/cli/shard.h"
@@ -101,6 +102,9 @@ void PrintCoverage(const std::string& command, const ShardCoverage& coverage) {
 
 void Merge(const MergeArgs& args) {
   const Sweep sweep = ReadSweep("merge", args);
+  // The folder's exclusive lock before anything is written (no shard may still be running
+  // there); after the sweep is read, so that a refused merge leaves no lock file behind.
+  const OutputFolderLock lock = ClaimMergeFolder(args.dir);
   const std::vector<std::string> suite_keys = SuiteKeys(sweep.suite);
   std::unordered_map<std::string, size_t> position;
   for (size_t i = 0; i < suite_keys.size(); ++i) position.emplace(suite_keys[i], i);

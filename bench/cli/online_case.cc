@@ -1,6 +1,8 @@
 #include "bench/cli/online_case.h"
 
 #include <algorithm>
+#include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -8,6 +10,7 @@
 #include "bench/cli/case_runner.h"
 #include "bench/cli/json_values.h"
 #include "drivers/online/online_scenario.h"
+#include "problems/registry.h"
 
 namespace ocpb {
 namespace {
@@ -132,7 +135,33 @@ void FillOutcome(const OnlineResult& r, Record* rec) {
 
 }  // namespace
 
-void ValidateOnlineCase(const CaseSpec& spec) { Resolve(spec); }
+CaseEstimate ValidateOnlineCase(const CaseSpec& spec) {
+  const OnlineScenario s = Resolve(spec);
+  // The re-plans solve comm-path2d over the scenario's own channel: its dimensions (from the
+  // path-loss channel, which needs no measurements), for the transcription's own rules.
+  Parameters dims = s.params;
+  dims.Set("channel", {0.0});
+  const std::unique_ptr<Ocp> ocp = FindProblem(spec.problem).make_for_checks(dims, spec.seed);
+  CaseSpec planned = spec;
+  planned.transcription = s.replanning.transcription;
+  CheckTranscriptionFits(planned, ocp->nx(), ocp->nu());
+  CaseEstimate estimate;
+  const double n = s.replanning.intervals + 1.0;
+  // Every cycle's fields and plan {t, x}; the executed and offline {t, x, u}; the measurements
+  // and the two s maps (16 bytes a value, as EstimateRecordBytes counts).
+  const double step = s.problem.tf / s.replanning.intervals;
+  const double cycles = std::ceil(s.replanning.intervals /
+                                  std::max(1.0, std::round(s.replanning.update_period / step)));
+  estimate.record_bytes = 4096.0 + cycles * 2048.0;
+  if (spec.keep_trajectory) {
+    const double side = s.problem.workspace / s.smap_resolution + 1.0;
+    const double measurements =
+        s.replanning.initial_measurements + cycles * s.replanning.measurements_per_update;
+    estimate.record_bytes +=
+        16.0 * (cycles * 3.0 * n + 2.0 * 9.0 * n + 3.0 * measurements + 2.0 * side * side);
+  }
+  return estimate;
+}
 
 Record RunOnlineCase(const CaseSpec& spec) {
   const OnlineScenario s = Resolve(spec);

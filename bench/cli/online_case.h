@@ -2,6 +2,7 @@
 // (paper Section IV), judged on the true channel, next to the offline plan made at t0 = 0.
 #pragma once
 
+#include "bench/cli/case_runner.h"
 #include "bench/cli/case_spec.h"
 #include "bench/cli/record.h"
 
@@ -13,7 +14,9 @@ namespace ocpb {
 /// drivers/online/online_scenario.h: update_period, initial_measurements,
 /// measurements_per_update, placement, estimator, map_resolution, truth_resolution, workspace,
 /// refresh, region_margin, smap_resolution). No channel is simulated.
-void ValidateOnlineCase(const CaseSpec& spec);
+/// Returns the case's estimates (the scenario's own memory is checked by
+/// ResolveOnlineScenario; the record's size grows with N, the cycles and the maps).
+CaseEstimate ValidateOnlineCase(const CaseSpec& spec);
 
 /// Runs an online case (RunOnlineReplanning on realization spec.seed) and returns its record:
 /// the case's identity, the resolved settings (`online`), the re-plans' options

@@ -9,13 +9,14 @@
 #include "bench/cli/app.h"
 #include "bench/cli/case_runner.h"
 #include "bench/cli/io.h"
+#include "bench/cli/output_place.h"
 
 namespace ocpb {
 namespace {
 
-std::string Fmt(double v) { return fmt::format("{:.6g}", v); }
+std::string OnlineNumber(double v) { return fmt::format("{:.6g}", v); }
 
-void PrintReport(const Record& r) {
+void PrintOnlineReport(const Record& r) {
   std::cout << fmt::format("online {} / {}{}  seed {}: status {}\n",
                            r.problem,
                            r.solver,
@@ -47,18 +48,18 @@ void PrintReport(const Record& r) {
   }
   std::cout << fmt::format(
       "  online : energy on the true channel {}  (predicted {}), terminal violation {}\n",
-      Fmt(o.energy_true),
-      Fmt(o.energy_predicted),
-      Fmt(r.terminal_violation));
+      OnlineNumber(o.energy_true),
+      OnlineNumber(o.energy_predicted),
+      OnlineNumber(r.terminal_violation));
   std::cout << fmt::format(
       "  offline: energy on the true channel {}  (predicted {}), terminal violation {}\n",
-      Fmt(o.offline_energy_true),
-      Fmt(o.offline_energy_predicted),
-      Fmt(o.offline_terminal_violation));
+      OnlineNumber(o.offline_energy_true),
+      OnlineNumber(o.offline_energy_predicted),
+      OnlineNumber(o.offline_terminal_violation));
   std::cout << fmt::format("  online / offline true energy = {}   (transmission part: {} / {})\n",
-                           Fmt(o.energy_ratio),
-                           Fmt(o.transmit_energy_true),
-                           Fmt(o.offline_transmit_energy_true));
+                           OnlineNumber(o.energy_ratio),
+                           OnlineNumber(o.transmit_energy_true),
+                           OnlineNumber(o.offline_transmit_energy_true));
 }
 
 }  // namespace
@@ -66,6 +67,7 @@ void PrintReport(const Record& r) {
 void AddOnlineCommand(CLI::App& app) {
   auto spec = std::make_shared<CaseSpec>();
   auto json_path = std::make_shared<std::string>();
+  auto seed = std::make_shared<std::string>("1");
   auto options = std::make_shared<std::vector<std::string>>();
   auto replan = std::make_shared<std::vector<std::string>>();
   auto settings = std::make_shared<OptionMap>();
@@ -81,7 +83,7 @@ void AddOnlineCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--transcription", spec->transcription, "NLP solvers (default: euler)");
   CLI::Option* n_option = cmd->add_option("--N", spec->intervals, "intervals on [0, tf] (400)");
-  cmd->add_option("--seed", spec->seed, "channel realization and measurement draws")
+  cmd->add_option("--seed", *seed, "channel realization and measurement draws (0 to 2^64 - 1)")
       ->capture_default_str();
   cmd->add_option("--set", spec->set, "problem parameter, key=value (repeatable)");
   cmd->add_option("--option", *options, "solver option of every solve, key=value (repeatable)");
@@ -119,8 +121,12 @@ void AddOnlineCommand(CLI::App& app) {
     s.keep_trajectory = !*no_trajectory;
     s.options = ParseKeyValues(*options, "--option");
     s.replan_options = ParseKeyValues(*replan, "--replan-option");
+    s.seed = ParseSeed(*seed, "--seed");
+    // Every input and the output place are checked before anything is simulated or solved.
+    ValidateCase(ResolveCase(s));
+    if (!json_path->empty()) CheckOutputFile(*json_path, "--json");
     const Record record = RunCase(s);
-    PrintReport(record);
+    PrintOnlineReport(record);
     if (!json_path->empty()) WriteFileAtomically(*json_path, record.ToJson().dump(1) + "\n");
     if (IsFailure(record.status)) ReportSomeFailed();
   });

@@ -21,7 +21,10 @@ json NumbersJson(const std::vector<double>& v) {
 // Reads the known fields of one JSON object with their types; "FIELD: must be ..." otherwise.
 class Reader {
  public:
-  Reader(const json& j, std::string prefix) : j_(j), prefix_(std::move(prefix)) {}
+  /// `movable`: the same object as `j`, when its bulky parts may be moved out (each is read
+  /// once), so that reading a record copies no sub-document.
+  Reader(const json& j, std::string prefix, json* movable = nullptr)
+      : j_(j), prefix_(std::move(prefix)), movable_(movable) {}
 
   bool Has(const char* key) const { return j_.contains(key) && !j_[key].is_null(); }
   [[noreturn]] void Fail(const std::string& key, const char* rule) const {
@@ -39,11 +42,14 @@ class Reader {
   void Integer(const char* key, int* out) const {
     if (!Has(key)) return;
     const json& v = j_[key];
-    if (!v.is_number_integer() || v.get<long long>() < std::numeric_limits<int>::min() ||
-        v.get<long long>() > std::numeric_limits<int>::max()) {
-      Fail(key, "an integer");
-    }
-    *out = v.get<int>();
+    // An unsigned beyond INT64_MAX would read as a negative long long: compared as given.
+    const bool fits = v.is_number_unsigned()
+                          ? v.get<std::uint64_t>() <= std::numeric_limits<int>::max()
+                          : v.is_number_integer() &&
+                                v.get<long long>() >= std::numeric_limits<int>::min() &&
+                                v.get<long long>() <= std::numeric_limits<int>::max();
+    if (!fits) Fail(key, "an integer");
+    *out = static_cast<int>(v.get<long long>());
   }
   void Bool(const char* key, bool* out) const {
     if (!Has(key)) return;
@@ -59,10 +65,10 @@ class Reader {
   void Object(const char* key, json* out) const {
     if (!Has(key)) return;
     if (!j_[key].is_object()) Fail(key, "an object");
-    *out = j_[key];
+    Take(key, out);
   }
   void Any(const char* key, json* out) const {
-    if (j_.contains(key)) *out = j_[key];
+    if (j_.contains(key)) Take(key, out);
   }
   void TextMap(const char* key, std::map<std::string, std::string>* out) const {
     if (!Has(key)) return;
@@ -91,6 +97,14 @@ class Reader {
   }
   const json& j() const { return j_; }
   const std::string& prefix() const { return prefix_; }
+  /// The value at `key` (present), moved out when the document may be taken apart.
+  void Take(const char* key, json* out) const {
+    if (movable_ != nullptr) {
+      *out = std::move((*movable_)[key]);
+    } else {
+      *out = j_[key];
+    }
+  }
 
  private:
   double NumberAt(const json& v, const std::string& key) const {
@@ -100,6 +114,7 @@ class Reader {
   }
   const json& j_;
   std::string prefix_;
+  json* movable_;
 };
 
 json HistoryJson(const std::vector<IterationRecord>& history) {
@@ -168,7 +183,7 @@ OnlineOutcome OnlineFrom(const Reader& r) {
   r.TextMap("replan_options", &o.replan_options);
   if (r.Has("cycles")) {
     if (!r.j()["cycles"].is_array()) r.Fail("cycles", "an array");
-    o.cycles = r.j()["cycles"];
+    r.Take("cycles", &o.cycles);
   }
   r.Number("energy_true", &o.energy_true);
   r.Number("energy_predicted", &o.energy_predicted);
@@ -276,9 +291,13 @@ json Record::ToJson() const {
   return r;
 }
 
-Record Record::FromJson(const json& j) {
+Record Record::FromJson(const json& j) { return Read(j, nullptr); }
+
+Record Record::FromJson(json&& j) { return Read(j, &j); }
+
+Record Record::Read(const json& j, json* movable) {
   if (!j.is_object()) throw std::invalid_argument("a record must be a JSON object");
-  const Reader r(j, "");
+  const Reader r(j, "", movable);
   Record rec;
   rec.schema_version = 1;  // records before the typed record carry none
   r.Integer("schema_version", &rec.schema_version);

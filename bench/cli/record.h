@@ -135,6 +135,12 @@ struct Record {
   /// wrong type throws std::invalid_argument "FIELD: must be ..." (the caller adds file and
   /// line). Keys it does not know are ignored (derived fields of derived.jsonl).
   static Record FromJson(const nlohmann::json& j);
+  /// The same, moving the bulky parts (s_map, the online cycles and paths, the effective
+  /// options) out of `j` instead of copying them.
+  static Record FromJson(nlohmann::json&& j);
+
+ private:
+  static Record Read(const nlohmann::json& j, nlohmann::json* movable);
 };
 
 /// The versions of this build (OCPBench, commit, compiler, Ipopt, NLopt).

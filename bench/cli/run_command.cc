@@ -12,6 +12,7 @@
 #include "bench/cli/app.h"
 #include "bench/cli/case_runner.h"
 #include "bench/cli/io.h"
+#include "bench/cli/output_place.h"
 #include "bench/cli/progress.h"
 #include "bench/cli/records_file.h"
 #include "bench/cli/run_outputs.h"
@@ -98,6 +99,9 @@ void Run(const RunArgs& args) {
   }
   const std::string records_path =
       dir + "/" + (shard ? shard->RecordsFileName() : std::string("records.jsonl"));
+  // Before any work: the folder and its files are usable, and this run is their only writer.
+  const OutputFolderLock lock =
+      ClaimRunFolder(dir, records_path, shard ? shard->index : 0, shard ? shard->count : 1);
 
   std::set<std::string> done;
   std::vector<Record> records;
@@ -121,7 +125,12 @@ void Run(const RunArgs& args) {
     std::cerr << "ocpbench: dropped a partial last record in " << records_path
               << " (its case runs again)\n";
   }
-  if (previous.dropped_partial || previous.unterminated) {
+  const int duplicates = previous.DropDuplicateKeys();
+  if (duplicates > 0) {
+    std::cerr << "ocpbench: dropped " << duplicates << " duplicate records in " << records_path
+              << " (a case recorded again; the first record of each case stays)\n";
+  }
+  if (previous.dropped_partial || previous.unterminated || duplicates > 0) {
     WriteFileAtomically(records_path, JoinLines(previous.lines));
   }
   records = std::move(previous.records);

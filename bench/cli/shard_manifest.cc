@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "bench/cli/io.h"
+#include "bench/cli/json_input.h"
 
 namespace ocpb {
 
@@ -16,12 +17,9 @@ std::string ShardManifestPath(const std::string& dir) { return dir + "/shards.js
 std::optional<ShardManifest> ReadShardManifest(const std::string& dir) {
   const std::string path = ShardManifestPath(dir);
   if (!std::filesystem::exists(path)) return std::nullopt;
-  json j;
-  try {
-    j = json::parse(ReadFile(path));
-  } catch (const json::exception& e) {
-    throw std::invalid_argument(path + ": not valid JSON (" + std::string(e.what()) + ")");
-  }
+  // Size and nesting limits, errors "PATH:LINE: ..." (bench/cli/json_input.h); the manifest
+  // holds the suite document.
+  const json j = LoadJsonFile(path, 2 * kMaxSuiteFileBytes, "shard manifest");
   auto field = [&](const char* name, bool (json::*is)() const noexcept) -> const json& {
     if (!j.is_object() || !j.contains(name) || !(j[name].*is)()) {
       throw std::invalid_argument(fmt::format("{}: {}: missing or of the wrong type", path, name));

@@ -10,6 +10,7 @@
 #include "bench/cli/app.h"
 #include "bench/cli/case_runner.h"
 #include "bench/cli/io.h"
+#include "bench/cli/output_place.h"
 
 namespace ocpb {
 namespace {
@@ -20,6 +21,7 @@ struct SolveArgs {
   std::string integrator = "euler";
   std::string evaluate_with = "euler";
   std::vector<std::string> options;
+  std::string seed = "1";
   std::string json_path;
   bool no_trajectory = false;
 };
@@ -78,7 +80,8 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_option(
       "--set", args->spec.set, "problem parameter, key=value or key=v1,v2 (repeatable)");
   cmd->add_option("--option", args->options, "solver option, key=value (repeatable)");
-  cmd->add_option("--seed", args->spec.seed, "channel realization")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "channel realization (0 to 2^64 - 1)")
+      ->capture_default_str();
   cmd->add_option("--repeats", args->spec.repeats, "timing repeats (median CPU reported)")
       ->capture_default_str();
   cmd->add_option("--json", args->json_path, "write the JSON record to this file");
@@ -97,10 +100,14 @@ void AddSolveCommand(CLI::App& app) {
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("--") + e.what());
     }
-    spec.integrator = ParseIntegrator(args->integrator);
-    spec.evaluate_with = ParseIntegrator(args->evaluate_with);
+    spec.integrator = ParseFlagIntegrator("--integrator", args->integrator);
+    spec.evaluate_with = ParseFlagIntegrator("--evaluate-with", args->evaluate_with);
+    spec.seed = ParseSeed(args->seed, "--seed");
     spec.keep_trajectory = !args->no_trajectory;
     spec.options = ParseKeyValues(args->options, "--option");
+    // Every input and the output place are checked before anything is solved.
+    ValidateCase(ResolveCase(spec));
+    if (!args->json_path.empty()) CheckOutputFile(args->json_path, "--json");
     const Record record = RunCase(spec);
     PrintReport(record);
     if (!args->json_path.empty()) {

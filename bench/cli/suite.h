@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/cli/case_runner.h"
+#include "bench/cli/json_input.h"
 
 namespace ocpb {
 
@@ -30,8 +31,21 @@ struct Suite {
   nlohmann::json document;
 };
 
-/// Parses and validates; throws std::invalid_argument "SUITE: field: rule" on any error.
-Suite ParseSuite(const nlohmann::json& j, const std::string& source);
+/// The most cases one suite file may expand to (seeds x N x methods over its groups), counted
+/// before any case is built; `ocpbench run` also refuses a suite whose records, held for its
+/// summary, would not fit in memory (EstimateRecordBytes).
+inline constexpr long kMaxSuiteCases = 1000000;
+
+/// Parses and validates; throws std::invalid_argument "SUITE: field: rule" on any error. The
+/// cases read their fields in place (CaseFields): nothing of the document is copied. A null
+/// value is refused wherever it stands (a key is omitted to take its default).
+/// With `lines` (the document's JsonLines), each error names the line of the value it is
+/// about: "SUITE:LINE: groups[0].methods[1].seed: rule".
+Suite ParseSuite(const nlohmann::json& j,
+                 const std::string& source,
+                 const JsonLines* lines = nullptr);
+/// Reads (at most kMaxSuiteFileBytes, nesting at most kMaxJsonDepth: bench/cli/json_input.h),
+/// parses and validates a suite file; every error is an std::invalid_argument naming the file.
 Suite LoadSuite(const std::string& path);
 
 }  // namespace ocpb

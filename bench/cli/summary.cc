@@ -24,7 +24,7 @@ constexpr double kFeasibleHistory = 1e-6;  // primal_inf of a history entry that
 // A method's row label. The integrator names a row only where it is not the default Euler: for
 // every method that uses one (the descent, single shooting), which the solver options cannot
 // tell apart otherwise.
-std::string MethodLabel(const Record& r) {
+std::string RowMethodLabel(const Record& r) {
   std::string label = r.solver;
   if (!r.transcription.empty()) label += " + " + r.transcription;
   if (!r.algorithm.empty()) label += " (" + r.algorithm + ")";
@@ -69,7 +69,7 @@ Labels LabelRecords(const std::vector<Record>& records) {
   std::map<std::string, std::map<std::string, std::set<std::string>>> values;
   std::map<std::string, std::set<std::string>> options_of;
   for (const Record& r : records) {
-    options_of[MethodLabel(r)].insert(OptionsText(r));
+    options_of[RowMethodLabel(r)].insert(OptionsText(r));
     for (const auto& [key, value] : r.parameters)
       values[r.problem][key].insert(ParameterText(value));
   }
@@ -88,7 +88,7 @@ Labels LabelRecords(const std::vector<Record>& records) {
       setting += (setting.empty() ? "" : ", ") + key + " = " + v;
     }
     labels.section.push_back(setting.empty() ? r.problem : r.problem + " (" + setting + ")");
-    std::string row = MethodLabel(r);
+    std::string row = RowMethodLabel(r);
     if (options_of[row].size() > 1) {
       const std::string o = OptionsText(r);
       row += o.empty() ? ", default options" : ", " + o;
@@ -107,7 +107,7 @@ bool WithinTarget(double value, double best) {
   return std::isfinite(value) && std::abs(value - best) <= kTargetTolerance * std::abs(best);
 }
 
-std::string G(double v) {
+std::string SummaryNumber(double v) {
   if (std::isnan(v)) return "-";
   if (std::isinf(v)) return "inf";
   return fmt::format("{:.6g}", v);
@@ -122,13 +122,13 @@ std::string Spread(const std::vector<double>& v) {
   double mean = 0.0;
   for (double x : f) mean += x;
   mean /= f.size();
-  if (f.size() == 1) return G(mean);
+  if (f.size() == 1) return SummaryNumber(mean);
   const auto [lo, hi] = std::minmax_element(f.begin(), f.end());
-  return fmt::format("{} [{}, {}]", G(mean), G(*lo), G(*hi));
+  return fmt::format("{} [{}, {}]", SummaryNumber(mean), SummaryNumber(*lo), SummaryNumber(*hi));
 }
 
 // The worst case of a row (NaN where no case has a value, e.g. not applicable).
-double Worst(const std::vector<double>& v) {
+double WorstOf(const std::vector<double>& v) {
   double w = kNaN;
   for (double x : v) {
     if (!std::isnan(x)) w = std::isnan(w) ? x : std::max(w, x);
@@ -145,7 +145,7 @@ bool IsContinuous(const RecordReference& ref) { return ref.scheme == "continuous
 std::string ReferenceNote(const RecordReference& ref) {
   const std::string head = fmt::format("Reference {} = {} ({}).",
                                        ref.quantity,
-                                       G(ref.value),
+                                       SummaryNumber(ref.value),
                                        ref.source.empty() ? "no source given" : ref.source);
   if (IsContinuous(ref)) {
     return head +
@@ -340,14 +340,14 @@ std::string SummaryMarkdown(const std::string& suite_name,
           Spread(Jbar),
           Spread(Jf),
           Spread(Jbarf),
-          G(Worst(tv)),
-          G(Worst(tvf)),
-          G(Worst(cv)),
-          G(Worst(pv)),
-          G(Worst(defect)),
-          G(Median(it)),
-          G(Median(cpu)),
-          G(Median(ttt)),
+          SummaryNumber(WorstOf(tv)),
+          SummaryNumber(WorstOf(tvf)),
+          SummaryNumber(WorstOf(cv)),
+          SummaryNumber(WorstOf(pv)),
+          SummaryNumber(WorstOf(defect)),
+          SummaryNumber(Median(it)),
+          SummaryNumber(Median(cpu)),
+          SummaryNumber(Median(ttt)),
           reached,
           rs.size());
       if (free_time) md << " " << Spread(T) << " |";

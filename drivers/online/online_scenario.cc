@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "core/option_binding.h"
+#include "problems/channel/channel_memory.h"
+#include "problems/channel/measurement_sampling.h"
 #include "problems/registry.h"
 #include "solvers/registry.h"
 
@@ -163,13 +165,20 @@ void CheckSchedule(const OnlineScenario& s) {
            " s is not a positive multiple of the step tf/N = " + Num(h) + " s");
   }
   const GridSpec& g = s.channel.simulation.grid;
-  const double cells = static_cast<double>(g.num_points());
+  // The cells a measurement may be drawn from (beyond the distance floor of the base station).
+  const double cells = static_cast<double>(EligibleMeasurementPoints(g, s.channel.truth));
   const double updates = std::ceil(r.intervals / std::round(steps)) - 1;
   const double needed = r.initial_measurements + updates * r.measurements_per_update;
   if (2 * needed > cells) {
     Refuse("online: " + Num(needed) + " measurements in all need at least " + Num(2 * needed) +
-           " truth cells (have " + Num(cells) + ")");
+           " truth cells beyond the base station's distance floor (have " + Num(cells) + ")");
   }
+  // The simulated truth and the re-predicted map, and the GP of every measurement so far.
+  const double map_side = s.problem.workspace / s.channel.map_resolution + 1.0;
+  CheckChannelMemory(needed,
+                     "online.initial_measurements, online.measurements_per_update",
+                     static_cast<double>(g.num_points()) + map_side * map_side,
+                     "online.truth_resolution");
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -389,9 +390,23 @@ void RunJobs(int count, int threads, const std::function<void(int)>& job) {
     }
   };
   std::vector<std::thread> pool;
-  for (int t = 1; t < std::min(threads, count); ++t) pool.emplace_back(run);
-  run();
+  std::string start_error;
+  for (int t = 1; t < std::min(threads, count); ++t) {
+    try {
+      pool.emplace_back(run);
+    } catch (const std::system_error& e) {
+      // The system refused a thread (a process or memory limit). Never std::terminate (a
+      // joinable std::thread destroyed): stop the started ones at their next job, join them,
+      // and report the failure; nothing is retried behind the caller's back.
+      start_error = "grid prediction: could not start thread " + std::to_string(t + 1) + " of " +
+                    std::to_string(std::min(threads, count)) + " (" + e.what() + ")";
+      next = count;
+      break;
+    }
+  }
+  if (start_error.empty()) run();
   for (std::thread& t : pool) t.join();
+  if (!start_error.empty()) throw std::runtime_error(start_error);
   if (failure) std::rethrow_exception(failure);
 }
 

@@ -71,7 +71,8 @@ struct GridPrediction {
 ///
 /// Cost on the paper's setting (500 x 500, m = 500), kLocal: see problems/channel/README.md
 /// (a few tenths of a second on this 2-core machine). Throws std::invalid_argument on invalid
-/// options or grid, std::runtime_error if a local Phi is not positive definite.
+/// options or grid, std::runtime_error if a local Phi is not positive definite or the system
+/// cannot start one of the threads (never std::terminate).
 GridPrediction PredictOnGrid(const GpChannelPredictor& predictor,
                              const GridSpec& grid,
                              const GridPredictionOptions& options = {});

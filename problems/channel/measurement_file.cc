@@ -2,9 +2,10 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
+
+#include "core/input_file.h"
 
 namespace ocpb {
 namespace {
@@ -42,38 +43,41 @@ MeasurementSet ParseMeasurementsCsv(std::string_view text, const std::string& so
     ++line_no;
     const std::string_view line = Trim(raw);
     if (line.empty() || line.front() == '#') continue;
-    const std::string where = source + ":" + std::to_string(line_no) + ": ";
+    const int at = static_cast<int>(line_no);
     if (!header_seen) {
       if (line != "x_m,y_m,gain_db") {
-        throw std::invalid_argument(where + "expected the header 'x_m,y_m,gain_db'");
+        throw InputError(source, at, "header", "expected 'x_m,y_m,gain_db'");
       }
       header_seen = true;
       continue;
     }
+    static const char* const kColumns[3] = {"x_m", "y_m", "gain_db"};
     double v[3];
     std::string_view rest = line;
     for (int i = 0; i < 3; ++i) {
       const size_t comma = rest.find(',');
       if ((i < 2) != (comma != std::string_view::npos)) {
-        throw std::invalid_argument(where + "expected 3 comma-separated numbers x_m,y_m,gain_db");
+        throw InputError(source, at, "", "expected 3 comma-separated numbers x_m,y_m,gain_db");
       }
       const std::string_view field = rest.substr(0, comma);
       if (!ParseNumber(field, &v[i])) {
-        throw std::invalid_argument(where + "'" + std::string(Trim(field)) +
-                                    "' is not a finite number");
+        throw InputError(source,
+                         at,
+                         kColumns[i],
+                         "'" + OneLine(Trim(field).substr(0, 64)) + "' is not a finite number");
       }
       rest.remove_prefix(comma == std::string_view::npos ? rest.size() : comma + 1);
     }
     if (set.positions.size() >= kMaxRows) {
-      throw std::invalid_argument(where + "more than 1000000 measurements");
+      throw InputError(source, at, "", "more than 1000000 measurements");
     }
     set.positions.emplace_back(v[0], v[1]);
     set.values_db.push_back(v[2]);
   }
-  if (!header_seen) throw std::invalid_argument(source + ": empty measurement file (no header)");
+  if (!header_seen) throw InputError(source, 0, "", "empty measurement file (no header)");
   if (set.positions.size() < 3) {
-    throw std::invalid_argument(source + ": need at least 3 measurements, got " +
-                                std::to_string(set.positions.size()));
+    throw InputError(
+        source, 0, "", "need at least 3 measurements, got " + std::to_string(set.positions.size()));
   }
   return set;
 }
@@ -94,11 +98,8 @@ void CheckMeasurementsInside(const MeasurementSet& set,
 }
 
 MeasurementSet LoadMeasurementsCsv(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument("cannot read " + path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ParseMeasurementsCsv(ss.str(), path);
+  return ParseMeasurementsCsv(ReadInputFile(path, kMaxMeasurementFileBytes, "measurement file"),
+                              OneLine(path));
 }
 
 }  // namespace ocpb

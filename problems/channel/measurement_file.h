@@ -1,6 +1,7 @@
 // Channel measurements from a CSV file (`ocpbench channel predict --measurements FILE`).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,9 +24,13 @@ struct MeasurementSet {
 ///   ...
 ///
 /// Every row has three finite numbers; at least 3 and at most 1,000,000 rows. Throws
-/// std::invalid_argument "SOURCE:LINE: rule" on the first violation. Coincident positions are
-/// accepted here; the predictor documents how it treats them.
+/// InputError (an std::invalid_argument) "SOURCE:LINE: COLUMN: rule" on the first violation.
+/// Coincident positions are accepted here; the predictor documents how it treats them.
 MeasurementSet ParseMeasurementsCsv(std::string_view text, const std::string& source);
+
+/// The largest measurement file LoadMeasurementsCsv reads: 64 MiB (a million rows of three
+/// numbers, with room for comments), refused by its size before reading.
+inline constexpr std::size_t kMaxMeasurementFileBytes = std::size_t{64} << 20;
 
 /// Throws std::invalid_argument "SOURCE: measurement K at (x, y) lies outside the workspace
 /// [x_lo, x_hi] x [y_lo, y_hi]" for the first position outside the rectangle (edges included);
@@ -35,7 +40,8 @@ void CheckMeasurementsInside(const MeasurementSet& set,
                              const Eigen::Vector2d& hi,
                              const std::string& source);
 
-/// Reads and parses a file; throws std::invalid_argument when it cannot be read.
+/// Reads (ReadInputFile: at most kMaxMeasurementFileBytes, so an endless input such as
+/// /dev/zero is refused) and parses a file; throws InputError when it cannot be read.
 MeasurementSet LoadMeasurementsCsv(const std::string& path);
 
 }  // namespace ocpb

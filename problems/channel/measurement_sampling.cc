@@ -10,18 +10,27 @@
 namespace ocpb {
 namespace {
 
+bool Eligible(const GridSpec& g, const ChannelParameters& p, int i, int j) {
+  return (g.Point(i, j) - p.base_station).norm() >= p.distance_floor;
+}
+
 bool Eligible(const SimulatedChannel& c, int i, int j) {
-  return (c.grid.Point(i, j) - c.parameters.base_station).norm() >= c.parameters.distance_floor;
+  return Eligible(c.grid, c.parameters, i, j);
 }
 
 }  // namespace
 
-MeasurementSet DrawRandomMeasurements(const SimulatedChannel& channel, int m, std::uint64_t seed) {
-  const GridSpec& g = channel.grid;
+long EligibleMeasurementPoints(const GridSpec& g, const ChannelParameters& parameters) {
   long eligible = 0;
   for (int j = 0; j < g.ny; ++j) {
-    for (int i = 0; i < g.nx; ++i) eligible += Eligible(channel, i, j) ? 1 : 0;
+    for (int i = 0; i < g.nx; ++i) eligible += Eligible(g, parameters, i, j) ? 1 : 0;
   }
+  return eligible;
+}
+
+MeasurementSet DrawRandomMeasurements(const SimulatedChannel& channel, int m, std::uint64_t seed) {
+  const GridSpec& g = channel.grid;
+  const long eligible = EligibleMeasurementPoints(g, channel.parameters);
   if (m < 1 || 2L * m > eligible) {
     throw std::invalid_argument("samples must be between 1 and " + std::to_string(eligible / 2) +
                                 " (half the grid points), got " + std::to_string(m));

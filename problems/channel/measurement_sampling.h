@@ -19,6 +19,11 @@ namespace ocpb {
 /// points.
 MeasurementSet DrawRandomMeasurements(const SimulatedChannel& channel, int m, std::uint64_t seed);
 
+/// The grid points DrawRandomMeasurements draws from (those at least the distance floor away
+/// from the base station), counted without simulating a channel: validation checks a sample
+/// count with it (2 m of them are needed).
+long EligibleMeasurementPoints(const GridSpec& grid, const ChannelParameters& parameters);
+
 /// Measurements along a path (the one way to measure along a path: the online placements use
 /// it too). `samples` = 0: every path point; `samples` > 0: the points at `samples` indices
 /// spaced evenly over the path, first to last (index round(s (n - 1) / (samples - 1)); the last

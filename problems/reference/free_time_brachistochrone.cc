@@ -14,6 +14,7 @@ std::vector<ParameterSpec> FreeTimeBrachistochrone::ParameterSpecs() {
 FreeTimeBrachistochrone::FreeTimeBrachistochrone(const Parameters& params) {
   SetDimensions(3, 2, 2, 0);
   SetHorizon(0.0, params.Scalar("tf"));
+  CheckFreeFinalTimeParameters(params);
   SetFreeFinalTime(params.Scalar("tf_min"), params.Scalar("tf_max"));
   SetInitialState(Vec::Zero(3));
   SetTerminalWeights(Vec::Constant(2, params.Scalar("C")));

@@ -13,6 +13,7 @@ std::vector<ParameterSpec> FreeTimeDoubleIntegrator::ParameterSpecs() {
 FreeTimeDoubleIntegrator::FreeTimeDoubleIntegrator(const Parameters& params) {
   SetDimensions(2, 1, 2, 0);
   SetHorizon(0.0, params.Scalar("tf"));
+  CheckFreeFinalTimeParameters(params);
   SetFreeFinalTime(params.Scalar("tf_min"), params.Scalar("tf_max"));
   SetInitialState(Eigen::Vector2d(-1.0, 0.0));
   SetTerminalWeights(Vec::Constant(2, params.Scalar("C")));

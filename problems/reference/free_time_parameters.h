@@ -1,6 +1,9 @@
 // The parameters every problem with an explicitly free final time shares (free_time_*.h).
 #pragma once
 
+#include <sstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/parameters.h"
@@ -22,6 +25,28 @@ inline std::vector<ParameterSpec> FreeFinalTimeParameterSpecs(double tf_max) {
       {"tf_min", {0.1}, "lower bound of the free final time", 0.0, 1e6, true},
       {"tf_max", {tf_max}, "upper bound of the free final time", 0.0, 1e6, true},
   };
+}
+
+/// The free final time's bounds as the problem's parameters name them: throws
+/// std::invalid_argument "tf_min: 3 must be <= tf = 1 (a free final time needs 0 < tf_min <= tf
+/// <= tf_max)" (or the same of tf_max) before Ocp::SetFreeFinalTime sees them, so that the
+/// message names the field.
+inline void CheckFreeFinalTimeParameters(const Parameters& params) {
+  const double tf = params.Scalar("tf");
+  const double lower = params.Scalar("tf_min");
+  const double upper = params.Scalar("tf_max");
+  const std::string rule = " (a free final time needs 0 < tf_min <= tf <= tf_max)";
+  auto text = [](double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+  };
+  if (!(lower <= tf)) {
+    throw std::invalid_argument("tf_min: " + text(lower) + " must be <= tf = " + text(tf) + rule);
+  }
+  if (!(tf <= upper)) {
+    throw std::invalid_argument("tf_max: " + text(upper) + " must be >= tf = " + text(tf) + rule);
+  }
 }
 
 }  // namespace ocpb

@@ -129,7 +129,7 @@ TEST(ChannelCli, BadInputsExitTwoWithOneLine) {
   testing::WriteText(few, "x_m,y_m,gain_db\n1,1,-70\n2,2,-72\n");
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {Small({"--samples", "2"}), "--samples must be >= 3"},
-      {Small({"--samples", "5000"}), "samples must be between"},
+      {Small({"--samples", "5000"}), "--samples: 5000 measurements need 10000 grid points"},
       // Coincident positions reach the predictor with the true parameters (--oracle) or with
       // maximum likelihood; the binned fit already fails on 4 measurements (too few pairs).
       {Small({"--measurements", coincident, "--oracle"}), "coincides with"},

@@ -78,7 +78,8 @@ const BadInput kBadInputs[] = {
     {"zero repeats",
      {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--repeats", "0"}, nullptr,
      "repeats: must be in 1..1000"},
-    {"missing suite file", {"run", "/nonexistent/suite.json"}, nullptr, "cannot read /nonexistent/suite.json"},
+    {"missing suite file", {"run", "/nonexistent/suite.json"}, nullptr,
+     "/nonexistent/suite.json: cannot read this suite file: No such file or directory"},
     {"suite is not JSON", {"run", "@SUITE"}, "{ not json", "not valid JSON"},
     {"suite is a list", {"run", "@SUITE"}, "[1, 2]", "a suite must be a JSON object"},
     {"suite without name", {"run", "@SUITE"}, R"({"groups": [{"methods": [{}]}]})", "name: required"},
@@ -103,7 +104,8 @@ const BadInput kBadInputs[] = {
      R"({"name": "s", "groups": [{)" CASE_OK R"(, "seeds": ["one"], "methods": [{}]}]})",
      "seed: must be an integer"},
     {"negative seed", {"run", "@SUITE"},
-     R"({"name": "s", "groups": [{)" CASE_OK R"(, "seeds": [-1], "methods": [{}]}]})", "seed: -1 out of range"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "seeds": [-1], "methods": [{}]}]})",
+     "seed: must be an integer from 0 to 18446744073709551615 (got -1)"},
     {"zero N in a suite", {"run", "@SUITE"},
      R"({"name": "s", "groups": [{)" CASE_OK R"(, "N": [0], "methods": [{}]}]})", "N: 0 out of range"},
     {"fractional N", {"run", "@SUITE"},
@@ -218,7 +220,7 @@ const BadInput kBadInputs[] = {
     // Suites: everything is validated before anything runs.
     {"infinite number in a suite", {"run", "@SUITE"},
      R"({"name": "s", "groups": [{)" CASE_OK R"(, "set": {"C": 1e999}, "methods": [{}]}]})",
-     "not valid JSON ([json.exception.out_of_range.406] number overflow parsing '1e999')"},
+     "suite.json:1: not valid JSON at column 97: number overflow parsing '1e999'"},
     {"infinite N in a suite", {"run", "@SUITE"},
      R"({"name": "s", "groups": [{)" CASE_OK R"(, "N": 1e999, "methods": [{}]}]})",
      "number overflow parsing '1e999'"},
@@ -251,6 +253,114 @@ const BadInput kBadInputs[] = {
     {"N beyond memory in a suite", {"run", "@SUITE"},
      R"({"name": "s", "groups": [{)" CASE_OK R"(, "N": 900000000, "methods": [{}]}]})",
      "groups[0].methods[0]: N: 900000000 intervals need about"},
+    // Seeds: 0 to 2^64 - 1, never wrapped or saturated, printed as given.
+    {"negative --seed", {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--seed", "-1"},
+     nullptr, "--seed: must be an integer from 0 to 18446744073709551615 (got '-1')"},
+    {"--seed beyond 64 bits",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--seed", "18446744073709551616"},
+     nullptr, "--seed: must be an integer from 0 to 18446744073709551615 (got '18446744073709551616')"},
+    {"--seed in scientific notation",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--seed", "1e3"}, nullptr,
+     "--seed: must be an integer from 0 to 18446744073709551615 (got '1e3')"},
+    {"negative --seed of online", {"online", "--problem", "comm-path2d", "--solver", "hamiltonian", "--seed", "-1"},
+     nullptr, "--seed: must be an integer from 0 to 18446744073709551615 (got '-1')"},
+    {"negative --seed of channel", {"channel", "simulate", "--seed", "-2"}, nullptr,
+     "--seed: must be an integer from 0 to 18446744073709551615 (got '-2')"},
+    {"suite seed beyond 64 bits", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "seeds": [18446744073709551616], "methods": [{}]}]})",
+     "seed: must be an integer from 0 to 18446744073709551615 (got 1.8446744073709552e+19)"},
+    {"suite seed 2^63 is not wrapped", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "N": 9223372036854775808, "methods": [{}]}]})",
+     "N: 9223372036854775808 out of range [1, 2147483647]"},
+    // Nulls are no values: omitting a key takes its default.
+    {"null seeds at group level", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "seeds": null, "methods": [{}]}]})",
+     "groups[0].seeds: null is not a value (omit the key for the default)"},
+    {"null N at group level", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "N": null, "methods": [{}]}]})",
+     "groups[0].N: null is not a value"},
+    {"null in a seed list", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "seeds": [1, null], "methods": [{}]}]})",
+     "groups[0].seeds[1]: null is not a value"},
+    {"null terminal at group level", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "terminal": null, "methods": [{}]}]})",
+     "groups[0].methods[0].terminal: null is not a value"},
+    // Messages name the field, and quote the input on one line.
+    {"unknown --evaluate-with",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--evaluate-with", "rk45"},
+     nullptr, "--evaluate-with: unknown integrator 'rk45' (valid: euler, rk4)"},
+    {"free-time lower bound above tf",
+     {"solve", "--problem", "double-integrator-free-time", "--solver", "ipopt", "--transcription", "euler",
+      "--set", "tf_min=3"}, nullptr, "tf_min: 3 must be <= tf = 1 (a free final time needs 0 < tf_min"},
+    {"free-time upper bound below tf",
+     {"solve", "--problem", "double-integrator-free-time", "--solver", "ipopt", "--transcription", "euler",
+      "--set", "tf=2", "--set", "tf_max=1.5"}, nullptr, "tf_max: 1.5 must be >= tf = 2"},
+    {"newline in an unknown problem name",
+     {"solve", "--problem", "double\nintegrator", "--solver", "hamiltonian"}, nullptr,
+     "unknown problem 'double\\nintegrator'"},
+    {"newline in a suite key", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "methods": [{"a\nb": 1}]}]})", "unknown key 'a\\nb'"},
+    // Hostile documents: nesting, sizes, lines.
+    {"deeply nested suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]})",
+     "suite.json:1: nesting deeper than 64 levels at column 88"},
+    {"suite error on its line", {"run", "@SUITE"},
+     "{\"name\": \"s\",\n \"groups\": [{\"problem\": \"double-integrator\",\n  \"seeds\": [1,\n   \"two\"],\n  \"methods\": [{\"solver\": \"hamiltonian\"}]}]}",
+     "suite.json:4: groups[0].methods[0].seed: must be an integer from 0"},
+    {"suite of too many cases", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "seeds": [1, 2, 3], "N": [1, 2, 3], "methods": [)"
+     R"({}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}]},)"
+     R"({"problem": "lqr", "solver": "hamiltonian", "seeds": [)"
+     "0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,"
+     "0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9"
+     R"(], "N": [)"
+     "0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,"
+     "0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9,0,1,2,3,4,5,6,7,8,9"
+     R"(], "methods": [{}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, )"
+     R"({}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, )"
+     R"({}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, )"
+     R"({}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, )"
+     R"({}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}]}]})",
+     "groups: 1160180 cases (seeds x N x methods over the groups); a suite may hold at most 1000000"},
+    {"suite read from an endless device", {"run", "/dev/zero"}, nullptr,
+     "/dev/zero: more input than allowed (reading stopped there); a suite file may hold at most 16 MiB"},
+    // What would fail only at run time is found before running.
+    {"scale of the wrong size in a suite", {"run", "@SUITE"},
+     R"({"name": "s", "groups": [{"problem": "double-integrator", "methods": [{"solver": "ipopt",
+          "transcription": "euler", "options": {"state_scale": [1, 2, 3]}}]}]})",
+     "options: euler scaling: state scales (state_scale) must be empty or of size nx = 2 (got 3)"},
+    {"more samples than the channel grid has",
+     {"solve", "--problem", "comm-path2d", "--solver", "hamiltonian", "--set", "grid_step=2.5"}, nullptr,
+     "samples: 500 measurements need 1000 grid points beyond the distance floor"},
+    {"samples beyond memory",
+     {"solve", "--problem", "comm-path2d", "--solver", "hamiltonian", "--set", "samples=100000"}, nullptr,
+     "samples: 100000 measurements (the GP prediction's covariance and its factor, and the channel grid) need "
+     "about 320 GB by OCPBench's estimate, beyond this machine's memory budget"},
+    {"channel samples beyond memory", {"channel", "predict", "--samples", "100000"}, nullptr,
+     "--samples: 100000 measurements (the GP prediction's covariance and its factor, and the channel grid) need"},
+    {"online measurements beyond memory",
+     {"online", "--problem", "comm-path2d", "--solver", "hamiltonian", "--workspace", "200",
+      "--truth-resolution", "0.1", "--initial-measurements", "1000000"}, nullptr,
+     "online.initial_measurements, online.measurements_per_update: 1000300 measurements (the GP"},
+    // Output places, checked before anything runs.
+    {"--json is a directory",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--json", "."}, nullptr,
+     "--json .: is a directory, not a file"},
+    {"--json under a file",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--json", "@SUITE"},
+     "placeholder: replaced below by a path under this file", "is a file, not a folder"},
+    {"--json name too long",
+     {"solve", "--problem", "double-integrator", "--solver", "hamiltonian", "--json",
+      "aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa"
+      "aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa"
+      "aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa.json"},
+     nullptr, "is longer than the 255 characters the file system allows"},
+    {"--out is a file", {"run", "@SUITE", "--out", "@SUITE"},
+     R"({"name": "s", "groups": [{)" CASE_OK R"(, "methods": [{}]}]})", "is a file, not a folder"},
+    {"online --json is a directory",
+     {"online", "--problem", "comm-path2d", "--solver", "hamiltonian", "--json", "."}, nullptr,
+     "--json .: is a directory, not a file"},
+    {"channel --out is a file", {"channel", "simulate", "--out", "@SUITE"}, "not a folder", "is a file, not a folder"},
 };
 // clang-format on
 
@@ -262,8 +372,10 @@ TEST_P(CliBadInput, ExitsWithCode2AndOneClearLine) {
   std::vector<std::string> args = bad.args;
   if (bad.suite) {
     testing::WriteText(dir + "/suite.json", bad.suite);
-    for (std::string& a : args) {
-      if (a == "@SUITE") a = dir + "/suite.json";
+    for (size_t i = 0; i < args.size(); ++i) {
+      // A --json given as @SUITE names a file inside the suite file (which is not a folder).
+      const bool json = i > 0 && args[i - 1] == "--json";
+      if (args[i] == "@SUITE") args[i] = dir + "/suite.json" + (json ? "/record.json" : "");
     }
   }
   const ProgramRun run = RunOcpbenchProgram(args, dir);

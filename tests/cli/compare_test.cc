@@ -35,7 +35,7 @@ struct Case {
   std::map<std::string, std::string> options = {};
 };
 
-json MakeRecord(const Case& c) {
+json CaseRecord(const Case& c) {
   std::string key = fmt::format("p|seed={}|{}|{}||N=100|deg=3|{}|euler|eval=euler",
                                 c.seed,
                                 c.solver,
@@ -73,7 +73,7 @@ json MakeRecord(const Case& c) {
 CompareSide Side(const std::vector<Case>& cases, const std::string& name) {
   CompareSide side;
   side.path = side.records_path = name;
-  for (const Case& c : cases) side.records.push_back(Record::FromJson(MakeRecord(c)));
+  for (const Case& c : cases) side.records.push_back(Record::FromJson(CaseRecord(c)));
   return side;
 }
 
@@ -383,7 +383,7 @@ TEST(Compare, ReportPutsRegressionsFirst) {
 
 // ---- reading the sides -----------------------------------------------------------------------
 
-std::string ErrorOf(const std::string& path) {
+std::string CompareErrorOf(const std::string& path) {
   try {
     LoadCompareSide(path);
   } catch (const std::invalid_argument& e) {
@@ -394,29 +394,30 @@ std::string ErrorOf(const std::string& path) {
 
 TEST(LoadCompareSide, DamagedInputIsNamedByFileLineAndField) {
   const std::string dir = testing::FreshDirectory("compare-load");
-  EXPECT_EQ(ErrorOf(dir + "/nothing"), "compare: " + dir + "/nothing: no such file or folder");
-  EXPECT_EQ(ErrorOf(dir),
+  EXPECT_EQ(CompareErrorOf(dir + "/nothing"),
+            "compare: " + dir + "/nothing: no such file or folder");
+  EXPECT_EQ(CompareErrorOf(dir),
             dir + "/records.jsonl: no such file (not a result folder of ocpbench run)");
   testing::WriteText(dir + "/records.jsonl", "");
-  EXPECT_EQ(ErrorOf(dir), dir + "/records.jsonl: no records");
-  const std::string good = MakeRecord(Case{}).dump();
-  json bad = MakeRecord(Case{.seed = 2});
+  EXPECT_EQ(CompareErrorOf(dir), dir + "/records.jsonl: no records");
+  const std::string good = CaseRecord(Case{}).dump();
+  json bad = CaseRecord(Case{.seed = 2});
   bad["J_fine"] = "high";
   testing::WriteText(dir + "/records.jsonl", good + "\n" + bad.dump() + "\n");
-  EXPECT_EQ(ErrorOf(dir), dir + "/records.jsonl: line 2: J_fine: must be a number or null");
+  EXPECT_EQ(CompareErrorOf(dir), dir + "/records.jsonl:2: J_fine: must be a number or null");
   testing::WriteText(dir + "/records.jsonl", good + "\n" + good + "\n");
-  EXPECT_EQ(ErrorOf(dir),
-            dir + "/records.jsonl: line 2: key: the case of line 1 again (a case recorded twice)");
-  json keyless = MakeRecord(Case{});
+  EXPECT_EQ(CompareErrorOf(dir),
+            dir + "/records.jsonl:2: key: the case of line 1 again (a case recorded twice)");
+  json keyless = CaseRecord(Case{});
   keyless.erase("key");
   testing::WriteText(dir + "/records.jsonl", keyless.dump() + "\n");
-  EXPECT_EQ(ErrorOf(dir),
+  EXPECT_EQ(CompareErrorOf(dir),
             dir +
-                "/records.jsonl: line 1: key: missing (a record without a case key cannot be "
+                "/records.jsonl:1: key: missing (a record without a case key cannot be "
                 "matched)");
   testing::WriteText(dir + "/records.jsonl", good + "\n");
   testing::WriteText(dir + "/suite.json", "{\"records\": 1}");
-  EXPECT_EQ(ErrorOf(dir), dir + "/suite.json: suite: must be a string (the suite's name)");
+  EXPECT_EQ(CompareErrorOf(dir), dir + "/suite.json: suite: must be a string (the suite's name)");
   testing::WriteText(dir + "/suite.json", "{\"suite\": \"tiny\", \"records\": 1}\n");
   const CompareSide side = LoadCompareSide(dir);
   EXPECT_EQ(side.suite, "tiny");
@@ -430,7 +431,7 @@ TEST(LoadCompareSide, DamagedInputIsNamedByFileLineAndField) {
 
 // One case per method with 3 repeats each: the descent converges (theta tolerance) in about 100
 // iterations, Ipopt in one. The deliberate change: the descent's max_iterations 300 -> 5.
-std::string TinySuite(int max_iterations, bool extra_method = false) {
+std::string CompareSuite(int max_iterations, bool extra_method = false) {
   return fmt::format(
       R"({{"name": "tiny", "groups": [{{"problem": "double-integrator", "N": 50, "repeats": 3,
            "methods": [{{"solver": "hamiltonian",
@@ -444,9 +445,9 @@ class CompareRuns : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new std::string(testing::FreshDirectory("compare-runs"));
-    testing::WriteText(*dir_ + "/base.json", TinySuite(300));
-    testing::WriteText(*dir_ + "/worse.json", TinySuite(5));
-    testing::WriteText(*dir_ + "/extra.json", TinySuite(300, true));
+    testing::WriteText(*dir_ + "/base.json", CompareSuite(300));
+    testing::WriteText(*dir_ + "/worse.json", CompareSuite(5));
+    testing::WriteText(*dir_ + "/extra.json", CompareSuite(300, true));
     for (const auto& [suite, out] :
          std::vector<std::pair<std::string, std::string>>{{"base.json", "base"},
                                                           {"base.json", "again"},
@@ -577,7 +578,7 @@ TEST_F(CompareRuns, InvalidInputIsOneLineAndExitTwoAndWritesNothing) {
       {{"base", "other"},
        "compare: base is a run of suite 'tiny', other of suite 'paper': not two runs of one "
        "suite"},
-      {{"base", "damaged"}, "damaged/records.jsonl: line 1: iterations: must be an integer"},
+      {{"base", "damaged"}, "damaged/records.jsonl:1: iterations: must be an integer"},
       {{"base", "again", "--cpu-ratio", "0.5"},
        "compare option 'cpu_ratio': must be a number >= 1 (got '0.5')"},
       {{"base", "stranger.jsonl"},

@@ -351,8 +351,8 @@ TEST(SolveCli, BadInitialGuessFilesExitWithCodeTwo) {
     const char* file;
     const char* expected;
   } cases[] = {
-      {"missing.json", "--initial-guess missing.json: no such file"},
-      {"broken.json", "--initial-guess broken.json: not valid JSON"},
+      {"missing.json", "--initial-guess missing.json: cannot read this record: No such file"},
+      {"broken.json", "--initial-guess broken.json:1: not valid JSON at column 27"},
       {"bare.json", "--initial-guess bare.json: no \"trajectory\" object"},
       {"di.json", "the controls have dimension 1 but problem 'comm-path2d' has nu = 3"},
       {"short.json", "trajectory.u[0] has 1 values, expected one per interval (2)"},

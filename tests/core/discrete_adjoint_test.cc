@@ -1,5 +1,6 @@
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -34,7 +35,8 @@ TEST_P(DiscreteAdjoint, GradientMatchesFiniteDifferences) {
         const Mat Uv = Eigen::Map<const Mat>(v.data(), U.rows(), U.cols());
         return Vec::Constant(1, docp.Simulate(Uv, nullptr));
       },
-      u_flat, 1e-6);
+      u_flat,
+      1e-6);
   const Vec g_flat = Eigen::Map<const Vec>(G.data(), G.size());
   const double rel = (g_flat - fd.row(0).transpose()).norm() / fd.norm();
   EXPECT_LT(rel, 1e-6) << "analytic " << g_flat.transpose() << "\nfd " << fd;
@@ -46,7 +48,8 @@ TEST_P(DiscreteAdjoint, GradientMatchesFiniteDifferences) {
   EXPECT_TRUE(Lambda.col(grid.intervals()).isApprox(grad, 1e-14));
 }
 
-INSTANTIATE_TEST_SUITE_P(BothIntegratorsBothModes, DiscreteAdjoint,
+INSTANTIATE_TEST_SUITE_P(BothIntegratorsBothModes,
+                         DiscreteAdjoint,
                          ::testing::Combine(::testing::Values(Integrator::kEuler, Integrator::kRk4),
                                             ::testing::Values(TerminalMode::kPenalty,
                                                               TerminalMode::kHard)));
@@ -73,6 +76,27 @@ TEST(DiscreteOcp, EulerCostateIsGradientWithRespectToState) {
   const Mat fd = CentralJacobian(J_of_x0, ocp->x0());
   EXPECT_NEAR(Lambda(0, 0), fd(0, 0), 1e-6 * std::abs(fd(0, 0)));
   EXPECT_NEAR(Lambda(1, 0), fd(0, 1), 1e-6 * std::abs(fd(0, 1)));
+}
+
+// SimulateStates gives Simulate's states bit for bit (the descent evaluates the cost on them and
+// must see the same numbers), for both integrators on a non-uniform grid.
+TEST(DiscreteOcp, SimulateStatesIsSimulatesStatesExactly) {
+  const testing::NonlinearTestOcp ocp;
+  const TimeGrid grid = TimeGrid::FromPoints({0.0, 0.1, 0.25, 0.3, 0.5, 0.62, 0.8, 1.0});
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> dist(-1.0, 1.0);
+  Mat U(2, grid.intervals());
+  for (int i = 0; i < U.size(); ++i) U(i) = dist(rng);
+  for (Integrator integrator : {Integrator::kEuler, Integrator::kRk4}) {
+    const DiscreteOcp docp(ocp, grid, integrator, TerminalMode::kPenalty);
+    Mat X, X_states;
+    docp.Simulate(U, &X);
+    docp.SimulateStates(U, &X_states);
+    EXPECT_EQ(X, X_states) << ToString(integrator);
+  }
+  const DiscreteOcp docp(ocp, grid, Integrator::kEuler, TerminalMode::kPenalty);
+  Mat X;
+  EXPECT_THROW(docp.SimulateStates(Mat::Zero(2, 3), &X), std::invalid_argument);
 }
 
 }  // namespace

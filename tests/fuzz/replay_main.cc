@@ -1,5 +1,5 @@
 // Replays a fuzzer's seed corpus and every crash it ever found (regressions/) through the same
-// entry point, in the ordinary (GCC, ASan+UBSan) test build: a crash found once stays fixed.
+// entry point, in the test build (ASan + UBSan): a crash found once stays fixed.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
     for (const auto& entry : std::filesystem::directory_iterator(argv[i])) {
       if (!entry.is_regular_file()) continue;
       std::ifstream in(entry.path(), std::ios::binary);
-      const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      const std::vector<char> bytes((std::istreambuf_iterator<char>(in)),
+                                    std::istreambuf_iterator<char>());
       LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
       ++files;
     }

@@ -1,24 +1,22 @@
-// libFuzzer target: the suite-file parser must turn any input into either a suite or a
-// std::invalid_argument, never a crash, a hang or another exception.
+// libFuzzer target: the suite-file reader must turn any input into either a suite or a
+// std::invalid_argument, never a crash, a hang or another exception. The text goes the way
+// LoadSuite takes it: ParseJsonText (nesting limit, errors with lines), JsonLines, ParseSuite.
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
-#include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
+#include "bench/cli/json_input.h"
 #include "bench/cli/suite.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string text(reinterpret_cast<const char*>(data), size);
-  nlohmann::json j;
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception&) {  // parse_error, out_of_range (1e999), ...
-    return 0;
-  }
-  try {
-    ocpb::ParseSuite(j, "fuzz");
+    const nlohmann::json j = ocpb::ParseJsonText(text, "fuzz");
+    const ocpb::JsonLines lines(text, j);
+    ocpb::ParseSuite(j, "fuzz", &lines);
   } catch (const std::invalid_argument&) {
   }
   return 0;

@@ -38,7 +38,9 @@ std::vector<std::string> Changed(const std::string& flag, const std::string& val
   return args;
 }
 
-int Lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+int LineCount(const std::string& s) {
+  return static_cast<int>(std::count(s.begin(), s.end(), '\n'));
+}
 
 TEST(OnlineCli, JsonRecordHasTheContractFields) {
   const std::string dir = testing::FreshDirectory("online_json");
@@ -106,7 +108,7 @@ TEST(OnlineCli, BadInputsExitTwoWithOneLine) {
   for (const auto& [args, expected] : cases) {
     const ProgramRun run = RunOcpbenchProgram(args);
     EXPECT_EQ(run.exit_code, 2) << expected << ": " << run.err;
-    EXPECT_EQ(Lines(run.err), 1) << run.err;
+    EXPECT_EQ(LineCount(run.err), 1) << run.err;
     EXPECT_EQ(run.err.rfind("ocpbench: error: ", 0), 0u) << run.err;
     EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
   }

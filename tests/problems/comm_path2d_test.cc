@@ -1,9 +1,12 @@
 #include "problems/comm_path2d.h"
 
+#include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -390,6 +393,194 @@ TEST(CommPath2d, RunningCostLowerBoundHolds) {
     EXPECT_GE(ocp.RunningCost(0.0, x, u), m);
   }
   EXPECT_EQ(ocp.RunningCost(0.0, Vec::Zero(5), Vec::Zero(3)), m);
+}
+
+// ---- EulerStageModel: the descent's fast path returns the generic functions' numbers bitwise ----
+
+// At random (x, u, p) for k5 = k6 = 0 and > 0, on the path-loss channel and a map: the cached
+// running cost, the pointwise bound, the Euler step and the backward point against RunningCost,
+// Dynamics, MinimizeAndCompareHamiltonian, DynamicsJacobian and RunningCostGradient.
+TEST(CommPath2d, StageModelIsBitwiseTheGenericFunctions) {
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> pos(-5.0, 55.0), vel(-2.0, 2.0), unit(-1.0, 1.0);
+  const auto map = RippleMap();
+  for (const auto& [k5, k6, channel] : {std::tuple{0.0, 0.0, PaperPathLoss()},
+                                        std::tuple{0.7, 1.3, PaperPathLoss()},
+                                        std::tuple{0.0, 0.0, map},
+                                        std::tuple{0.7, 1.3, map}}) {
+    const CommPath2d ocp(WithK56(k5, k6), channel);
+    const EulerStageModel& model = ocp;
+    ASSERT_EQ(model.StageCacheSize(), 6);
+    for (int trial = 0; trial < 60; ++trial) {
+      Vec x(5), u(3), p(5), f(5), Lx(5), Lu(3), u_ref(3), cache(6), x_next(5);
+      x << pos(rng), pos(rng), vel(rng), vel(rng), 100.0 * (1.0 + unit(rng));
+      u << 0.4 * unit(rng), 0.4 * unit(rng), 3.0 + 3.0 * unit(rng);
+      if (trial % 10 == 0) x[2] = x[3] = 0.0;
+      if (trial % 10 == 1) u[0] = u[1] = u[2] = 0.0;
+      ocp.control_set().Project(u);
+      for (int i = 0; i < 5; ++i) p[i] = 5.0 * unit(rng);
+      p[4] = -std::abs(p[4]) * std::pow(10.0, -4.0 * std::abs(unit(rng)));
+      const double t = 3.0, h = 0.1;
+
+      const double L = model.RunningCostCaching(t, x.data(), u.data(), cache.data());
+      EXPECT_EQ(L, ocp.RunningCost(t, x, u));
+      EXPECT_LE(model.PointwiseRunningCostBound(t, x.data(), u.data()), L);
+
+      model.EulerStep(t, h, x.data(), u.data(), x_next.data());
+      ocp.Dynamics(t, x, u, f);
+      EXPECT_EQ(x_next, (x + h * f).eval());
+
+      // The generic backward step of DescentPasses (DiscreteOcp::Adjoint's Euler recursion and
+      // HamiltonianDescent::Direction's pointwise work).
+      double h_star_ref = 0.0, h_now_ref = 0.0, L2 = 0.0;
+      ocp.MinimizeAndCompareHamiltonian(t, x, p, u, u_ref, &h_star_ref, &h_now_ref, f);
+      Mat fx(5, 5), fu(5, 3);
+      ocp.DynamicsJacobian(t, x, u, f, fx, fu);
+      ocp.RunningCostGradient(t, x, u, &L2, Lx, Lu);
+      Vec lam_ref = p;
+      const Vec tmp = fx.transpose().lazyProduct(p);
+      lam_ref += h * (tmp + Lx);
+
+      Vec lam = p, u_star(3);
+      double h_star = 0.0, h_now = 0.0;
+      model.BackwardPoint(t,
+                          h,
+                          x.data(),
+                          u.data(),
+                          cache.data(),
+                          std::numeric_limits<double>::infinity(),
+                          lam.data(),
+                          u_star.data(),
+                          &h_star,
+                          &h_now,
+                          nullptr);
+      EXPECT_EQ(u_star, u_ref);
+      EXPECT_EQ(h_star, h_star_ref);
+      EXPECT_EQ(h_now, h_now_ref);
+      EXPECT_EQ(lam, lam_ref);
+    }
+  }
+}
+
+// The proximal minimizer (Sakawa-Shindo's direction) beats a brute-force search over U of
+// H + |w - center|^2 / (2 eps) (a polar grid of the ball times a grid of [0, Rmax], a fine line in
+// R at w, and random points near w), for k5 = k6 = 0 and > 0 and eps from small to large; and
+// the fast path's BackwardPoint with eps returns the same w and H(w).
+TEST(CommPath2d, ProximalMinimizerBeatsBruteForce) {
+  const auto map = RippleMap();
+  std::mt19937_64 rng(44);
+  std::uniform_real_distribution<double> pos(0.0, 50.0), vel(-2.0, 2.0), unit(-1.0, 1.0);
+  for (const auto& [k5, k6, channel] : {std::tuple{0.0, 0.0, PaperPathLoss()},
+                                        std::tuple{2.0, 3.0, PaperPathLoss()},
+                                        std::tuple{0.5, 0.5, map}}) {
+    const CommPath2d ocp(WithK56(k5, k6), channel);
+    for (int trial = 0; trial < 8; ++trial) {
+      Vec x(5), p(5), c(3), w(3);
+      x << pos(rng), pos(rng), vel(rng), vel(rng), 0.0;
+      if (trial % 4 == 0) x[2] = x[3] = 0.0;
+      for (int i = 0; i < 4; ++i)
+        p[i] = std::pow(10.0, -3.0 + 3.0 * std::abs(unit(rng))) * unit(rng);
+      double s;
+      ocp.channel().Evaluate(Eigen::Vector2d(x[0], x[1]), &s, nullptr, nullptr);
+      p[4] = -std::log(2.0) * s / 0.130288 * std::pow(2.0, 7.0 * (0.5 + 0.5 * unit(rng)));
+      c << 0.3 * unit(rng), 0.3 * unit(rng), 3.0 + 3.0 * unit(rng);
+      ocp.control_set().Project(c);
+      for (double eps : {1e-3, 0.3, 30.0}) {
+        ocp.MinimizeProximalHamiltonian(0.0, x, p, c, eps, w);
+        ASSERT_LE(ocp.control_set().Violation(w), 1e-12);
+        auto phi = [&](const Vec& v) {
+          return ocp.Hamiltonian(0.0, x, v, p) + (v - c).squaredNorm() / (2.0 * eps);
+        };
+        const double at_w = phi(w);
+        double best = INFINITY;
+        Vec v(3);
+        for (int ir = 0; ir <= 20; ++ir) {
+          for (int ia = 0; ia < 48; ++ia) {
+            const double r = 0.5 * ir / 20.0, a = 2.0 * M_PI * ia / 48.0;
+            for (int iR = 0; iR <= 60; iR += 4) {
+              v << r * std::cos(a), r * std::sin(a), 6.0 * iR / 60.0;
+              best = std::min(best, phi(v));
+            }
+          }
+        }
+        for (int iR = 0; iR <= 3000; ++iR) {
+          v << w[0], w[1], 6.0 * iR / 3000.0;
+          best = std::min(best, phi(v));
+        }
+        for (int i = 0; i < 2000; ++i) {
+          v = w + Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) *
+                      std::pow(10.0, -1.0 - 5.0 * (i % 6) / 5.0);
+          ocp.control_set().Project(v);
+          best = std::min(best, phi(v));
+        }
+        EXPECT_LE(at_w, best + 1e-12 * (1.0 + std::abs(best)))
+            << "eps " << eps << "\nx = " << x.transpose() << "\np = " << p.transpose();
+        // The fast path's proximal step at the same point.
+        const EulerStageModel& model = ocp;
+        Vec cache(6), lam = p, w2(3);
+        model.RunningCostCaching(0.0, x.data(), c.data(), cache.data());
+        double h_star = 0.0, h_now = 0.0, h_min = 0.0;
+        model.BackwardPoint(0.0,
+                            0.1,
+                            x.data(),
+                            c.data(),
+                            cache.data(),
+                            eps,
+                            lam.data(),
+                            w2.data(),
+                            &h_star,
+                            &h_now,
+                            &h_min);
+        EXPECT_EQ(w2, w);
+        EXPECT_NEAR(h_star, ocp.Hamiltonian(0.0, x, w, p), 1e-12 * (1.0 + std::abs(h_star)));
+        Vec u_star(3);
+        ocp.MinimizeHamiltonian(0.0, x, p, u_star);
+        EXPECT_NEAR(h_min, ocp.Hamiltonian(0.0, x, u_star, p), 1e-12 * (1.0 + std::abs(h_min)));
+        EXPECT_LE(h_min, h_star);
+      }
+    }
+  }
+}
+
+// The pointwise bound the descent rejects trials with: the motion power, below L on U.
+TEST(CommPath2d, PointwiseRunningCostBoundIsTheMotionPowerAndHolds) {
+  const CommPath2d ocp(WithK56(0.5, 0.5), RippleMap());
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> pos(-10.0, 60.0), vel(-3.0, 3.0), unit(-1.0, 1.0);
+  for (int i = 0; i < 2000; ++i) {
+    Vec x(5), u(3);
+    x << pos(rng), pos(rng), vel(rng), vel(rng), 0.0;
+    u << unit(rng), unit(rng), 3.0 + 3.0 * unit(rng);
+    if (i % 4 == 0) u[2] = 0.0;  // no transmission: the bound is L itself
+    ocp.control_set().Project(u);
+    const double m = ocp.PointwiseRunningCostBound(0.0, x.data(), u.data());
+    const double L = ocp.RunningCost(0.0, x, u);
+    EXPECT_LE(m, L);
+    if (u[2] == 0.0) {
+      EXPECT_EQ(m, L);
+    }
+    EXPECT_GE(m, *ocp.RunningCostLowerBound());
+  }
+}
+
+// The double overloads the fast path uses: the same numbers as the template and Rate().
+TEST(CommPowerModel, MotionGivenSpeedNormAndRateGivenKAreBitwiseTheOriginals) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const auto& k : {std::array<double, 6>{17.75, 1.16, 10.46, 1175.0, 0.0, 0.0},
+                        std::array<double, 6>{17.75, 1.16, 0.0, 1175.0, 0.0, 0.0},
+                        std::array<double, 6>{17.75, 1.16, 10.46, 1175.0, 2.0, 0.0},
+                        std::array<double, 6>{17.75, 1.16, 0.0, 1175.0, 2.0, 0.0},
+                        std::array<double, 6>{17.75, 1.16, 10.46, 1175.0, 2.0, 3.0}}) {
+    CommPowerModel m;
+    m.k = k;
+    for (int i = 0; i < 200; ++i) {
+      const double acc2 = 0.25 * std::abs(unit(rng)), speed2 = 4.0 * std::abs(unit(rng));
+      EXPECT_EQ(m.Motion(acc2, speed2, m.SmoothNorm(speed2)), m.Motion<double>(acc2, speed2));
+      const double p3 = -std::pow(10.0, -6.0 * std::abs(unit(rng))), s = 1e-4 * (1.5 + unit(rng));
+      EXPECT_EQ(m.Rate(p3, s, 6.0, m.K()), m.Rate(p3, s, 6.0));
+    }
+  }
 }
 
 TEST(CommPath2d, SmoothingIsWithinEpsOfTheNorm) {

@@ -23,7 +23,7 @@ namespace {
 using reference_testing::Request;
 using reference_testing::SolveWith;
 
-const std::vector<std::string> kNames = {"goddard", "robot-arm"};
+const std::vector<std::string> kFreeTimeNames = {"goddard", "robot-arm"};
 
 SolveResult SolveHard(const std::string& name, const std::string& transcription, int N) {
   const auto ocp = MakeProblem(name, {}, 0);
@@ -36,7 +36,7 @@ TEST(FreeTimeProblems, AreRegisteredWithCopsValuesAndTheirHamiltonianForms) {
   EXPECT_EQ(*FindProblem("robot-arm").reference_value, 9.14138);
   EXPECT_EQ(FindProblem("goddard").default_intervals, 400);
   EXPECT_EQ(FindProblem("robot-arm").default_intervals, 200);
-  for (const std::string& name : kNames) {
+  for (const std::string& name : kFreeTimeNames) {
     SCOPED_TRACE(name);
     const ProblemInfo& info = FindProblem(name);
     EXPECT_NE(info.reference_source.find("trapezoid"), std::string::npos);
@@ -134,7 +134,7 @@ TEST(FreeTimeProblems, DynamicsAreTheTimeDilationTimesThePhysicalDynamics) {
 TEST(FreeTimeProblems, DerivativesMatchFiniteDifferences) {
   std::mt19937_64 rng(31);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  for (const std::string& name : kNames) {
+  for (const std::string& name : kFreeTimeNames) {
     const auto ocp = MakeProblem(name, {}, 0);
     Vec lo, hi;
     ocp->control_set().BoundingBox(&lo, &hi);

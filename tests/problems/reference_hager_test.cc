@@ -21,7 +21,7 @@ using reference_testing::SolveWith;
 using reference_testing::SolveWithHamiltonian;
 using reference_testing::SolveWithIpopt;
 
-constexpr double kJ = Hager::kReferenceCost;
+constexpr double kHagerJ = Hager::kReferenceCost;
 
 TEST(Hager, ClosedFormSatisfiesTheOptimalityConditions) {
   // x' = x/2 + u, x(0) = 1; p' = -H_x = -(2x + p/2), p(1) = 0; u = -p (H_u = 0), checked with
@@ -48,7 +48,7 @@ TEST(Hager, ClosedFormSatisfiesTheOptimalityConditions) {
     J += w * (0.5 * u * u + x * x);
   }
   J /= 3.0 * n;
-  EXPECT_NEAR(J, kJ, 1e-13);
+  EXPECT_NEAR(J, kHagerJ, 1e-13);
 }
 
 // ---- order of accuracy
@@ -93,7 +93,7 @@ Errors Measure(const std::string& transcription, int N) {
     double& slot = (k == 0 || k == N) ? e.u_ends : e.u_interior;
     slot = std::max(slot, eu);
   }
-  e.J = std::abs(r.objective - kJ);
+  e.J = std::abs(r.objective - kHagerJ);
   return e;
 }
 
@@ -161,7 +161,7 @@ TEST(Hager, HamiltonianReachesTheEulerOptimumAndTheReference) {
   ASSERT_EQ(h.status, SolveStatus::kConverged) << h.solver_status << " " << h.message;
   const SolveResult ipopt = SolveWithIpopt(*ocp, "euler", N, TerminalMode::kPenalty);
   EXPECT_NEAR(h.objective, ipopt.objective, 1e-9);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, h, N).Jbar, kJ), 6e-5);
+  EXPECT_LT(RelativeError(FineEvaluation(*ocp, h, N).Jbar, kHagerJ), 6e-5);
   double ep = 0.0;
   for (int k = 0; k < h.state_grid.size(); ++k) {
     ep = std::max(ep, std::abs(h.costates(0, k) - Hager::OptimalCostate(h.state_grid.t(k))));

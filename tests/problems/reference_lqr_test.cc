@@ -21,7 +21,7 @@ using reference_testing::SolveWith;
 using reference_testing::SolveWithHamiltonian;
 using reference_testing::SolveWithIpopt;
 
-constexpr double kJ = Lqr::kReferenceCost;
+constexpr double kLqrJ = Lqr::kReferenceCost;
 
 /// The Riccati solution and the optimal closed loop on [0, 5], by RK4 with step 5/kSteps:
 ///   -P' = A^T P + P A - P B B^T P + I, P(5) = 0;   x' = (A - B B^T P) x, x(0) = x0.
@@ -83,7 +83,7 @@ const RiccatiSolution& Riccati() {
 
 TEST(Lqr, RiccatiReproducesTheReferenceValue) {
   const Eigen::Vector2d x0(0.0, 1.0);
-  EXPECT_NEAR(0.5 * x0.dot(Riccati().P(0.0) * x0), kJ, 1e-10);
+  EXPECT_NEAR(0.5 * x0.dot(Riccati().P(0.0) * x0), kLqrJ, 1e-10);
   // The closed loop's control, simulated open loop, costs the same.
   const auto ocp = MakeProblem("lqr", {}, 0);
   const TimeGrid grid = TimeGrid::Uniform(0.0, 5.0, 2000);
@@ -91,7 +91,7 @@ TEST(Lqr, RiccatiReproducesTheReferenceValue) {
   for (int k = 0; k < grid.size(); ++k) U(0, k) = Riccati().u(grid.t(k));
   const Evaluation ev =
       Evaluate(*ocp, ControlTrajectory::PiecewiseLinear(grid, U), grid, Integrator::kRk4);
-  EXPECT_LT(RelativeError(ev.Jbar, kJ), 1e-7);  // linear interpolation of u*: O(h^2)
+  EXPECT_LT(RelativeError(ev.Jbar, kLqrJ), 1e-7);  // linear interpolation of u*: O(h^2)
 }
 
 // The largest |p - P x*| over a result's state grid, relative to max |p*| (about 1.2 here).
@@ -136,7 +136,7 @@ TEST(Lqr, HamiltonianReachesTheEulerOptimumAndTheReference) {
     ASSERT_EQ(h.status, SolveStatus::kConverged) << h.solver_status << " " << h.message;
     const SolveResult ipopt = SolveWithIpopt(*ocp, "euler", N, TerminalMode::kPenalty);
     EXPECT_NEAR(h.objective, ipopt.objective, 1e-8 * ipopt.objective) << "N = " << N;
-    const double err = RelativeError(FineEvaluation(*ocp, h, N).Jbar, kJ);
+    const double err = RelativeError(FineEvaluation(*ocp, h, N).Jbar, kLqrJ);
     EXPECT_LT(err, tolerance) << "N = " << N;
     if (previous > 0.0) {
       EXPECT_GT(previous / err, 3.0) << "second order in J";

@@ -25,7 +25,7 @@ using reference_testing::RelativeError;
 using reference_testing::Request;
 using reference_testing::SolveWith;
 
-const std::vector<std::string> kNames = {"brachistochrone", "zermelo", "steering"};
+const std::vector<std::string> kMinTimeNames = {"brachistochrone", "zermelo", "steering"};
 
 double ReferenceOf(const std::string& name) { return *FindProblem(name).reference_value; }
 
@@ -33,7 +33,7 @@ TEST(MinTimeProblems, AreRegisteredWithTheirReferenceTimes) {
   EXPECT_EQ(ReferenceOf("brachistochrone"), 0.824759143157);
   EXPECT_EQ(ReferenceOf("zermelo"), 5.2649320661);
   EXPECT_EQ(ReferenceOf("steering"), 0.5545708783);
-  for (const std::string& name : kNames) {
+  for (const std::string& name : kMinTimeNames) {
     SCOPED_TRACE(name);
     const ProblemInfo& info = FindProblem(name);
     EXPECT_TRUE(info.hamiltonian_applicable);
@@ -74,13 +74,13 @@ TEST(MinTimeProblems, CostIsTheFinalTimePlusEpsTimesTheVarianceOfSigma) {
 }
 
 // (x, u, lambda, mu, nu) around the problem's scale, with u in U.
-struct Point {
+struct MinTimePoint {
   Vec x, u, lambda, mu, nu;
 };
 
-Point RandomPoint(const Ocp& ocp, std::mt19937_64* rng) {
+MinTimePoint RandomMinTimePoint(const Ocp& ocp, std::mt19937_64* rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  Point p;
+  MinTimePoint p;
   p.x = Vec(ocp.nx());
   for (int i = 0; i < ocp.nx(); ++i) p.x[i] = ocp.x0()[i] + 1.5 * unit(*rng);
   const double sigma = 1.0 + 0.5 * unit(*rng);
@@ -95,14 +95,14 @@ Point RandomPoint(const Ocp& ocp, std::mt19937_64* rng) {
 
 TEST(MinTimeProblems, DerivativesMatchFiniteDifferences) {
   std::mt19937_64 rng(17);
-  for (const std::string& name : kNames) {
+  for (const std::string& name : kMinTimeNames) {
     const auto ocp = MakeProblem(name, {}, 0);
     HamiltonianReformulationOptions o;
     o.path_penalty = 29.0;  // moderate, so that finite differences stay accurate
     const auto re = ocp->HamiltonianReformulation(o);
     int active = 0;
     for (int trial = 0; trial < 8; ++trial) {
-      const Point p = RandomPoint(*ocp, &rng);
+      const MinTimePoint p = RandomMinTimePoint(*ocp, &rng);
       const DerivativeCheck check = CheckOcpDerivatives(*ocp, 0.5, p.x, p.u, p.lambda, p.mu, p.nu);
       EXPECT_LT(check.max_error, 1e-7) << name << "\n" << check.log;
       // The penalty's kink |v| = sigma is not for finite differences.
@@ -120,10 +120,10 @@ TEST(MinTimeProblems, DerivativesMatchFiniteDifferences) {
 // H(u*) must not be beaten by a scan of the admissible set: v = -r s/|s| (r on a grid, plus
 // random directions) and sigma on a grid; for the problem as stated r <= sigma (the cone), for the
 // reformulation r <= sigma_max with the penalty in H.
-void ExpectMinimizerIsExact(const Ocp& ocp,
-                            bool cone,
-                            std::mt19937_64* rng,
-                            const std::string& what) {
+void ExpectMinTimeMinimizerIsExact(const Ocp& ocp,
+                                   bool cone,
+                                   std::mt19937_64* rng,
+                                   const std::string& what) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   Vec lo, hi;
   ocp.control_set().BoundingBox(&lo, &hi);
@@ -162,14 +162,14 @@ void ExpectMinimizerIsExact(const Ocp& ocp,
 
 TEST(MinTimeProblems, HamiltonianMinimizersAreExact) {
   std::mt19937_64 rng(23);
-  for (const std::string& name : kNames) {
+  for (const std::string& name : kMinTimeNames) {
     const auto ocp = MakeProblem(name, {"sigma_max=3"}, 0);
-    ExpectMinimizerIsExact(*ocp, true, &rng, name);
+    ExpectMinTimeMinimizerIsExact(*ocp, true, &rng, name);
     // A weak and a strong cone penalty (both branches of the piecewise minimizer).
     for (double rho : {0.3, 1e4}) {
       HamiltonianReformulationOptions o;
       o.path_penalty = rho;
-      ExpectMinimizerIsExact(
+      ExpectMinTimeMinimizerIsExact(
           *ocp->HamiltonianReformulation(o), false, &rng, name + " rho=" + std::to_string(rho));
     }
   }
@@ -214,7 +214,7 @@ TEST(MinTimeProblems, SteeringTrapezoidMatchesCopsAtItsOwnGrid) {
 // w1 >= 0 is inactive; the brachistochrone ends at v = sqrt(2 g y) = sqrt(39.2) with heading
 // angle phi_f / 2 from the vertical.
 TEST(MinTimeProblems, OptimumHasConstantSigmaAndUnitHeading) {
-  for (const std::string& name : kNames) {
+  for (const std::string& name : kMinTimeNames) {
     SCOPED_TRACE(name);
     const auto ocp = MakeProblem(name, {}, 0);
     const int N = 40;
@@ -255,7 +255,7 @@ TEST(MinTimeProblems, OptimumHasConstantSigmaAndUnitHeading) {
 // Euler problem converges in 11-40 iterations. The test pins the descent (J decreases at every
 // accepted step, the penalized endpoint is reached), not an accuracy it does not have.
 TEST(MinTimeProblems, HamiltonianDescentDescendsButSlowly) {
-  for (const std::string& name : kNames) {
+  for (const std::string& name : kMinTimeNames) {
     SCOPED_TRACE(name);
     const auto ocp = MakeProblem(name, {}, 0);
     const SolveResult r =

@@ -20,7 +20,7 @@ using reference_testing::SolveWith;
 using reference_testing::SolveWithHamiltonian;
 using reference_testing::SolveWithIpopt;
 
-constexpr double kJ = Rayleigh::kReferenceCost;
+constexpr double kRayleighJ = Rayleigh::kReferenceCost;
 
 // The penalty reformulation's optimum approaches J* from below as rho grows (Ipopt,
 // Hermite-Simpson N = 100, judged on the original problem).
@@ -34,10 +34,10 @@ TEST(Rayleigh, PenaltyReformulationGapShrinksWithRho) {
     ASSERT_EQ(r.status, SolveStatus::kConverged) << "rho = " << rho;
     const double jbar = FineEvaluation(*ocp, r, 100).Jbar;
     EXPECT_GT(jbar, previous) << "rho = " << rho;
-    EXPECT_LT(jbar, kJ) << "rho = " << rho;
+    EXPECT_LT(jbar, kRayleighJ) << "rho = " << rho;
     previous = jbar;
   }
-  EXPECT_LT(RelativeError(previous, kJ), 1e-3);  // measured 3e-4 at rho = 1e4
+  EXPECT_LT(RelativeError(previous, kRayleighJ), 1e-3);  // measured 3e-4 at rho = 1e4
 }
 
 // The Hamiltonian method on the penalty reformulation (rho = 1e3, the default), Euler N = 50,
@@ -58,7 +58,7 @@ TEST(Rayleigh, HamiltonianOnThePenaltyReformulation) {
       SolveWithIpopt(*ocp->HamiltonianReformulation({}), "euler", N, TerminalMode::kPenalty);
   ASSERT_EQ(ipopt.status, SolveStatus::kConverged);
   EXPECT_LT(RelativeError(h.objective, ipopt.objective), 1.5e-2);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, h, N).Jbar, kJ), 5e-3);
+  EXPECT_LT(RelativeError(FineEvaluation(*ocp, h, N).Jbar, kRayleighJ), 5e-3);
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ using reference_testing::SolveWith;
 using reference_testing::SolveWithHamiltonian;
 using reference_testing::SolveWithIpopt;
 
-constexpr double kJ = VanDerPol::kReferenceCost;
+constexpr double kVanDerPolJ = VanDerPol::kReferenceCost;
 
 // The project notes give p(0) = (1.717177, 0.011261) from shooting (6 decimals).
 TEST(VanDerPol, IpoptCostateAtTheStartMatchesTheShootingSolution) {
@@ -43,7 +43,7 @@ TEST(VanDerPol, HamiltonianReachesTheEulerOptimumAndTheReference) {
   ASSERT_EQ(h.status, SolveStatus::kConverged) << h.solver_status << " " << h.message;
   const SolveResult ipopt = SolveWithIpopt(*ocp, "euler", N, TerminalMode::kPenalty);
   EXPECT_NEAR(h.objective, ipopt.objective, 1e-9);
-  EXPECT_LT(RelativeError(FineEvaluation(*ocp, h, N).Jbar, kJ), 1.3e-4);
+  EXPECT_LT(RelativeError(FineEvaluation(*ocp, h, N).Jbar, kVanDerPolJ), 1.3e-4);
 }
 
 }  // namespace

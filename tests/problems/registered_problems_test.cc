@@ -43,15 +43,15 @@ const std::map<std::string, CheckSetting>& CheckSettings() {
 
 // A point near the problem's start: x = x0 + spread max(1, |x0|) unit, u inside U's bounding
 // box (0.5 +- 0.4 where unbounded) projected onto U, multipliers of order one.
-void RandomPoint(const Ocp& ocp,
-                 double spread,
-                 std::mt19937_64* rng,
-                 double* t,
-                 Vec* x,
-                 Vec* u,
-                 Vec* lambda,
-                 Vec* mu,
-                 Vec* nu) {
+void DrawRandomPoint(const Ocp& ocp,
+                     double spread,
+                     std::mt19937_64* rng,
+                     double* t,
+                     Vec* x,
+                     Vec* u,
+                     Vec* lambda,
+                     Vec* mu,
+                     Vec* nu) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   *t = ocp.t0() + 0.5 * (1.0 + unit(*rng)) * (ocp.tf() - ocp.t0());
   *x = Vec(ocp.nx());
@@ -84,7 +84,7 @@ TEST(RegisteredProblems, DerivativesMatchFiniteDifferences) {
     for (int trial = 0; trial < 5; ++trial) {
       double t = 0.0;
       Vec x, u, lambda, mu, nu;
-      RandomPoint(*ocp, setting.spread, &rng, &t, &x, &u, &lambda, &mu, &nu);
+      DrawRandomPoint(*ocp, setting.spread, &rng, &t, &x, &u, &lambda, &mu, &nu);
       const DerivativeCheck check = CheckOcpDerivatives(*ocp, t, x, u, lambda, mu, nu);
       EXPECT_LT(check.max_error, setting.tolerance) << info.name << " at trial " << trial << "\n"
                                                     << check.log;

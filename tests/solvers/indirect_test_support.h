@@ -52,12 +52,14 @@ inline void ExpectConverged(const SolveResult& r) {
   EXPECT_EQ(static_cast<int>(r.history.size()), r.iterations + 1);
 }
 
-/// The residual's sparse Jacobian on a 5-interval grid against central finite differences at z0,
-/// and every finite-difference nonzero inside the declared structure.
-inline void ExpectJacobianMatchesFiniteDifferences(const Ocp& ocp,
-                                                   TerminalMode mode,
-                                                   const Vec& z0) {
-  PmpResidual pmp(ocp, TimeGrid::Uniform(ocp.t0(), ocp.tf(), 5), mode);
+/// The residual's sparse Jacobian (of `scheme`) on a 5-interval grid against central finite
+/// differences at z0, and every finite-difference nonzero inside the declared structure.
+inline void ExpectJacobianMatchesFiniteDifferences(
+    const Ocp& ocp,
+    TerminalMode mode,
+    const Vec& z0,
+    PmpResidual::Scheme scheme = PmpResidual::Scheme::kTrapezoid) {
+  PmpResidual pmp(ocp, TimeGrid::Uniform(ocp.t0(), ocp.tf(), 5), mode, scheme);
   ASSERT_EQ(z0.size(), pmp.size());
   Vec F(pmp.size());
   ASSERT_TRUE(pmp.Evaluate(z0, F, nullptr, true)) << pmp.FailureMessage();

@@ -266,7 +266,7 @@ SolveRequest DoubleIntegratorRequest(const std::string& transcription, int N, Te
   return request;
 }
 
-bool Registered(const std::string& transcription) {
+bool TranscriptionRegistered(const std::string& transcription) {
   for (const TranscriptionInfo& t : Transcriptions()) {
     if (t.name == transcription) return true;
   }
@@ -285,7 +285,7 @@ class IpoptOnDoubleIntegrator : public ::testing::TestWithParam<SchemeCase> {};
 
 TEST_P(IpoptOnDoubleIntegrator, ReachesSixWithinTheSchemesAccuracy) {
   const SchemeCase c = GetParam();
-  if (!Registered(c.name)) GTEST_SKIP() << c.name << " is not registered";
+  if (!TranscriptionRegistered(c.name)) GTEST_SKIP() << c.name << " is not registered";
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   const SolveRequest request = DoubleIntegratorRequest(c.name, 20, TerminalMode::kHard);
   const SolveResult r = FindSolver("ipopt").make()->Solve(*ocp, request);
@@ -320,7 +320,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(IpoptSolver, SingleShootingAndTheEulerTranscriptionShareTheirOptimum) {
   // Single shooting (Euler) and the Euler transcription are the same discrete problem.
-  if (!Registered("euler")) GTEST_SKIP() << "euler is not registered";
+  if (!TranscriptionRegistered("euler")) GTEST_SKIP() << "euler is not registered";
   const auto ocp = MakeProblem("double-integrator-bounded", {}, 0);
   const IpoptSolver solver;
   SolveRequest request = DoubleIntegratorRequest("euler", 40, TerminalMode::kHard);
@@ -391,7 +391,7 @@ TEST(IpoptSolver, StartsFromTheRequestsInitialGuess) {
   // With max_iter = 0 Ipopt returns its starting point: the guess (no bounds to push it from).
   const auto ocp = MakeProblem("double-integrator", {}, 0);
   for (const std::string transcription : {"single-shooting", "euler"}) {
-    if (!Registered(transcription)) continue;
+    if (!TranscriptionRegistered(transcription)) continue;
     SolveRequest request = DoubleIntegratorRequest(transcription, 10, TerminalMode::kHard);
     Mat guess(1, 10);
     for (int k = 0; k < 10; ++k) guess(0, k) = 0.3 * k - 1.0;

@@ -46,7 +46,7 @@ IpoptRun SolveWithIpopt(const Ocp& ocp,
   return run;
 }
 
-double Order(double coarse, double fine) { return std::log2(coarse / fine); }
+double ObservedOrder(double coarse, double fine) { return std::log2(coarse / fine); }
 
 struct Expectation {
   std::string transcription;
@@ -78,11 +78,13 @@ TEST(IpoptOrders, NonlinearProblemConvergesAtEachSchemesOrder) {
                 2 * e.N,
                 c.error,
                 f.error,
-                Order(c.error, f.error),
+                ObservedOrder(c.error, f.error),
                 c.costate_error,
                 f.costate_error);
-    EXPECT_GT(Order(c.error, f.error), e.order - 0.3) << e.transcription << " K " << e.degree;
-    EXPECT_LT(Order(c.error, f.error), e.order + 0.7) << e.transcription << " K " << e.degree;
+    EXPECT_GT(ObservedOrder(c.error, f.error), e.order - 0.3)
+        << e.transcription << " K " << e.degree;
+    EXPECT_LT(ObservedOrder(c.error, f.error), e.order + 0.7)
+        << e.transcription << " K " << e.degree;
     EXPECT_LT(f.costate_error, c.costate_error) << e.transcription << " K " << e.degree;
   }
 }
@@ -100,8 +102,8 @@ TEST(IpoptOrders, DoubleIntegrator) {
                 t.c_str(),
                 c.error,
                 f.error,
-                Order(c.error, f.error));
-    EXPECT_NEAR(Order(c.error, f.error), 2.0, 0.15) << t;
+                ObservedOrder(c.error, f.error));
+    EXPECT_NEAR(ObservedOrder(c.error, f.error), 2.0, 0.15) << t;
     EXPECT_LT(f.costate_error, c.costate_error) << t;
   }
   for (const std::string t : {"hermite-simpson", "lgr"}) {

@@ -76,11 +76,11 @@ Vec RandomVector(int n, unsigned seed, double scale = 0.8) {
   return v;
 }
 
-std::unique_ptr<TranscribedNlp> Make(const Ocp& ocp,
-                                     const TimeGrid& grid,
-                                     TerminalMode mode,
-                                     Integrator integrator,
-                                     NlpScaling scaling = NlpScaling()) {
+std::unique_ptr<TranscribedNlp> MakeShooting(const Ocp& ocp,
+                                             const TimeGrid& grid,
+                                             TerminalMode mode,
+                                             Integrator integrator,
+                                             NlpScaling scaling = NlpScaling()) {
   TranscriptionOptions options;
   options.grid = grid;
   options.terminal = mode;
@@ -108,7 +108,7 @@ Vec ConstraintValues(const Nlp& nlp, const Vec& z) {
 TEST(SingleShooting, ObjectiveIsTheDiscreteCostAndTheEvaluatorsEulerCost) {
   const testing::NonlinearTestOcp ocp;
   const TimeGrid grid = NonUniformGrid(1.0);
-  auto nlp = Make(ocp, grid, TerminalMode::kPenalty, Integrator::kEuler);
+  auto nlp = MakeShooting(ocp, grid, TerminalMode::kPenalty, Integrator::kEuler);
   ASSERT_EQ(nlp->num_variables(), 2 * grid.intervals());
   const Vec z = RandomVector(nlp->num_variables(), 3);
   double f = NAN;
@@ -128,7 +128,7 @@ class SingleShootingDerivatives
 TEST_P(SingleShootingDerivatives, GradientMatchesFiniteDifferences) {
   const auto [integrator, mode] = GetParam();
   const testing::NonlinearTestOcp ocp;
-  auto nlp = Make(ocp, NonUniformGrid(1.0), mode, integrator);
+  auto nlp = MakeShooting(ocp, NonUniformGrid(1.0), mode, integrator);
   const Vec z = RandomVector(nlp->num_variables(), 11);
   Vec grad(nlp->num_variables());
   ASSERT_TRUE(nlp->Gradient(z, grad));
@@ -146,7 +146,7 @@ TEST_P(SingleShootingDerivatives, GradientMatchesFiniteDifferences) {
 TEST_P(SingleShootingDerivatives, ConstraintJacobianMatchesFiniteDifferences) {
   const auto [integrator, mode] = GetParam();
   const ConstrainedTestOcp ocp;
-  auto nlp = Make(ocp, NonUniformGrid(1.5), mode, integrator);
+  auto nlp = MakeShooting(ocp, NonUniformGrid(1.5), mode, integrator);
   const int N = 7;
   const auto* ss = dynamic_cast<const SingleShootingNlp*>(nlp.get());
   ASSERT_NE(ss, nullptr);
@@ -181,7 +181,7 @@ TEST_P(SingleShootingDerivatives, CostatesWithZeroMultipliersAreTheDiscreteAdjoi
   const auto [integrator, mode] = GetParam();
   const testing::NonlinearTestOcp ocp;
   const TimeGrid grid = NonUniformGrid(1.0);
-  auto nlp = Make(ocp, grid, mode, integrator);
+  auto nlp = MakeShooting(ocp, grid, mode, integrator);
   const Vec z = RandomVector(nlp->num_variables(), 17);
   const Mat P = nlp->Costates(z, Vec::Zero(nlp->num_constraints()));
   const DiscreteOcp docp(ocp, grid, integrator, mode);
@@ -206,7 +206,7 @@ TEST(SingleShooting, EulerCostatesAreLagrangianSensitivities) {
   const ConstrainedTestOcp ocp;
   const TimeGrid grid = NonUniformGrid(1.5);
   const int N = grid.intervals();
-  auto nlp = Make(ocp, grid, TerminalMode::kHard, Integrator::kEuler);
+  auto nlp = MakeShooting(ocp, grid, TerminalMode::kHard, Integrator::kEuler);
   const auto* ss = dynamic_cast<const SingleShootingNlp*>(nlp.get());
   const Vec z = RandomVector(nlp->num_variables(), 23, 0.6);
   const Vec lambda = RandomVector(nlp->num_constraints(), 29, 2.0);
@@ -248,8 +248,8 @@ TEST(SingleShooting, ScalingChangesOnlyTheVariablesAndTheObjective) {
   scaling.objective = 0.01;
   scaling.control = Eigen::Vector3d(2.0, 0.5, 4.0);
   scaling.state = Eigen::Vector3d(10.0, 10.0, 10.0);  // no state variables: no effect
-  auto plain = Make(ocp, grid, TerminalMode::kHard, Integrator::kRk4);
-  auto scaled = Make(ocp, grid, TerminalMode::kHard, Integrator::kRk4, scaling);
+  auto plain = MakeShooting(ocp, grid, TerminalMode::kHard, Integrator::kRk4);
+  auto scaled = MakeShooting(ocp, grid, TerminalMode::kHard, Integrator::kRk4, scaling);
   const Vec z = RandomVector(plain->num_variables(), 31, 0.6);
   const Vec d = scaling.control.replicate(grid.intervals(), 1);
   const Vec zs = z.cwiseQuotient(d);
@@ -287,7 +287,8 @@ TEST(SingleShooting, ScalingChangesOnlyTheVariablesAndTheObjective) {
 
 TEST(SingleShooting, BoundsAndConstraintRowsFollowTheControlSet) {
   const ConstrainedTestOcp ocp;
-  auto nlp = Make(ocp, TimeGrid::Uniform(0.0, 1.5, 4), TerminalMode::kHard, Integrator::kEuler);
+  auto nlp =
+      MakeShooting(ocp, TimeGrid::Uniform(0.0, 1.5, 4), TerminalMode::kHard, Integrator::kEuler);
   Vec zl, zu, gl, gu;
   nlp->Bounds(&zl, &zu, &gl, &gu);
   ASSERT_EQ(zl.size(), 12);
@@ -340,7 +341,8 @@ TEST(SingleShooting, RejectsInvalidRequests) {
 TEST(SingleShooting, EvaluationFailureIsReportedNotThrown) {
   // Huge controls make the double integrator's trajectory overflow.
   const auto ocp = MakeProblem("double-integrator", {}, 0);
-  auto nlp = Make(*ocp, TimeGrid::Uniform(0.0, 1.0, 4), TerminalMode::kHard, Integrator::kEuler);
+  auto nlp =
+      MakeShooting(*ocp, TimeGrid::Uniform(0.0, 1.0, 4), TerminalMode::kHard, Integrator::kEuler);
   const Vec z = Vec::Constant(4, 1e308);
   double f = 0.0;
   Vec grad(4), g(2), jac(nlp->jacobian_rows().size());

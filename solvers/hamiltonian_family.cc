@@ -1,0 +1,335 @@
+#include "solvers/hamiltonian_family.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "core/discrete_ocp.h"
+#include "solvers/euler_costate_fit.h"
+#include "solvers/indirect_newton.h"
+
+namespace ocpb {
+namespace {
+
+std::string Format(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+SolveResult NotApplicable(const std::string& solver, const std::string& reason) {
+  SolveResult r;
+  r.solver = solver;
+  r.status = SolveStatus::kNotApplicable;
+  r.solver_status = "not_applicable";
+  r.message = reason;
+  r.iterations = 0;
+  r.cpu_seconds = 0.0;
+  r.wall_seconds = 0.0;
+  return r;
+}
+
+void CheckRequest(const std::string& name, const Ocp& ocp, const SolveRequest& request) {
+  const TimeGrid& grid = request.grid;
+  if (grid.size() < 2) throw std::invalid_argument(name + ": the request's grid is empty");
+  const double tol = 1e-9 * std::max(1.0, std::abs(ocp.tf() - ocp.t0()));
+  if (std::abs(grid.t0() - ocp.t0()) > tol || std::abs(grid.tf() - ocp.tf()) > tol) {
+    throw std::invalid_argument(name + ": the grid [" + Format(grid.t0()) + ", " +
+                                Format(grid.tf()) + "] does not span the horizon [" +
+                                Format(ocp.t0()) + ", " + Format(ocp.tf()) + "]");
+  }
+  if (request.initial_guess && request.initial_guess->nu() != ocp.nu()) {
+    throw std::invalid_argument(name + ": the initial guess has the wrong number of controls");
+  }
+}
+
+// The problem the descent works on (before any augmented Lagrangian): the original, or its
+// Hamiltonian reformulation, or the reason neither applies.
+struct Target {
+  std::unique_ptr<Ocp> reformulated;
+  const Ocp* ocp = nullptr;
+  std::string note;
+  std::optional<SolveResult> not_applicable;
+};
+
+Target Resolve(const std::string& name,
+               const Ocp& original,
+               const SolveRequest& request,
+               const HamiltonianFamilyOptions& o) {
+  Target t;
+  auto refuse = [&](const std::string& why) {
+    t.not_applicable = NotApplicable(name, t.note + why);
+    return std::move(t);
+  };
+  const bool path_al = o.path == HamiltonianFamilyOptions::PathConstraints::kAugmentedLagrangian &&
+                       original.num_path() > 0;
+  // The outer loop takes the path constraints itself; otherwise the problem's reformulation
+  // (path penalty, or the regularization of an H linear in u), as the paper's method.
+  if (!path_al) {
+    HamiltonianReformulationOptions ro;
+    ro.path_penalty = o.path_penalty;
+    ro.regularization = o.regularization;
+    t.reformulated = original.HamiltonianReformulation(ro);
+  }
+  t.ocp = t.reformulated ? t.reformulated.get() : &original;
+  if (t.reformulated) {
+    t.note = "solved the problem's Hamiltonian reformulation '" + t.ocp->name() + "'; ";
+    if (t.ocp->nx() != original.nx() || t.ocp->nu() != original.nu()) {
+      throw std::logic_error("problem '" + original.name() +
+                             "': its Hamiltonian reformulation changed nx or nu");
+    }
+  }
+  if (!t.ocp->HasHamiltonianMinimizer()) {
+    return refuse("problem '" + t.ocp->name() + "' has no pointwise Hamiltonian minimizer");
+  }
+  if (t.ocp->num_path() > 0 && !path_al) {
+    return refuse(
+        "path constraints c <= 0 remain and the problem offers no reformulation; the "
+        "augmented-Lagrangian option (path = kAugmentedLagrangian) handles them");
+  }
+  if (t.ocp->free_final_time() && request.integrator != Integrator::kEuler) {
+    return refuse("a free final time needs forward Euler (the exact dJ/dT is Euler's)");
+  }
+  if (t.ocp->free_final_time() && path_al) {
+    return refuse("a free final time with path constraints in the outer loop is not supported");
+  }
+  if (o.polish && path_al) {
+    return refuse("the Newton polish takes no path constraints (use path = kReformulation)");
+  }
+  return t;
+}
+
+}  // namespace
+
+HamiltonianFamily::HamiltonianFamily(Preset preset) : HamiltonianFamily(Defaults(preset), preset) {}
+
+HamiltonianFamily::HamiltonianFamily(const Options& options, Preset preset)
+    : preset_(preset), options_(options) {
+  std::string error;
+  if (!options_.IsValid(&error)) throw std::invalid_argument(name() + ": " + error);
+}
+
+HamiltonianFamily::Options HamiltonianFamily::Proximal() {
+  Options o;
+  o.direction = Options::Direction::kProximal;
+  return o;
+}
+
+HamiltonianFamily::Options HamiltonianFamily::AugmentedLagrangian() {
+  Options o;
+  o.path = Options::PathConstraints::kAugmentedLagrangian;
+  return o;
+}
+
+HamiltonianFamily::Options HamiltonianFamily::Polished() {
+  Options o;
+  o.polish = true;
+  // Newton's first attempt after 250 descent steps (then 500, 1000, ...): on comm-path2d's hard
+  // form (N = 400, seeds 1-5, gamma = 1e-2 .. 1e-5) every case converged within two attempts
+  // (BM_HardFormFamilyPolish; figures in solvers/README-family.md).
+  o.max_iterations = 250;
+  return o;
+}
+
+void HamiltonianFamily::Polish(const Options& o,
+                               const Ocp& original,
+                               const Ocp& problem,
+                               const SolveRequest& request,
+                               const Stopwatch& clock,
+                               DescentLoopOptions loop,
+                               DescentPasses* passes,
+                               SolveResult* r) const {
+  auto& stats = r->solver_stats;
+  IndirectNewtonOptions no;
+  no.scheme = IndirectNewtonOptions::Scheme::kEuler;
+  no.max_iterations = o.newton_max_iterations;
+  no.tolerance = o.newton_tolerance;
+  no.path_penalty = o.path_penalty;  // SolveFrom resolves the same reformulation
+  no.regularization = o.regularization;
+  int descent_iterations = static_cast<int>(stats["descent_iterations"]);
+  int newton_iterations = 0;
+  double newton_cpu = 0.0;
+  for (int attempt = 1;; ++attempt) {
+    if (!std::isfinite(passes->J()) || !passes->X().allFinite()) return;
+    const double cpu0 = clock.cpu();
+    SolveRequest newton_request;
+    newton_request.grid = passes->grid();
+    newton_request.terminal = request.terminal;
+    const Mat P =
+        FitEulerCostates(problem, passes->grid(), request.terminal, passes->U(), passes->X());
+    const SolveResult n = IndirectNewton(no).SolveFrom(original, newton_request, passes->X(), P);
+    newton_cpu += clock.cpu() - cpu0;
+    newton_iterations += n.iterations;
+    const int offset = static_cast<int>(r->history.size());
+    for (IterationRecord rec : n.history) {
+      rec.iteration = offset + rec.iteration;
+      rec.cpu_seconds += cpu0;
+      r->history.push_back(rec);
+    }
+    stats["newton_attempts"] = attempt;
+    stats["newton_iterations"] = newton_iterations;
+    stats["newton_cpu_seconds"] = newton_cpu;
+    if (!n.history.empty()) stats["newton_residual_inf"] = n.history.back().primal_inf;
+    for (const auto& [key, value] : n.solver_stats) stats["newton_" + key] = value;
+    r->status = n.status;
+    r->solver_status = n.solver_status;
+    r->iterations = descent_iterations + newton_iterations;
+    r->message += "; Newton " + std::to_string(attempt) + " (Euler maximum principle, fitted " +
+                  "costates, after " + std::to_string(descent_iterations) +
+                  " descent steps): " + n.message;
+    const bool converged = n.status == SolveStatus::kConverged &&
+                           n.states.cols() == passes->grid().size() &&
+                           n.controls.nu() == problem.nu();
+    if (converged) {
+      r->controls = n.controls;
+      r->state_grid = n.state_grid;
+      r->states = n.states;
+      r->costates = n.costates;
+      r->objective = n.objective;
+      const auto final_time = n.solver_stats.find("final_time");
+      if (final_time != n.solver_stats.end()) stats["final_time"] = final_time->second;
+      return;
+    }
+    // The result keeps the descent's iterate; continue the descent (its budget doubles) unless
+    // the attempts, the CPU limit or the descent itself are done.
+    r->message += " (the controls are the descent's)";
+    if (attempt >= o.polish_attempts || clock.cpu() >= o.max_cpu_seconds ||
+        descent_iterations == 0) {
+      return;
+    }
+    loop.max_iterations = descent_iterations;
+    // Rows are numbered by their place in the history (descent and Newton rows interleave).
+    const DescentLoopOutcome more = RunDescentLoop(loop,
+                                                   clock,
+                                                   passes,
+                                                   &r->history,
+                                                   static_cast<int>(r->history.size()) - 1,
+                                                   -1,
+                                                   /*record_first=*/false);
+    if (more.iterations == 0) return;  // the descent cannot move: Newton would start alike
+    descent_iterations += more.iterations;
+    if (loop.proximal && std::isfinite(more.eps)) loop.proximal->initial_eps = more.eps;
+    stats["descent_iterations"] = descent_iterations;
+    stats["final_theta"] = more.theta;
+    r->controls = ControlTrajectory::PiecewiseConstant(passes->grid(), passes->U());
+    r->state_grid = passes->grid();
+    r->states = passes->X();
+    r->costates = passes->Lambda();
+    r->objective = DiscreteOcp(problem, passes->grid(), request.integrator, request.terminal)
+                       .Simulate(passes->U(), nullptr);
+    r->iterations = descent_iterations + newton_iterations;
+  }
+}
+
+SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& request) const {
+  const Options o = ApplyOptions(preset_, request.options, options_);
+  const std::string name = this->name();
+  CheckRequest(name, original, request);
+  const Stopwatch clock;
+  Target target = Resolve(name, original, request, o);
+  if (target.not_applicable) return *target.not_applicable;
+  const Ocp& problem = *target.ocp;
+  const bool path_al = problem.num_path() > 0;  // Resolve left them only for the outer loop
+  // The hard form by the outer loop, unless Newton finishes: then the descent runs on the
+  // problem's penalty form (a better start than the loop's first, weaker, penalties) and Newton
+  // solves the hard form.
+  const bool use_al = (request.terminal == TerminalMode::kHard && !o.polish) || path_al;
+
+  // The problem the descent minimizes and its discrete form.
+  std::unique_ptr<AugmentedLagrangianOcp> al;
+  if (use_al) al = std::make_unique<AugmentedLagrangianOcp>(problem, request.grid);
+  const Ocp& descended = use_al ? static_cast<const Ocp&>(*al) : problem;
+  const DiscreteOcp docp(descended,
+                         request.grid,
+                         request.integrator,
+                         use_al ? TerminalMode::kHard : TerminalMode::kPenalty);
+  // Without path terms the outer loop's problem differs from `problem` only in its terminal
+  // cost: the problem's fast paths stay valid.
+  const Ocp& fast = path_al ? descended : problem;
+  DescentPasses passes(docp,
+                       o.armijo_prefilter,
+                       dynamic_cast<const EulerStageModel*>(&fast),
+                       dynamic_cast<const ProximalHamiltonianMinimizer*>(&fast));
+  if (problem.free_final_time()) {
+    passes.EnableFreeFinalTime(problem.free_final_time()->lower,
+                               problem.free_final_time()->upper,
+                               o.free_time_initial_fraction);
+  }
+  Mat U0 = request.initial_guess ? request.initial_guess->SampleIntervals(request.grid)
+                                 : DefaultInitialGuess(problem, request.grid).values();
+  for (int k = 0; k < U0.cols(); ++k) problem.control_set().Project(U0.col(k));
+  passes.Start(U0);
+
+  DescentLoopOptions loop;
+  loop.armijo = ArmijoRule{o.alpha, o.beta, o.max_armijo_exponent};
+  loop.max_iterations = o.max_iterations;
+  loop.relative_theta_tolerance = o.polish ? o.polish_switch : o.relative_theta_tolerance;
+  loop.max_cpu_seconds = o.max_cpu_seconds;
+  if (o.direction == Options::Direction::kProximal) loop.proximal = o.proximal;
+
+  SolveResult r;
+  r.solver = name;
+  auto& stats = r.solver_stats;
+  int descent_iterations = 0;
+  double theta = NAN;
+  bool have_costates = false;
+  DescentStop stop;
+  if (use_al) {
+    const AugmentedLagrangianRule& rule = o.augmented_lagrangian;
+    const AugmentedLagrangianOutcome outcome =
+        RunAugmentedLagrangian(rule, loop, clock, al.get(), &passes, &r.history);
+    stop = outcome.stop;
+    descent_iterations = outcome.descent_iterations;
+    theta = outcome.theta;
+    have_costates = outcome.have_costates;
+    stats["outer_iterations"] = outcome.outer_iterations;
+    stats["terminal_residual"] = outcome.terminal_residual;
+    stats["path_violation"] = outcome.path_violation;
+    stats["penalty"] = al->rho();
+    for (int i = 0; i < al->terminal_multipliers().size(); ++i) {
+      stats["nu_" + std::to_string(i)] = al->terminal_multipliers()[i];
+    }
+  } else {
+    const DescentLoopOutcome outcome = RunDescentLoop(loop, clock, &passes, &r.history);
+    stop = outcome.stop;
+    descent_iterations = outcome.iterations;
+    theta = outcome.theta;
+    have_costates = outcome.have_costates;
+  }
+  const double descent_cpu = clock.cpu();
+  stats["descent_iterations"] = descent_iterations;
+  stats["descent_cpu_seconds"] = descent_cpu;
+  stats["final_theta"] = theta;
+  stats["simulations"] = passes.work().simulations;
+  stats["prefilter_rejections"] = passes.work().rejections;
+  stats["reformulated"] = target.reformulated ? 1.0 : 0.0;
+  if (passes.free_final_time()) {
+    stats["final_time"] = passes.T();
+    stats["dJdT"] = passes.dJdT();
+  }
+
+  const TimeGrid grid = passes.grid();
+  r.status = stop.status;
+  r.solver_status = stop.code;
+  r.message = target.note + "descent: " + stop.why;
+  r.iterations = descent_iterations;
+  r.controls = ControlTrajectory::PiecewiseConstant(grid, passes.U());
+  r.state_grid = grid;
+  r.states = passes.X();
+  if (have_costates) r.costates = passes.Lambda();
+  // J of the problem in the request's terminal form (hard: no penalty, no multiplier terms).
+  r.objective = DiscreteOcp(problem, grid, request.integrator, request.terminal)
+                    .Simulate(passes.U(), nullptr);
+
+  if (o.polish) Polish(o, original, problem, request, clock, loop, &passes, &r);
+  if (std::isfinite(r.objective)) r.message += "; final J = " + Format(r.objective);
+  r.cpu_seconds = clock.cpu();
+  r.wall_seconds = clock.wall();
+  return r;
+}
+
+}  // namespace ocpb

@@ -1,0 +1,168 @@
+// The Hamiltonian family: the paper's descent with a proximal direction, an augmented-Lagrangian
+// outer loop (hard terminal form, path constraints), a free final time and a Newton polish.
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <string>
+
+#include "core/option_schema.h"
+#include "solvers/augmented_lagrangian_loop.h"
+#include "solvers/descent_loop.h"
+#include "solvers/solver.h"
+
+namespace ocpb {
+
+/// Options of HamiltonianFamily (every default documented; the presets of the family's methods
+/// are HamiltonianFamily::Proximal(), AugmentedLagrangian() and Polished()).
+struct HamiltonianFamilyOptions {
+  enum class Direction {
+    kPaper,     ///< u* = argmin H (the paper's)
+    kProximal,  ///< argmin H + |w - u|^2 / (2 eps) (Sakawa and Shindo), eps by `proximal`
+  };
+  enum class PathConstraints {
+    kReformulation,        ///< Ocp::HamiltonianReformulation's penalty (the paper's method's)
+    kAugmentedLagrangian,  ///< the outer loop's multipliers (AugmentedLagrangianOcp)
+  };
+
+  // ---- the descent ----
+  /// Armijo constants and limits as HamiltonianDescentOptions: alpha, beta in (0, 1),
+  /// max_armijo_exponent >= 0; armijo_prefilter as there (same iterates).
+  double alpha = 0.1;
+  double beta = 0.5;
+  int max_armijo_exponent = 50;
+  bool armijo_prefilter = true;
+  /// Descent steps at most, over every phase and outer iteration (>= 0); with the polish, the
+  /// descent's steps before Newton's first attempt (the Polished() preset: 250).
+  int max_iterations = 500;
+  /// Penalty form: stop when |theta| <= relative_theta_tolerance (1 + |J|) (>= 0; 0: off). With
+  /// polish, the descent hands over to Newton at this level (polish_switch below).
+  double relative_theta_tolerance = 0.0;
+  /// CPU limit of the whole solve (> 0).
+  double max_cpu_seconds = std::numeric_limits<double>::infinity();
+  /// Passed to Ocp::HamiltonianReformulation (unset: the problem's defaults).
+  std::optional<double> path_penalty;
+  std::optional<double> regularization;
+  Direction direction = Direction::kPaper;
+  /// The proximal direction's eps schedule (used with kProximal).
+  ProximalSchedule proximal;
+
+  // ---- the augmented Lagrangian: the hard terminal form, and path constraints with kAL ----
+  PathConstraints path = PathConstraints::kReformulation;
+  AugmentedLagrangianRule augmented_lagrangian;
+
+  // ---- free final time (problems with Ocp::free_final_time(); forward Euler) ----
+  /// The first T step moves T by at most this fraction of T - t0 (> 0); the step then follows
+  /// the Armijo outcome (DescentPasses::EnableFreeFinalTime).
+  double free_time_initial_fraction = 0.1;
+
+  // ---- polish: Newton on the Euler maximum principle (PmpResidual::Scheme::kEuler) ----
+  bool polish = false;
+  /// The descent hands over when |theta| <= polish_switch (1 + |J|) or at max_iterations (> 0).
+  double polish_switch = 1e-3;
+  /// Newton's limits (IndirectNewtonOptions: max_iterations >= 0, tolerance > 0 on ||F||_inf).
+  int newton_max_iterations = 100;
+  double newton_tolerance = 1e-10;
+  /// Newton attempts at most (>= 1). When Newton does not converge, the descent continues from
+  /// its own last iterate for as many steps again as it has taken (its budget doubles) and Newton
+  /// starts over from there: Newton's basin on the semismooth maximum principle is irregular
+  /// (comm-path2d, hard form, gamma = 1e-5: a start from 250 descent steps fails on some channel
+  /// seeds and a later one converges; solvers/README-family.md). 6 attempts: up to 8000 steps.
+  int polish_attempts = 6;
+
+  bool IsValid(std::string* error) const;
+};
+
+/// The family of the paper's method, each ingredient an option of one solver (documented in
+/// solvers/README-family.md), all on the discrete problem of the request's grid and integrator
+/// (forward Euler: the exact discrete adjoint; everything below is exact for that discrete
+/// problem):
+///
+///  1. direction: the paper's u* or the proximal minimizer (DescentPasses::Backward);
+///  2. terminal form: penalty (the paper's Phi, as `hamiltonian`) or hard psi(x(tf)) = 0 by the
+///     augmented-Lagrangian outer loop (RunAugmentedLagrangian) with the descent as the inner
+///     solver; path constraints c <= 0 by the same loop (kAugmentedLagrangian) or by the
+///     problem's penalty reformulation (kReformulation, as `hamiltonian`);
+///  3. free final time: T is a variable with the exact dJ/dT (DescentPasses);
+///  4. polish: after the descent (|theta| <= polish_switch (1 + |J|) or max_iterations; for the
+///     hard form the descent runs on the penalty form, a better start for Newton than the outer
+///     loop's first iterations), the
+///     costates are fitted to its controls (FitEulerCostates) and IndirectNewton with
+///     Scheme::kEuler solves the Euler maximum principle of the same discrete problem (penalty
+///     or hard form, T included) from its states: the optimum of the discrete problem to Newton's
+///     tolerance, the Euler transcription's NLP optimum.
+///
+/// Result: controls piecewise constant on state_grid (the request's grid, stretched to T for a
+/// free final time); states, costates of the final iterate (the polished one with polish);
+/// objective = the final discrete J of the problem solved in the request's terminal form (hard:
+/// without penalty or multiplier terms); iterations = descent steps + Newton steps. history, in
+/// the order of execution and numbered by position: the descent's rows (J of the problem being
+/// descended: the AL's J_A inside the outer loop), then each Newton attempt's (primal_inf =
+/// ||F||_inf; J its discrete cost) and the descent's continuation between attempts. Status: without
+/// polish the descent's (or the outer loop's: "al_converged", "al_max_outer_iterations",
+/// "max_iterations", or the inner failure's code); with polish Newton's (its solver_status
+/// verbatim); when Newton does not converge the result keeps the descent's controls, states and J,
+/// and says so. solver_stats: "descent_iterations", "descent_cpu_seconds", "final_theta",
+/// "simulations", "prefilter_rejections", "reformulated"; AL: "outer_iterations",
+/// "terminal_residual", "path_violation", "penalty", "nu_<i>" (the final terminal multipliers,
+/// those of psi_i = 0 in the Lagrangian J + nu^T psi); free time: "final_time", "dJdT"; polish:
+/// "newton_iterations", "newton_cpu_seconds", "newton_residual_inf" and Newton's own stats prefixed
+/// "newton_".
+///
+/// Not applicable (kNotApplicable, reason in `message`): no Hamiltonian minimizer; path
+/// constraints left after the choice of `path`; a free final time with RK4; a polish with path
+/// constraints handled by the outer loop (Newton takes none).
+class HamiltonianFamily final : public Solver {
+ public:
+  using Options = HamiltonianFamilyOptions;
+  /// The registered methods: each is the family with one ingredient on by default (and every
+  /// other one an option): "hamiltonian-proximal" (direction = proximal), "hamiltonian-al"
+  /// (path = augmented-lagrangian; the hard form uses the outer loop in every preset),
+  /// "hamiltonian-polish" (polish = true).
+  enum class Preset { kProximal, kAugmentedLagrangian, kPolish };
+
+  /// The registered method `preset` with its defaults.
+  explicit HamiltonianFamily(Preset preset = Preset::kProximal);
+  /// Given options (validated: throws std::invalid_argument when !options.IsValid()); request
+  /// options are applied over them by `preset`'s schema.
+  HamiltonianFamily(const Options& options, Preset preset = Preset::kProximal);
+
+  /// The presets' defaults: the proximal direction; the outer loop for path constraints too;
+  /// the polish.
+  static Options Proximal();
+  static Options AugmentedLagrangian();
+  static Options Polished();
+  static Options Defaults(Preset preset);
+  static const char* Name(Preset preset);
+  /// The one-line description `ocpbench list solvers` prints.
+  static const char* Description(Preset preset);
+  /// The option schema of each registered method (`ocpbench describe solver NAME`): one set of
+  /// keys, each preset's defaults.
+  static const OptionSchema& Schema(Preset preset);
+  /// `base` with `options` applied and validated; throws std::invalid_argument naming the key.
+  static Options ApplyOptions(Preset preset, const OptionMap& options, const Options& base);
+
+  std::string name() const override { return Name(preset_); }
+  const Options& options() const { return options_; }
+
+  /// Throws std::invalid_argument for an invalid request: bad options, a grid that does not
+  /// span the horizon, an initial guess of the wrong size.
+  SolveResult Solve(const Ocp& ocp, const SolveRequest& request) const override;
+
+ private:
+  // The polish stage after the descent: fitted costates, Newton on the Euler maximum principle,
+  // and on failure more descent and another attempt (polish_attempts). Updates *r.
+  void Polish(const Options& o,
+              const Ocp& original,
+              const Ocp& problem,
+              const SolveRequest& request,
+              const Stopwatch& clock,
+              DescentLoopOptions loop,
+              DescentPasses* passes,
+              SolveResult* r) const;
+
+  Preset preset_;
+  Options options_;
+};
+
+}  // namespace ocpb

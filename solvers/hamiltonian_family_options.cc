@@ -1,0 +1,309 @@
+// The option schemas of the Hamiltonian family's registered methods (one binding, three sets of
+// defaults).
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "core/option_binding.h"
+#include "solvers/hamiltonian_family.h"
+
+namespace ocpb {
+namespace {
+
+using Options = HamiltonianFamilyOptions;
+
+// The presets as types, so that each registered method's schema shows its own defaults.
+struct ProximalPreset : Options {
+  ProximalPreset() { static_cast<Options&>(*this) = HamiltonianFamily::Proximal(); }
+};
+struct AugmentedLagrangianPreset : Options {
+  AugmentedLagrangianPreset() {
+    static_cast<Options&>(*this) = HamiltonianFamily::AugmentedLagrangian();
+  }
+};
+struct PolishPreset : Options {
+  PolishPreset() { static_cast<Options&>(*this) = HamiltonianFamily::Polished(); }
+};
+
+// A field of a nested struct (the proximal schedule, the outer loop's rule) as a spec.
+template <class O, class Outer, class T>
+void NestedField(OptionBinding<O>& t,
+                 const std::string& name,
+                 Outer Options::*outer,
+                 T Outer::*inner,
+                 std::string doc,
+                 OptionBounds bounds) {
+  OptionSpec s;
+  s.name = name;
+  s.type = std::is_same_v<T, int> ? OptionType::kInteger : OptionType::kNumber;
+  s.doc = std::move(doc);
+  const O defaults{};
+  s.default_value = OptionValue(defaults.*outer.*inner);
+  s.bounds = bounds;
+  t.Custom(
+      std::move(s),
+      [outer, inner](O* o, const OptionValue& v) {
+        if constexpr (std::is_same_v<T, int>) {
+          o->*outer.*inner = static_cast<int>(v.integer());
+        } else {
+          o->*outer.*inner = v.number();
+        }
+      },
+      [outer, inner](const O& o) { return OptionValue(o.*outer.*inner); });
+}
+
+template <class O>
+OptionBinding<O> MakeBinding(const std::string& owner) {
+  OptionBinding<O> t(owner);
+  t.Number("alpha", &O::alpha, "Armijo sufficient-decrease constant", OptionBounds::Open(0, 1));
+  t.Number("beta", &O::beta, "Armijo step reduction", OptionBounds::Open(0, 1));
+  t.Integer("max_armijo_exponent",
+            &O::max_armijo_exponent,
+            "largest Armijo exponent j tried",
+            OptionBounds::AtLeast(0));
+  t.Bool("armijo_prefilter",
+         &O::armijo_prefilter,
+         "reject Armijo trials by lower bounds (same iterates, less work)");
+  t.Integer("max_iterations",
+            &O::max_iterations,
+            "descent steps at most, over every phase and outer iteration",
+            OptionBounds::AtLeast(0));
+  t.Number("relative_theta_tolerance",
+           &O::relative_theta_tolerance,
+           "penalty form: stop when |theta| <= this (1 + |J|) (0: off)",
+           OptionBounds::AtLeast(0));
+  t.Number("max_cpu_seconds",
+           &O::max_cpu_seconds,
+           "CPU time limit of the whole solve (inf: none)",
+           OptionBounds::Above(0).WithInfinity());
+  t.OptionalNumber("path_penalty",
+                   &O::path_penalty,
+                   "rho of the reformulation's path penalty rho max(0, c)^2",
+                   OptionBounds::Above(0),
+                   "the problem's own default");
+  t.OptionalNumber("regularization",
+                   &O::regularization,
+                   "eps of the reformulation's control regularization eps |u|^2",
+                   OptionBounds::Above(0),
+                   "the problem's own default");
+  t.template Enum<Options::Direction>(
+      "direction",
+      &O::direction,
+      {{"paper", Options::Direction::kPaper}, {"proximal", Options::Direction::kProximal}},
+      "the descent's direction: the paper's u* - u, or Sakawa-Shindo's proximal one");
+  NestedField(t,
+              "proximal_eps",
+              &Options::proximal,
+              &ProximalSchedule::initial_eps,
+              "proximal direction: eps of the first iteration",
+              OptionBounds::Above(0));
+  NestedField(t,
+              "proximal_growth",
+              &Options::proximal,
+              &ProximalSchedule::growth,
+              "proximal direction: eps factor after a full Armijo step",
+              OptionBounds::AtLeast(1));
+  NestedField(t,
+              "proximal_min_eps",
+              &Options::proximal,
+              &ProximalSchedule::min_eps,
+              "proximal direction: smallest eps",
+              OptionBounds::Above(0));
+  NestedField(t,
+              "proximal_max_eps",
+              &Options::proximal,
+              &ProximalSchedule::max_eps,
+              "proximal direction: largest eps (inf: the paper's direction allowed)",
+              OptionBounds::Above(0).WithInfinity());
+  t.template Enum<Options::PathConstraints>(
+      "path",
+      &O::path,
+      {{"reformulation", Options::PathConstraints::kReformulation},
+       {"augmented-lagrangian", Options::PathConstraints::kAugmentedLagrangian}},
+      "path constraints: the problem's penalty reformulation, or the outer loop's multipliers");
+  using AL = AugmentedLagrangianRule;
+  NestedField(t,
+              "al_initial_penalty",
+              &Options::augmented_lagrangian,
+              &AL::initial_penalty,
+              "outer loop: rho_0",
+              OptionBounds::Above(0));
+  NestedField(t,
+              "al_penalty_growth",
+              &Options::augmented_lagrangian,
+              &AL::penalty_growth,
+              "outer loop: rho factor when the infeasibility did not fall below eta",
+              OptionBounds::Above(1));
+  NestedField(t,
+              "al_max_penalty",
+              &Options::augmented_lagrangian,
+              &AL::max_penalty,
+              "outer loop: largest rho",
+              OptionBounds::Above(0));
+  NestedField(t,
+              "al_initial_feasibility",
+              &Options::augmented_lagrangian,
+              &AL::initial_feasibility,
+              "outer loop: eta_0",
+              OptionBounds::Above(0));
+  NestedField(t,
+              "al_feasibility_tolerance",
+              &Options::augmented_lagrangian,
+              &AL::feasibility_tolerance,
+              "outer loop: converged when max |psi| and max c+ are below this",
+              OptionBounds::Above(0));
+  NestedField(t,
+              "al_initial_inner_tolerance",
+              &Options::augmented_lagrangian,
+              &AL::initial_inner_tolerance,
+              "outer loop: omega_0, relative inner |theta| tolerance",
+              OptionBounds::Above(0));
+  NestedField(t,
+              "al_final_inner_tolerance",
+              &Options::augmented_lagrangian,
+              &AL::final_inner_tolerance,
+              "outer loop: the last inner solves' relative |theta| tolerance",
+              OptionBounds::Above(0));
+  NestedField(t,
+              "al_max_outer_iterations",
+              &Options::augmented_lagrangian,
+              &AL::max_outer_iterations,
+              "outer loop: outer iterations at most",
+              OptionBounds::AtLeast(1));
+  NestedField(t,
+              "al_max_inner_iterations",
+              &Options::augmented_lagrangian,
+              &AL::max_inner_iterations,
+              "outer loop: descent steps per outer iteration at most",
+              OptionBounds::AtLeast(1));
+  t.Number("free_time_initial_fraction",
+           &O::free_time_initial_fraction,
+           "free final time: the first T step moves T by at most this fraction of T - t0",
+           OptionBounds::Above(0));
+  t.Bool("polish", &O::polish, "Newton on the Euler maximum principle after the descent");
+  t.Number("polish_switch",
+           &O::polish_switch,
+           "polish: the descent hands over at |theta| <= this (1 + |J|) or max_iterations",
+           OptionBounds::Above(0));
+  t.Integer("newton_max_iterations",
+            &O::newton_max_iterations,
+            "polish: Newton steps per attempt at most",
+            OptionBounds::AtLeast(0));
+  t.Number("newton_tolerance",
+           &O::newton_tolerance,
+           "polish: Newton converged at ||F||_inf <= this",
+           OptionBounds::Above(0));
+  t.Integer("polish_attempts",
+            &O::polish_attempts,
+            "polish: Newton attempts at most (the descent continues between them)",
+            OptionBounds::AtLeast(1));
+  return t;
+}
+
+template <class O>
+const OptionBinding<O>& Binding(const char* owner) {
+  static const OptionBinding<O> binding = MakeBinding<O>(owner);
+  return binding;
+}
+
+}  // namespace
+
+const char* HamiltonianFamily::Name(Preset preset) {
+  switch (preset) {
+    case Preset::kProximal:
+      return "hamiltonian-proximal";
+    case Preset::kAugmentedLagrangian:
+      return "hamiltonian-al";
+    case Preset::kPolish:
+      break;
+  }
+  return "hamiltonian-polish";
+}
+
+const char* HamiltonianFamily::Description(Preset preset) {
+  switch (preset) {
+    case Preset::kProximal:
+      return "Hamiltonian family: the descent with Sakawa-Shindo's proximal direction (hard "
+             "terminal form by an augmented-Lagrangian loop, free final time)";
+    case Preset::kAugmentedLagrangian:
+      return "Hamiltonian family: the descent inside an augmented-Lagrangian loop for terminal "
+             "and path constraints (free final time)";
+    case Preset::kPolish:
+      break;
+  }
+  return "Hamiltonian family: the descent, then Newton on the Euler maximum principle from its "
+         "states and fitted costates (both phases in the record; free final time)";
+}
+
+HamiltonianFamily::Options HamiltonianFamily::Defaults(Preset preset) {
+  switch (preset) {
+    case Preset::kProximal:
+      return Proximal();
+    case Preset::kAugmentedLagrangian:
+      return AugmentedLagrangian();
+    case Preset::kPolish:
+      break;
+  }
+  return Polished();
+}
+
+const OptionSchema& HamiltonianFamily::Schema(Preset preset) {
+  switch (preset) {
+    case Preset::kProximal:
+      return Binding<ProximalPreset>(Name(preset)).schema();
+    case Preset::kAugmentedLagrangian:
+      return Binding<AugmentedLagrangianPreset>(Name(preset)).schema();
+    case Preset::kPolish:
+      break;
+  }
+  return Binding<PolishPreset>(Name(preset)).schema();
+}
+
+HamiltonianFamily::Options HamiltonianFamily::ApplyOptions(Preset preset,
+                                                           const OptionMap& options,
+                                                           const Options& base) {
+  Options o;
+  switch (preset) {
+    case Preset::kProximal: {
+      ProximalPreset b;
+      static_cast<Options&>(b) = base;
+      o = Binding<ProximalPreset>(Name(preset)).Apply(options, b);
+      break;
+    }
+    case Preset::kAugmentedLagrangian: {
+      AugmentedLagrangianPreset b;
+      static_cast<Options&>(b) = base;
+      o = Binding<AugmentedLagrangianPreset>(Name(preset)).Apply(options, b);
+      break;
+    }
+    case Preset::kPolish: {
+      PolishPreset b;
+      static_cast<Options&>(b) = base;
+      o = Binding<PolishPreset>(Name(preset)).Apply(options, b);
+      break;
+    }
+  }
+  std::string error;
+  if (!o.IsValid(&error)) throw std::invalid_argument(std::string(Name(preset)) + ": " + error);
+  return o;
+}
+
+bool HamiltonianFamilyOptions::IsValid(std::string* error) const {
+  ProximalPreset p;
+  static_cast<Options&>(p) = *this;
+  if (!Binding<ProximalPreset>(HamiltonianFamily::Name(HamiltonianFamily::Preset::kProximal))
+           .Check(p, error)) {
+    return false;
+  }
+  auto fail = [error](const std::string& why) {
+    if (error) *error = why;
+    return false;
+  };
+  std::string why;
+  if (!proximal.IsValid(&why)) return fail("proximal: " + why);
+  if (!augmented_lagrangian.IsValid(&why)) return fail("augmented_lagrangian: " + why);
+  return true;
+}
+
+}  // namespace ocpb

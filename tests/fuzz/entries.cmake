@@ -1,0 +1,15 @@
+# The libFuzzer targets: OCPB_FUZZ_TARGETS is their one list. A target <name> is the entry point
+# LLVMFuzzerTestOneInput in <name>_fuzzer.cc with its seed corpus in corpus/<name>/ (and the
+# crashes it once found in regressions/<name>/). Each entry is compiled once and linked twice:
+# into the libFuzzer executable <name>_fuzzer (CMakeLists.txt here, OCPB_FUZZ) and into the test
+# fuzz_replay.<name> (replay.cmake), which replays the corpus and regressions in every test run.
+# .ci/fuzz fuzzes every target of this list unless FUZZ_TARGETS names some.
+include_guard(GLOBAL)
+set(OCPB_FUZZ_DIR ${PROJECT_SOURCE_DIR}/tests/fuzz)
+set(OCPB_FUZZ_TARGETS measurement suite records initial_guess)
+foreach(target IN LISTS OCPB_FUZZ_TARGETS)
+  add_library(${target}_fuzz_entry OBJECT ${OCPB_FUZZ_DIR}/${target}_fuzzer.cc)
+  # All of OCPBench (ocpb_cli and what it links): one link line for every entry.
+  target_link_libraries(${target}_fuzz_entry PUBLIC ocpb_cli)
+  ocpb_set_warnings(${target}_fuzz_entry)
+endforeach()
