@@ -352,7 +352,7 @@ std::string SummaryMarkdown(const std::string& suite_name,
           rs.size());
       if (free_time) md << " " << Spread(T) << " |";
       if (reference) md << " " << Spread(rel) << " |";
-      if (costates) md << " " << G(Worst(pe)) << " |";
+      if (costates) md << " " << SummaryNumber(WorstOf(pe)) << " |";
       md << "\n";
     }
     md << "\n";
