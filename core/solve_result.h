@@ -63,6 +63,9 @@ struct SolveResult {
   /// Backend-specific numbers by name (for example "ipopt_cpu_seconds", "ipopt_dual_inf");
   /// empty when the solver reports none.
   std::map<std::string, double> solver_stats;
+  /// Where `costates` come from, in a few words ("NLP multipliers (lgr)", "discrete adjoint
+  /// (euler)"); empty when there are none.
+  std::string costate_source;
 };
 
 }  // namespace ocpb

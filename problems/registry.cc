@@ -27,6 +27,8 @@ std::vector<ProblemInfo> BuildRegistry() {
     p.reference_value = 6.0;
     p.reference_source =
         "analytic: u* = 6 - 12t (Bryson-Ho; CTProblems.jl double_integrator_energy)";
+    // p1' = 0, p2' = -p1 and u* = -p2 = 6 - 12t give p* = (-12, 12t - 6).
+    p.reference_costate = [](double t) { return Vec(Eigen::Vector2d(-12.0, 12.0 * t - 6.0)); };
     list.push_back(p);
   }
   {

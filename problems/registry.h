@@ -46,6 +46,11 @@ struct ProblemInfo {
   /// Ocp::HamiltonianReformulation, Ocp::free_final_time), which the solver reads; a registry
   /// test checks that every note agrees with the solver's verdict.
   std::string hamiltonian_note;
+  /// Optional: the optimal costate p*(t) (nx values, convention H = p^T f + L) of the problem
+  /// at its default parameters, as posed (hard terminal form), on [t0, tf]. Records of cases
+  /// that keep the defaults get a costate error against it (core/costate_error.h). Empty
+  /// when unknown.
+  std::function<Vec(double t)> reference_costate;
   /// Optional: a field to draw a solution over (comm-path2d: its channel map), kept in records
   /// that keep their trajectory (field s_map). Empty, or nullopt for a given problem: none.
   std::function<std::optional<FieldSample>(const Ocp& ocp)> sample_for_figures;

@@ -233,7 +233,10 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
   result.controls = ControlTrajectory::PiecewiseConstant(grid, passes.TakeU());
   result.state_grid = grid;
   result.states = passes.TakeX();
-  if (have_costates) result.costates = passes.TakeLambda();
+  if (have_costates) {
+    result.costates = passes.TakeLambda();
+    result.costate_source = "discrete adjoint (" + std::string(ToString(request.integrator)) + ")";
+  }
   result.objective = J;
   result.solver_stats["final_theta"] = theta;
   result.solver_stats["simulations"] = work.simulations;

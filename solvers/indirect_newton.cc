@@ -341,6 +341,7 @@ class NewtonIteration {
     r->state_grid = solution_grid;
     r->states = std::move(X);
     r->costates = std::move(P);
+    r->costate_source = "Newton's p (discretized maximum principle)";
     r->objective = J_;
     r->iterations = iterations_;
     r->cpu_seconds = run_.watch.cpu();

@@ -77,6 +77,7 @@ SolveResult SolveTranscribed(const std::string& solver_name,
   result.states = nlp->States(sol.z);
   if (sol.lambda.size() == nlp->num_constraints() && sol.lambda.allFinite()) {
     result.costates = nlp->Costates(sol.z, sol.lambda);
+    if (result.costates.size() > 0) result.costate_source = "NLP multipliers (" + info.name + ")";
   }
   // Objective values in the problem's units: the transcription's objective scale is undone.
   double f = NAN;

@@ -13,6 +13,7 @@
 #include "bench/cli/initial_guess.h"
 #include "bench/cli/json_values.h"
 #include "bench/cli/online_case.h"
+#include "core/costate_error.h"
 #include "core/evaluator.h"
 #include "core/field_sample.h"
 #include "core/memory_budget.h"
@@ -187,6 +188,30 @@ void Judge(const CaseSpec& spec, const PreparedCase& p, const SolveResult& resul
         rec->s_map = FieldSampleJson(*f);
       }
     }
+  }
+}
+
+// The costate fields: the method's own source, the costates themselves with the trajectory,
+// and the error against the problem's known p* where it applies: the problem's default
+// parameters (p* is for those), its fixed horizon, and the problem as posed (the hard terminal
+// form, or no terminal constraints: the penalty form's optimum has other costates).
+void RecordCostateFields(const CaseSpec& spec,
+                         const PreparedCase& p,
+                         const SolveResult& result,
+                         Record* rec) {
+  const bool has_costates = result.costates.rows() == p.ocp->nx() &&
+                            result.costates.cols() == result.state_grid.size() &&
+                            result.costates.cols() > 0;
+  if (!has_costates || result.status == SolveStatus::kNotApplicable) return;
+  rec->costate_source = result.costate_source;
+  if (spec.keep_trajectory)
+    rec->costates = RecordCostates{result.state_grid.points(), result.costates};
+  const ProblemInfo& pinfo = FindProblem(spec.problem);
+  const bool as_posed = spec.terminal == TerminalMode::kHard || p.ocp->num_terminal() == 0;
+  const bool defaults = p.params.values() == Parameters(pinfo.parameters).values();
+  if (pinfo.reference_costate && as_posed && defaults && !p.ocp->free_final_time()) {
+    rec->costate_error =
+        RelativeCostateError(result.costates, result.state_grid, pinfo.reference_costate);
   }
 }
 
@@ -368,6 +393,7 @@ Record RunCase(const CaseSpec& given) {
                                           penalty_stage->cpu_seconds};
   }
   Judge(spec, p, result, &rec);
+  RecordCostateFields(spec, p, result, &rec);
   if (pinfo.reference_value) {
     RecordReference ref;
     ref.value = *pinfo.reference_value;

@@ -294,6 +294,9 @@ json Record::ToJson() const {
     }
     r["trajectory"] = t;
   }
+  if (!costate_source.empty()) r["costate_source"] = costate_source;
+  if (std::isfinite(costate_error)) r["costate_error"] = costate_error;
+  if (costates) r["costates"] = json{{"t", costates->t}, {"p", JsonRows(costates->p)}};
   if (!s_map.is_null()) r["s_map"] = s_map;
   if (reference) {
     json ref{{"value", JsonNumber(reference->value)},
@@ -453,6 +456,20 @@ Record Record::Read(const json& j, json* movable) {
       if (own.Has("p")) traj.own_p = own.Rows(o["p"], "p");
     }
     rec.trajectory = std::move(traj);
+  }
+  r.Text("costate_source", &rec.costate_source);
+  r.Number("costate_error", &rec.costate_error);
+  if (r.Has("costates")) {
+    const json& c = j["costates"];
+    if (!c.is_object()) r.Fail("costates", "an object");
+    const Reader cr(c, "costates.");
+    RecordCostates out;
+    cr.Numbers("t", &out.t);
+    if (cr.Has("p")) out.p = cr.Rows(c["p"], "p");
+    if (out.p.size() > 0 && static_cast<size_t>(out.p.cols()) != out.t.size()) {
+      cr.Fail("p", "rows of as many values as t");
+    }
+    rec.costates = std::move(out);
   }
   r.Any("s_map", &rec.s_map);
   if (r.Has("reference")) {

@@ -63,6 +63,13 @@ struct RecordContinuation {
   double cpu_seconds = NAN;
 };
 
+/// A method's costates as a record keeps them (with its trajectory): the times of the method's
+/// own costate grid (for Hermite-Simpson and LGR its interior points too) and p (nx rows).
+struct RecordCostates {
+  std::vector<double> t;
+  Mat p;
+};
+
 /// A published optimum the record is compared with: value, quantity ("J", "tf"), source, the
 /// problem it is an optimum of ("continuous", or a scheme's name whose NLP at N it solves).
 struct RecordReference {
@@ -146,6 +153,13 @@ struct Record {
   std::optional<RecordStoppingTolerance> stopping_tolerance;
   std::optional<RecordContinuation> continuation;
 
+  /// Costates: where the method's come from (SolveResult::costate_source; empty: it has none),
+  /// their error against the problem's known optimal costate (RelativeCostateError; NaN when
+  /// not compared), and, with the trajectory, the costates themselves.
+  std::string costate_source;
+  double costate_error = NAN;
+  std::optional<RecordCostates> costates;
+
   std::optional<RecordTrajectory> trajectory;
   nlohmann::json s_map;  ///< null, or the channel map for figures
   std::optional<RecordReference> reference;
@@ -153,7 +167,8 @@ struct Record {
   RecordVersions versions;
 
   /// The JSON object (schema results/record.schema.json). Fields that do not apply (online
-  /// parts of a solve record, an absent trajectory, reference or degree) are left out.
+  /// parts of a solve record, an absent trajectory, reference or degree, costate fields a method
+  /// or problem does not have) are left out.
   nlohmann::json ToJson() const;
   /// Reads a record. Fields missing from older records keep their defaults; a field of the
   /// wrong type throws std::invalid_argument "FIELD: must be ..." (the caller adds file and

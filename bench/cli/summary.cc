@@ -280,10 +280,12 @@ std::string SummaryMarkdown(const std::string& suite_name,
     std::map<std::string, std::vector<size_t>> by_method;
     const RecordReference* reference = nullptr;
     bool free_time = false;  // a free final time: the table says each method's T
+    bool costates = false;   // some record has a costate error against a known p*
     for (size_t i = 0; i < records.size(); ++i) {
       if (labels.section[i] != section) continue;
       const Record& r = records[i];
       free_time = free_time || r.final_time_free;
+      costates = costates || std::isfinite(r.costate_error);
       if (!by_method.count(labels.row[i])) methods.push_back(labels.row[i]);
       by_method[labels.row[i]].push_back(i);
       if (!reference && r.reference && std::isfinite(r.reference->value)) {
@@ -291,20 +293,27 @@ std::string SummaryMarkdown(const std::string& suite_name,
       }
     }
     if (reference) md << ReferenceNote(*reference) << "\n\n";
+    if (costates) {
+      md << "Costate error: the worst over a row's cases of max |p - p*| / max |p*| on the "
+            "method's own costate grid, against the problem's known optimal costate (record "
+            "field costate_error; empty where a method has no costates or the case is not the "
+            "problem as posed).\n\n";
+    }
     md << "| method | cases | status | warnings | J | Jbar | J fine | Jbar fine | terminal viol. | "
           "terminal viol. fine | U viol. | path viol. | resim. defect | iterations | CPU s | "
           "time to target s |"
        << (free_time ? " final time T |" : "") << (reference ? " rel. error vs reference |" : "")
-       << "\n";
+       << (costates ? " costate error |" : "") << "\n";
     md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-       << (free_time ? "---|" : "") << (reference ? "---|" : "") << "\n";
+       << (free_time ? "---|" : "") << (reference ? "---|" : "") << (costates ? "---|" : "")
+       << "\n";
     std::vector<std::string> notes;  // one line per row and warning code: its first message
     for (const std::string& m : methods) {
       const auto& rs = by_method[m];
       std::map<std::string, int> statuses;
       std::map<std::string, int> warnings;
       std::map<std::string, std::string> first_message;
-      std::vector<double> J, Jbar, Jf, Jbarf, tv, tvf, cv, pv, defect, it, cpu, ttt, rel, T;
+      std::vector<double> J, Jbar, Jf, Jbarf, tv, tvf, cv, pv, defect, it, cpu, ttt, rel, T, pe;
       int reached = 0;
       for (const size_t i : rs) {
         const Record& r = records[i];
@@ -324,6 +333,7 @@ std::string SummaryMarkdown(const std::string& suite_name,
         it.push_back(r.iterations >= 0 ? r.iterations : kNaN);
         cpu.push_back(r.cpu_seconds);
         T.push_back(r.final_time);
+        pe.push_back(r.costate_error);
         const double t = derived[i].time_to_target;
         if (std::isfinite(t)) {
           ttt.push_back(t);
@@ -367,6 +377,7 @@ std::string SummaryMarkdown(const std::string& suite_name,
           rs.size());
       if (free_time) md << " " << Spread(T) << " |";
       if (reference) md << " " << Spread(rel) << " |";
+      if (costates) md << " " << SummaryNumber(WorstOf(pe)) << " |";
       md << "\n";
     }
     md << "\n";
@@ -407,7 +418,8 @@ std::string RecordsCsv(const std::vector<Record>& records) {
                                    "reached_target",
                                    "time_to_target",
                                    "final_time",
-                                   "discretization_gap"};
+                                   "discretization_gap",
+                                   "costate_error"};
   std::ostringstream csv;
   bool first = true;
   for (const char* c : kColumns) {

@@ -46,6 +46,18 @@ class Lqr final : public AutoDiffOcp<Lqr, 2, 1> {
 
   bool HasHamiltonianMinimizer() const override { return true; }
   void MinimizeHamiltonian(double t, ConstVecRef x, ConstVecRef p, VecRef u) const override;
+
+  /// The optimum in closed form. The maximum principle with u* = -B^T p makes (x, p) solve the
+  /// linear Hamiltonian system z' = M z, M = [A, -B B^T; -I, -A^T] (p' = -H_x = -x - A^T p),
+  /// with x(0) = x0 and p(5) = 0; so z(t) = exp(t M) z(0), and p(0) follows from
+  /// [exp(5 M)]_{21} x0 + [exp(5 M)]_{22} p(0) = 0. Matrix exponentials by Eigen's
+  /// MatrixFunctions (Pade with scaling and squaring); agrees with the Riccati ODE's
+  /// p = P(t) x(t) and gives 1/2 x0^T p(0) = J* (tests/problems/reference_costate_test.cc).
+  static Eigen::Matrix4d HamiltonianMatrix();
+  /// (x*(t), p*(t)) for t in [0, 5].
+  static Eigen::Vector4d OptimalStateAndCostate(double t);
+  static Eigen::Vector2d OptimalState(double t) { return OptimalStateAndCostate(t).head<2>(); }
+  static Eigen::Vector2d OptimalCostate(double t) { return OptimalStateAndCostate(t).tail<2>(); }
 };
 
 /// The registry entry "lqr".

@@ -119,6 +119,101 @@ TEST(SolveCli, FreeFinalTimeRecordsTheSolutionsFinalTime) {
   EXPECT_NE(r["message"].get<std::string>().find("free final time"), std::string::npos);
 }
 
+// Every method with costates records where they come from, the costates on its own grid, and
+// (lqr: a known p*, no terminal constraints) their error against p*; NLopt has no multipliers;
+// a problem with terminal constraints in penalty form is not the problem p* belongs to: no error
+// there.
+TEST(SolveCli, RecordsCarryCostatesAndTheirErrorAgainstAKnownOptimum) {
+  const std::string dir = testing::FreshDirectory("solve-costates");
+  struct Expect {
+    std::vector<std::string> method;
+    std::string source;
+    size_t points;     // the costate grid: N + 1, or N K + 1 for LGR
+    double max_error;  // measured at N = 20: 1.2e-4, 2.7e-5, 0.445, 5.5e-3
+  };
+  for (const Expect& e : std::vector<Expect>{
+           {{"--solver", "ipopt", "--transcription", "lgr"}, "NLP multipliers (lgr)", 61, 5e-4},
+           {{"--solver", "ipopt", "--transcription", "hermite-simpson"},
+            "NLP multipliers (hermite-simpson)",
+            41,
+            1e-4},
+           {{"--solver", "hamiltonian"}, "discrete adjoint (euler)", 21, 0.6},
+           {{"--solver", "indirect-newton"},
+            "Newton's p (discretized maximum principle)",
+            21,
+            0.02}}) {
+    const ProgramRun run = RunOcpbenchProgram(
+        Args(Args({"solve", "--problem", "lqr", "--N", "20", "--json", "out.json"}, e.method), {}),
+        dir);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const json r = json::parse(testing::ReadText(dir + "/out.json"));
+    EXPECT_EQ(r["costate_source"], e.source);
+    ASSERT_TRUE(r.contains("costates")) << e.source;
+    EXPECT_EQ(r["costates"]["t"].size(), e.points) << e.source;
+    ASSERT_EQ(r["costates"]["p"].size(), 2u) << e.source;
+    EXPECT_EQ(r["costates"]["p"][1].size(), e.points) << e.source;
+    ASSERT_TRUE(r.contains("costate_error")) << e.source;
+    EXPECT_GT(r["costate_error"].get<double>(), 0.0) << e.source;
+    EXPECT_LT(r["costate_error"].get<double>(), e.max_error) << e.source;
+  }
+  // NLopt gives no multipliers: with terminal constraints, single shooting has no costates (on
+  // an unconstrained problem its costates are the plain discrete adjoint, recorded).
+  const std::vector<std::string> nlopt = {"solve",
+                                          "--problem",
+                                          "double-integrator",
+                                          "--terminal",
+                                          "hard",
+                                          "--solver",
+                                          "nlopt",
+                                          "--transcription",
+                                          "single-shooting",
+                                          "--N",
+                                          "10",
+                                          "--json",
+                                          "out.json"};
+  ProgramRun run = RunOcpbenchProgram(nlopt, dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  json r = json::parse(testing::ReadText(dir + "/out.json"));
+  EXPECT_FALSE(r.contains("costate_source"));
+  EXPECT_FALSE(r.contains("costates"));
+  EXPECT_FALSE(r.contains("costate_error"));
+  run = RunOcpbenchProgram({"solve",
+                            "--problem",
+                            "double-integrator",
+                            "--solver",
+                            "ipopt",
+                            "--transcription",
+                            "trapezoid",
+                            "--N",
+                            "10",
+                            "--json",
+                            "out.json"},
+                           dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  r = json::parse(testing::ReadText(dir + "/out.json"));
+  EXPECT_EQ(r["costate_source"], "NLP multipliers (trapezoid)");
+  EXPECT_FALSE(r.contains("costate_error"));  // penalty form: p* is the hard form's
+  run = RunOcpbenchProgram({"solve",
+                            "--problem",
+                            "double-integrator",
+                            "--solver",
+                            "ipopt",
+                            "--transcription",
+                            "trapezoid",
+                            "--terminal",
+                            "hard",
+                            "--N",
+                            "10",
+                            "--set",
+                            "tf=2",
+                            "--json",
+                            "out.json"},
+                           dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  r = json::parse(testing::ReadText(dir + "/out.json"));
+  EXPECT_FALSE(r.contains("costate_error"));  // p* is for the default parameters
+}
+
 TEST(SolveCli, NloptJsonHasTheContractFieldsAndRefusalsSayWhy) {
   const std::string dir = testing::FreshDirectory("solve-nlopt-json");
   const json r = Solve(dir,
