@@ -216,56 +216,58 @@ TEST(Record, ContinuationWarningsAndOwnTrajectoryRoundTrip) {
   json bad = j;
   bad["warnings"] = json::array({"a string"});
   EXPECT_THROW(Record::FromJson(bad), std::invalid_argument);
-  // The costate fields round-trip, and a costate matrix that does not fit its times is refused by
-  // field.
-  TEST(Record, CostatesRoundTripAndMustFitTheirTimes) {
-    CaseSpec spec = Spec("hager", "ipopt");
-    spec.transcription = "hermite-simpson";
-    spec.intervals = 8;
-    spec.keep_trajectory = true;
-    const Record r = RunCase(spec);
-    EXPECT_EQ(r.costate_source, "NLP multipliers (hermite-simpson)");
-    ASSERT_TRUE(r.costates);
-    EXPECT_EQ(r.costates->t.size(), 17u);  // nodes and midpoints
-    EXPECT_LT(r.costate_error, 1e-5);      // 1.6e-6 measured at N = 8
-    const json j = r.ToJson();
-    const Record back = Record::FromJson(j);
-    EXPECT_EQ(back.ToJson(), j);
-    EXPECT_EQ(back.costate_error, r.costate_error);
-    json bad = j;
-    bad["costates"]["t"].erase(0);
-    try {
-      Record::FromJson(bad);
-      ADD_FAILURE() << "accepted costates with one time too few";
-    } catch (const std::invalid_argument& e) {
-      EXPECT_EQ(std::string(e.what()), "costates.p: must be rows of as many values as t");
-    }
-    json old = j;  // records from before the costate fields read without them
-    old.erase("costates");
-    old.erase("costate_error");
-    old.erase("costate_source");
-    const Record plain = Record::FromJson(old);
-    EXPECT_FALSE(plain.costates);
-    EXPECT_TRUE(std::isnan(plain.costate_error));
-    EXPECT_EQ(plain.ToJson(), old);
-  }
+}
 
-  TEST(IsFailure, StatusNamesMatchTheEnum) {
-    for (SolveStatus s : {SolveStatus::kConverged,
-                          SolveStatus::kAcceptable,
-                          SolveStatus::kMaxIterations,
-                          SolveStatus::kMaxTime,
-                          SolveStatus::kStepTooSmall,
-                          SolveStatus::kRoundoffLimited,
-                          SolveStatus::kInfeasible,
-                          SolveStatus::kNumericalFailure,
-                          SolveStatus::kInvalidInput,
-                          SolveStatus::kNotApplicable,
-                          SolveStatus::kError}) {
-      EXPECT_EQ(IsFailure(std::string(ToString(s))), IsFailure(s)) << ToString(s);
-    }
-    EXPECT_FALSE(IsFailure(std::string("no-such-status")));
+// The costate fields round-trip, and a costate matrix that does not fit its times is refused by
+// field.
+TEST(Record, CostatesRoundTripAndMustFitTheirTimes) {
+  CaseSpec spec = Spec("hager", "ipopt");
+  spec.transcription = "hermite-simpson";
+  spec.intervals = 8;
+  spec.keep_trajectory = true;
+  const Record r = RunCase(spec);
+  EXPECT_EQ(r.costate_source, "NLP multipliers (hermite-simpson)");
+  ASSERT_TRUE(r.costates);
+  EXPECT_EQ(r.costates->t.size(), 17u);  // nodes and midpoints
+  EXPECT_LT(r.costate_error, 1e-5);      // 1.6e-6 measured at N = 8
+  const json j = r.ToJson();
+  const Record back = Record::FromJson(j);
+  EXPECT_EQ(back.ToJson(), j);
+  EXPECT_EQ(back.costate_error, r.costate_error);
+  json bad = j;
+  bad["costates"]["t"].erase(0);
+  try {
+    Record::FromJson(bad);
+    ADD_FAILURE() << "accepted costates with one time too few";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "costates.p: must be rows of as many values as t");
   }
+  json old = j;  // records from before the costate fields read without them
+  old.erase("costates");
+  old.erase("costate_error");
+  old.erase("costate_source");
+  const Record plain = Record::FromJson(old);
+  EXPECT_FALSE(plain.costates);
+  EXPECT_TRUE(std::isnan(plain.costate_error));
+  EXPECT_EQ(plain.ToJson(), old);
+}
+
+TEST(IsFailure, StatusNamesMatchTheEnum) {
+  for (SolveStatus s : {SolveStatus::kConverged,
+                        SolveStatus::kAcceptable,
+                        SolveStatus::kMaxIterations,
+                        SolveStatus::kMaxTime,
+                        SolveStatus::kStepTooSmall,
+                        SolveStatus::kRoundoffLimited,
+                        SolveStatus::kInfeasible,
+                        SolveStatus::kNumericalFailure,
+                        SolveStatus::kInvalidInput,
+                        SolveStatus::kNotApplicable,
+                        SolveStatus::kError}) {
+    EXPECT_EQ(IsFailure(std::string(ToString(s))), IsFailure(s)) << ToString(s);
+  }
+  EXPECT_FALSE(IsFailure(std::string("no-such-status")));
+}
 
 }  // namespace
 }  // namespace ocpb
