@@ -24,7 +24,8 @@ json Deterministic(const json& j) {
   }
   if (!j.is_object()) return j;
   json out = json::object();
-  for (const auto& [k, v] : j.items()) {
+  for (const auto& [key, v] : j.items()) {
+    const std::string& k = key;  // clang 14 cannot capture a structured binding
     const auto ends = [&k](const std::string& tail) {
       return k.size() >= tail.size() && k.compare(k.size() - tail.size(), tail.size(), tail) == 0;
     };
@@ -70,7 +71,8 @@ TEST(ChannelCache, RecordsAreTheSameWithAndWithoutIt) {
   cache.Clear();
   cache.SetCapacity(0);
   std::vector<json> without;
-  for (const CaseSpec& spec : SmallSuite()) without.push_back(Deterministic(RunCase(spec).ToJson()));
+  for (const CaseSpec& spec : SmallSuite())
+    without.push_back(Deterministic(RunCase(spec).ToJson()));
   EXPECT_EQ(cache.stats().hits, 0);
 
   cache.Clear();
