@@ -533,7 +533,8 @@ TEST_F(CompareRuns, IdenticalRunsReportNoChange) {
   // A run against itself: every CPU ratio is exactly 1 and every p-value 1.
   const ProgramRun self = CompareProgram({"base", "base/records.jsonl", "--json", "self.json.out"});
   ASSERT_EQ(self.exit_code, 0) << self.err;
-  for (const json& c : ReadJson("self.json.out")["cases"]) {
+  const json self_report = ReadJson("self.json.out");  // a named value: the loop reads into it
+  for (const json& c : self_report["cases"]) {
     EXPECT_EQ(c["cpu_ratio"], 1.0);
     EXPECT_EQ(c["cpu_test"]["p_value"], 1.0);
   }

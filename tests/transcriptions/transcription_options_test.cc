@@ -64,7 +64,8 @@ TEST(TranscriptionOptions, SizesAndHorizonAreCheckedAgainstTheProblem) {
   o = Valid();
   o.scaling.state = Vec::Ones(3);
   EXPECT_EQ(ErrorFor(o, *ocp),
-            "transcription: scaling: state scales must be empty or of size nx = 2");
+            "transcription: scaling: state scales (state_scale) must be empty or of size nx = 2 "
+            "(got 3)");
 }
 
 }  // namespace
