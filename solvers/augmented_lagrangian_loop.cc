@@ -1,18 +1,11 @@
 #include "solvers/augmented_lagrangian_loop.h"
+#include "solvers/message_number.h"
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace ocpb {
 namespace {
-
-std::string Format(double v) {
-  std::ostringstream os;
-  os.precision(3);
-  os << v;
-  return os.str();
-}
 
 double TerminalResidual(const Ocp& problem, ConstVecRef xN) {
   if (problem.num_terminal() == 0) return 0.0;
@@ -94,9 +87,10 @@ AugmentedLagrangianOutcome RunAugmentedLagrangian(const AugmentedLagrangianRule&
     if (inner_converged && tight && infeasibility <= rule.feasibility_tolerance) {
       out.stop = {SolveStatus::kConverged,
                   "al_converged",
-                  "terminal residual " + Format(out.terminal_residual) + ", path violation " +
-                      Format(out.path_violation) + " <= " + Format(rule.feasibility_tolerance) +
-                      " after " + std::to_string(out.outer_iterations) + " outer iterations"};
+                  "terminal residual " + MessageNumber(out.terminal_residual, 3) +
+                      ", path violation " + MessageNumber(out.path_violation, 3) +
+                      " <= " + MessageNumber(rule.feasibility_tolerance, 3) + " after " +
+                      std::to_string(out.outer_iterations) + " outer iterations"};
       // The multipliers of the solution: the first-order update at it.
       nu = al->TerminalUpdate(passes->X().col(N));
       if (al->inner().num_path() > 0) mu = al->PathUpdate(passes->X(), passes->U());
@@ -116,8 +110,8 @@ AugmentedLagrangianOutcome RunAugmentedLagrangian(const AugmentedLagrangianRule&
                   "max_iterations",
                   "reached max_iterations = " + std::to_string(inner.max_iterations) +
                       " descent steps over " + std::to_string(out.outer_iterations) +
-                      " outer iterations (terminal residual " + Format(out.terminal_residual) +
-                      ")"};
+                      " outer iterations (terminal residual " +
+                      MessageNumber(out.terminal_residual, 3) + ")"};
       stopped = true;
       break;
     }
@@ -143,8 +137,8 @@ AugmentedLagrangianOutcome RunAugmentedLagrangian(const AugmentedLagrangianRule&
     out.stop = {SolveStatus::kMaxIterations,
                 "al_max_outer_iterations",
                 "reached max_outer_iterations = " + std::to_string(rule.max_outer_iterations) +
-                    " (terminal residual " + Format(out.terminal_residual) + ", path violation " +
-                    Format(out.path_violation) + ")"};
+                    " (terminal residual " + MessageNumber(out.terminal_residual, 3) +
+                    ", path violation " + MessageNumber(out.path_violation, 3) + ")"};
   }
   return out;
 }

@@ -1,19 +1,12 @@
 #include "solvers/descent_loop.h"
+#include "solvers/message_number.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 namespace ocpb {
 namespace {
-
-std::string Format(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
 
 // The stopping tests made before an Armijo search, in HamiltonianDescent's documented order.
 std::optional<DescentStop> StopTest(const DescentLoopOptions& opt,
@@ -33,28 +26,28 @@ std::optional<DescentStop> StopTest(const DescentLoopOptions& opt,
   if (theta > 0.0 && theta <= roundoff) {
     return DescentStop{SolveStatus::kConverged,
                        "theta_at_roundoff",
-                       "theta = " + Format(theta) + " is at the rounding level " +
-                           Format(roundoff) +
+                       "theta = " + MessageNumber(theta) + " is at the rounding level " +
+                           MessageNumber(roundoff) +
                            " of the Hamiltonian sums: stationary to machine precision"};
   }
   if (theta > 0.0) {
     return DescentStop{SolveStatus::kError,
                        "theta_positive",
-                       "theta = " + Format(theta) +
+                       "theta = " + MessageNumber(theta) +
                            " > 0: the problem's Hamiltonian minimizer did not minimize H"};
   }
   if (std::abs(theta) <= opt.theta_tolerance) {
-    return DescentStop{
-        SolveStatus::kConverged,
-        "theta_below_tolerance",
-        "|theta| = " + Format(std::abs(theta)) + " <= " + Format(opt.theta_tolerance)};
+    return DescentStop{SolveStatus::kConverged,
+                       "theta_below_tolerance",
+                       "|theta| = " + MessageNumber(std::abs(theta)) +
+                           " <= " + MessageNumber(opt.theta_tolerance)};
   }
   if (opt.relative_theta_tolerance > 0.0 &&
       std::abs(theta) <= opt.relative_theta_tolerance * (1.0 + std::abs(J))) {
     return DescentStop{SolveStatus::kConverged,
                        "theta_below_relative_tolerance",
-                       "|theta| = " + Format(std::abs(theta)) +
-                           " <= " + Format(opt.relative_theta_tolerance) + " (1 + |J|)"};
+                       "|theta| = " + MessageNumber(std::abs(theta)) +
+                           " <= " + MessageNumber(opt.relative_theta_tolerance) + " (1 + |J|)"};
   }
   if (iteration >= opt.max_iterations) {
     return DescentStop{SolveStatus::kMaxIterations,
@@ -64,7 +57,7 @@ std::optional<DescentStop> StopTest(const DescentLoopOptions& opt,
   if (cpu >= opt.max_cpu_seconds) {
     return DescentStop{SolveStatus::kMaxTime,
                        "max_cpu_seconds",
-                       "reached max_cpu_seconds = " + Format(opt.max_cpu_seconds)};
+                       "reached max_cpu_seconds = " + MessageNumber(opt.max_cpu_seconds)};
   }
   return std::nullopt;
 }
@@ -126,7 +119,7 @@ DescentLoopOutcome RunDescentLoop(const DescentLoopOptions& opt,
     if (!(direction_theta < 0.0)) {
       stop = DescentStop{SolveStatus::kError,
                          "theta_positive",
-                         "the proximal theta " + Format(direction_theta) +
+                         "the proximal theta " + MessageNumber(direction_theta) +
                              " is not negative: the proximal minimizer did not minimize"};
       break;
     }

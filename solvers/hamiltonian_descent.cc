@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -11,16 +10,11 @@
 #include "core/timer.h"
 #include "solvers/descent_loop.h"
 #include "solvers/descent_passes.h"
+#include "solvers/hamiltonian_target.h"
+#include "solvers/message_number.h"
 
 namespace ocpb {
 namespace {
-
-std::string Format(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
 
 SolveResult NotApplicable(const std::string& reason) {
   SolveResult r;
@@ -132,9 +126,9 @@ void CheckRequest(const Ocp& ocp, const SolveRequest& request) {
   if (grid.size() < 2) throw std::invalid_argument("hamiltonian: the request's grid is empty");
   const double tol = 1e-9 * std::max(1.0, std::abs(ocp.tf() - ocp.t0()));
   if (std::abs(grid.t0() - ocp.t0()) > tol || std::abs(grid.tf() - ocp.tf()) > tol) {
-    throw std::invalid_argument("hamiltonian: the grid [" + Format(grid.t0()) + ", " +
-                                Format(grid.tf()) + "] does not span the horizon [" +
-                                Format(ocp.t0()) + ", " + Format(ocp.tf()) + "]");
+    throw std::invalid_argument("hamiltonian: the grid [" + MessageNumber(grid.t0()) + ", " +
+                                MessageNumber(grid.tf()) + "] does not span the horizon [" +
+                                MessageNumber(ocp.t0()) + ", " + MessageNumber(ocp.tf()) + "]");
   }
   if (request.initial_guess && request.initial_guess->nu() != ocp.nu()) {
     throw std::invalid_argument("hamiltonian: the initial guess has " +
@@ -143,24 +137,18 @@ void CheckRequest(const Ocp& ocp, const SolveRequest& request) {
   }
 }
 
-// The problem the descent solves: the original or its Hamiltonian reformulation, or the
+// The problem the descent solves (the original or its Hamiltonian reformulation), or the
 // reason it cannot.
-struct Target {
-  std::unique_ptr<Ocp> reformulated;
-  const Ocp* ocp = nullptr;
-  std::string note;  // "solved the problem's Hamiltonian reformulation '...'; " or empty
-  std::optional<SolveResult> not_applicable;
-};
-
-Target ResolveTarget(const Ocp& original,
-                     const SolveRequest& request,
-                     const HamiltonianDescentOptions& opt) {
-  Target t;
+HamiltonianTarget ResolveDescentTarget(const Ocp& original,
+                                       const SolveRequest& request,
+                                       const HamiltonianDescentOptions& opt) {
   if (auto refused = FreeFinalTimeNotApplicable(original, "hamiltonian")) {
+    HamiltonianTarget t;
     t.not_applicable = std::move(refused);
     return t;
   }
   if (request.terminal != TerminalMode::kPenalty) {
+    HamiltonianTarget t;
     t.not_applicable = NotApplicable(
         "the Hamiltonian descent handles terminal constraints only in penalty form "
         "(terminal = penalty); the hard form psi(x(tf)) = 0 is not applicable");
@@ -169,23 +157,16 @@ Target ResolveTarget(const Ocp& original,
   HamiltonianReformulationOptions reformulation_options;
   reformulation_options.path_penalty = opt.path_penalty;
   reformulation_options.regularization = opt.regularization;
-  t.reformulated = original.HamiltonianReformulation(reformulation_options);
-  t.ocp = t.reformulated ? t.reformulated.get() : &original;
-  if (t.reformulated) {
-    t.note = "solved the problem's Hamiltonian reformulation '" + t.ocp->name() + "'; ";
-  }
+  HamiltonianTarget t = ResolveHamiltonianTarget(original, reformulation_options);
   if (!t.ocp->HasHamiltonianMinimizer()) {
-    t.not_applicable = NotApplicable(t.note + "problem '" + t.ocp->name() +
+    t.not_applicable = NotApplicable(t.NotePrefix() + "problem '" + t.ocp->name() +
                                      "' has no pointwise Hamiltonian minimizer "
                                      "(Ocp::MinimizeHamiltonian)");
   } else if (t.ocp->num_path() > 0) {
     t.not_applicable =
-        NotApplicable(t.note +
+        NotApplicable(t.NotePrefix() +
                       "path constraints c(t, x, u) <= 0 are not handled by the Hamiltonian "
                       "descent, and the problem offers no reformulation that folds them into L");
-  } else if (t.ocp->nu() != original.nu() || t.ocp->nx() != original.nx()) {
-    throw std::logic_error("problem '" + original.name() +
-                           "': its Hamiltonian reformulation changed nx or nu");
   }
   return t;
 }
@@ -196,7 +177,7 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
   const Options opt = ApplyOptions(request.options, options_);
   CheckRequest(original, request);
   const Stopwatch clock;
-  Target target = ResolveTarget(original, request, opt);
+  HamiltonianTarget target = ResolveDescentTarget(original, request, opt);
   if (target.not_applicable) return *target.not_applicable;
   const Ocp& ocp = *target.ocp;
   const TimeGrid& grid = request.grid;
@@ -226,9 +207,9 @@ SolveResult HamiltonianDescent::Solve(const Ocp& original, const SolveRequest& r
 
   const double J = passes.J();
   if (std::isfinite(theta)) {
-    result.message += "; final J = " + Format(J) + ", theta = " + Format(theta);
+    result.message += "; final J = " + MessageNumber(J) + ", theta = " + MessageNumber(theta);
   }
-  result.message = target.note + result.message;
+  result.message = target.NotePrefix() + result.message;
   const DescentWork work = passes.work();
   result.controls = ControlTrajectory::PiecewiseConstant(grid, passes.TakeU());
   result.state_grid = grid;

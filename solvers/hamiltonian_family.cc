@@ -3,23 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
 #include "core/discrete_ocp.h"
 #include "solvers/euler_costate_fit.h"
+#include "solvers/hamiltonian_target.h"
 #include "solvers/indirect_newton.h"
+#include "solvers/message_number.h"
 
 namespace ocpb {
 namespace {
-
-std::string Format(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
 
 SolveResult NotApplicable(const std::string& solver, const std::string& reason) {
   SolveResult r;
@@ -38,9 +32,9 @@ void CheckRequest(const std::string& name, const Ocp& ocp, const SolveRequest& r
   if (grid.size() < 2) throw std::invalid_argument(name + ": the request's grid is empty");
   const double tol = 1e-9 * std::max(1.0, std::abs(ocp.tf() - ocp.t0()));
   if (std::abs(grid.t0() - ocp.t0()) > tol || std::abs(grid.tf() - ocp.tf()) > tol) {
-    throw std::invalid_argument(name + ": the grid [" + Format(grid.t0()) + ", " +
-                                Format(grid.tf()) + "] does not span the horizon [" +
-                                Format(ocp.t0()) + ", " + Format(ocp.tf()) + "]");
+    throw std::invalid_argument(name + ": the grid [" + MessageNumber(grid.t0()) + ", " +
+                                MessageNumber(grid.tf()) + "] does not span the horizon [" +
+                                MessageNumber(ocp.t0()) + ", " + MessageNumber(ocp.tf()) + "]");
   }
   if (request.initial_guess && request.initial_guess->nu() != ocp.nu()) {
     throw std::invalid_argument(name + ": the initial guess has the wrong number of controls");
@@ -49,40 +43,22 @@ void CheckRequest(const std::string& name, const Ocp& ocp, const SolveRequest& r
 
 // The problem the descent works on (before any augmented Lagrangian): the original, or its
 // Hamiltonian reformulation, or the reason neither applies.
-struct Target {
-  std::unique_ptr<Ocp> reformulated;
-  const Ocp* ocp = nullptr;
-  std::string note;
-  std::optional<SolveResult> not_applicable;
-};
-
-Target Resolve(const std::string& name,
-               const Ocp& original,
-               const SolveRequest& request,
-               const HamiltonianFamilyOptions& o) {
-  Target t;
-  auto refuse = [&](const std::string& why) {
-    t.not_applicable = NotApplicable(name, t.note + why);
-    return std::move(t);
-  };
+HamiltonianTarget ResolveFamilyTarget(const std::string& name,
+                                      const Ocp& original,
+                                      const SolveRequest& request,
+                                      const HamiltonianFamilyOptions& o) {
   const bool path_al = o.path == HamiltonianFamilyOptions::PathConstraints::kAugmentedLagrangian &&
                        original.num_path() > 0;
   // The outer loop takes the path constraints itself; otherwise the problem's reformulation
   // (path penalty, or the regularization of an H linear in u), as the paper's method.
-  if (!path_al) {
-    HamiltonianReformulationOptions ro;
-    ro.path_penalty = o.path_penalty;
-    ro.regularization = o.regularization;
-    t.reformulated = original.HamiltonianReformulation(ro);
-  }
-  t.ocp = t.reformulated ? t.reformulated.get() : &original;
-  if (t.reformulated) {
-    t.note = "solved the problem's Hamiltonian reformulation '" + t.ocp->name() + "'; ";
-    if (t.ocp->nx() != original.nx() || t.ocp->nu() != original.nu()) {
-      throw std::logic_error("problem '" + original.name() +
-                             "': its Hamiltonian reformulation changed nx or nu");
-    }
-  }
+  HamiltonianReformulationOptions ro;
+  ro.path_penalty = o.path_penalty;
+  ro.regularization = o.regularization;
+  HamiltonianTarget t = ResolveHamiltonianTarget(original, ro, /*reformulate=*/!path_al);
+  auto refuse = [&](const std::string& why) {
+    t.not_applicable = NotApplicable(name, t.NotePrefix() + why);
+    return std::move(t);
+  };
   if (!t.ocp->HasHamiltonianMinimizer()) {
     return refuse("problem '" + t.ocp->name() + "' has no pointwise Hamiltonian minimizer");
   }
@@ -230,10 +206,11 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
   const std::string name = this->name();
   CheckRequest(name, original, request);
   const Stopwatch clock;
-  Target target = Resolve(name, original, request, o);
+  HamiltonianTarget target = ResolveFamilyTarget(name, original, request, o);
   if (target.not_applicable) return *target.not_applicable;
   const Ocp& problem = *target.ocp;
-  const bool path_al = problem.num_path() > 0;  // Resolve left them only for the outer loop
+  const bool path_al =
+      problem.num_path() > 0;  // ResolveFamilyTarget left them only for the outer loop
   // The hard form by the outer loop, unless Newton finishes: then the descent runs on the
   // problem's penalty form (a better start than the loop's first, weaker, penalties) and Newton
   // solves the hard form.
@@ -315,7 +292,7 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
   const TimeGrid grid = passes.grid();
   r.status = stop.status;
   r.solver_status = stop.code;
-  r.message = target.note + "descent: " + stop.why;
+  r.message = target.NotePrefix() + "descent: " + stop.why;
   r.iterations = descent_iterations;
   r.controls = ControlTrajectory::PiecewiseConstant(grid, passes.U());
   r.state_grid = grid;
@@ -326,7 +303,7 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
                     .Simulate(passes.U(), nullptr);
 
   if (o.polish) Polish(o, original, problem, request, clock, loop, &passes, &r);
-  if (std::isfinite(r.objective)) r.message += "; final J = " + Format(r.objective);
+  if (std::isfinite(r.objective)) r.message += "; final J = " + MessageNumber(r.objective);
   r.cpu_seconds = clock.cpu();
   r.wall_seconds = clock.wall();
   return r;

@@ -19,6 +19,7 @@
 #include "core/option_binding.h"
 #include "core/timer.h"
 #include "solvers/hamiltonian_descent.h"
+#include "solvers/hamiltonian_target.h"
 #include "solvers/pmp_residual.h"
 #include "solvers/registry.h"
 
@@ -190,30 +191,12 @@ Vec FitTerminalCostate(const Ocp& ocp,
 }
 
 // The problem the method solves: the problem's Hamiltonian reformulation when it offers one.
-struct Target {
-  std::unique_ptr<Ocp> reformulated;
-  const Ocp* ocp = nullptr;
-  std::string note;  // says which problem was solved when it is a reformulation
-  std::optional<SolveResult> not_applicable;
-};
-
-Target Resolve(const Ocp& original, const IndirectNewtonOptions& o) {
-  Target t;
+HamiltonianTarget ResolveNewtonTarget(const Ocp& original, const IndirectNewtonOptions& o) {
   HamiltonianReformulationOptions options;
   options.path_penalty = o.path_penalty;
   options.regularization = o.regularization;
-  t.reformulated = original.HamiltonianReformulation(options);
-  t.ocp = t.reformulated ? t.reformulated.get() : &original;
-  if (t.reformulated) {
-    t.note = "solved the problem's Hamiltonian reformulation '" + t.ocp->name() + "'";
-    if (t.ocp->nx() != original.nx() || t.ocp->nu() != original.nu() ||
-        t.ocp->free_final_time().has_value() != original.free_final_time().has_value()) {
-      throw std::logic_error("problem '" + original.name() +
-                             "': its Hamiltonian reformulation changed nx, nu or the free final "
-                             "time");
-    }
-  }
-  const std::string prefix = t.note.empty() ? "" : t.note + "; ";
+  HamiltonianTarget t = ResolveHamiltonianTarget(original, options);
+  const std::string prefix = t.NotePrefix();
   if (!t.ocp->HasHamiltonianMinimizer()) {
     t.not_applicable =
         Result(SolveStatus::kNotApplicable,
@@ -641,7 +624,7 @@ void IndirectNewton::CostatesFromControls(const Ocp& ocp,
 SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& request) const {
   const Stopwatch watch;
   const Options o = ApplyOptions(request.options, options_);
-  Target target = Resolve(original, o);
+  HamiltonianTarget target = ResolveNewtonTarget(original, o);
   if (target.not_applicable) return *target.not_applicable;
   const Ocp& ocp = *target.ocp;
   // Validates the grid (throws std::invalid_argument) before any work.
@@ -693,7 +676,7 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
         start.controls.nu() != ocp.nu()) {
       SolveResult failed = Result(SolveStatus::kError,
                                   "warm_start_failed",
-                                  (target.note.empty() ? "" : target.note + "; ") + summary +
+                                  target.NotePrefix() + summary +
                                       " gave no finite states/costates/controls on the grid (" +
                                       ToString(start.status) + ": " + start.message + ")");
       failed.solver_stats = r.solver_stats;
@@ -755,7 +738,7 @@ SolveResult IndirectNewton::SolveFrom(const Ocp& original,
                                       const Vec* nu) const {
   const Stopwatch watch;
   const Options o = ApplyOptions(request.options, options_);
-  Target target = Resolve(original, o);
+  HamiltonianTarget target = ResolveNewtonTarget(original, o);
   if (target.not_applicable) return *target.not_applicable;
   SolveResult r;
   r.solver = kName;

@@ -1,0 +1,24 @@
+#include "solvers/hamiltonian_target.h"
+
+#include <stdexcept>
+
+namespace ocpb {
+
+HamiltonianTarget ResolveHamiltonianTarget(const Ocp& original,
+                                           const HamiltonianReformulationOptions& options,
+                                           bool reformulate) {
+  HamiltonianTarget t;
+  if (reformulate) t.reformulated = original.HamiltonianReformulation(options);
+  t.ocp = t.reformulated ? t.reformulated.get() : &original;
+  if (!t.reformulated) return t;
+  t.note = "solved the problem's Hamiltonian reformulation '" + t.ocp->name() + "'";
+  if (t.ocp->nx() != original.nx() || t.ocp->nu() != original.nu() ||
+      t.ocp->free_final_time().has_value() != original.free_final_time().has_value()) {
+    throw std::logic_error("problem '" + original.name() +
+                           "': its Hamiltonian reformulation changed nx, nu or the free final "
+                           "time");
+  }
+  return t;
+}
+
+}  // namespace ocpb
