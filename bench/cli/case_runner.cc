@@ -370,6 +370,9 @@ Record RunCase(const CaseSpec& given) {
   rec.parameters = p.params.values();
   rec.uses_seed = pinfo.uses_seed;
   rec.N = p.grid.intervals();
+  if (!result.mesh_stop_reason.empty()) {
+    rec.mesh = RecordMesh{result.mesh_stop_reason, result.mesh.points(), result.mesh_history};
+  }
   if (const OptionValue* degree = p.options.transcription.Find("degree")) {
     rec.degree = static_cast<int>(degree->integer());
   }
