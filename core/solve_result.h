@@ -44,6 +44,20 @@ struct IterationRecord {
   double cpu_seconds = 0.0;  ///< cumulative CPU time since the solve started
 };
 
+/// One mesh of an adaptive mesh refinement (the collocation transcriptions' mesh_tolerance > 0):
+/// the solve on that mesh and the error estimate at its solution.
+struct MeshIterationRecord {
+  int intervals = 0;       ///< mesh intervals N (nodes N + 1)
+  int nlp_variables = -1;  ///< NLP size on this mesh
+  int nlp_constraints = -1;
+  double max_error = NAN;    ///< largest interval error estimate at this mesh's solution (NaN:
+                             ///< not computed, the solve failed or the estimate is not finite)
+  int iterations = -1;       ///< the NLP solver's iterations on this mesh
+  double cpu_seconds = NAN;  ///< this mesh's CPU: transcription, solve and estimate
+  SolveStatus status = SolveStatus::kError;
+  std::string solver_status;  ///< the backend's own status on this mesh, verbatim
+};
+
 /// Everything a user needs from a solve. Numbers start at -1 ("not computed").
 struct SolveResult {
   std::string solver;  ///< registry name ("hamiltonian", "ipopt", ...)
@@ -66,6 +80,14 @@ struct SolveResult {
   /// Where `costates` come from, in a few words ("NLP multipliers (lgr)", "discrete adjoint
   /// (euler)"); empty when there are none.
   std::string costate_source;
+  /// The grid the method solved on when it chose it itself (adaptive mesh refinement), on the
+  /// request's nominal horizon; the evaluator judges on it. Empty (size 0): the request's grid.
+  TimeGrid mesh;
+  /// Adaptive mesh refinement only: one entry per mesh solved, in order (the last is the one
+  /// `controls` come from), and why it stopped (ToString(MeshStopReason): "tolerance_met",
+  /// "max_iterations", "max_nodes", "solve_failed", "no_estimate"); empty otherwise.
+  std::vector<MeshIterationRecord> mesh_history;
+  std::string mesh_stop_reason;
 };
 
 }  // namespace ocpb

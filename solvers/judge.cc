@@ -16,13 +16,15 @@ std::string G(double v) {
   return text;
 }
 
-// The horizon the solution ends at: for a free final time the end of the method's own state
-// grid (collocation, indirect Newton), else of its controls' grid; the problem's tf otherwise.
+// The grid and horizon the solution is judged on: for a free final time the end of the method's own
+// state grid (collocation, indirect Newton), else of its controls' grid; the problem's tf
+// otherwise. A method that chose its own mesh (adaptive refinement) is judged on that mesh.
 TimeGrid JudgedGrid(const Ocp& ocp, const SolveRequest& request, const SolveResult& result) {
-  if (!ocp.free_final_time()) return request.grid;
+  const TimeGrid& grid = result.mesh.size() >= 2 ? result.mesh : request.grid;
+  if (!ocp.free_final_time()) return grid;
   const double T =
       result.state_grid.size() >= 2 ? result.state_grid.tf() : result.controls.grid().tf();
-  return request.grid.StretchedTo(T);
+  return grid.StretchedTo(T);
 }
 
 // The solver's stopping tolerance as used: the request's value, else its schema's default.

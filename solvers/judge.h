@@ -46,7 +46,8 @@ struct Judgement {
   /// size): every number below then stays NaN / empty, and `not_judged` says why.
   bool judged = false;
   std::string not_judged;
-  /// The method's grid on the solution's horizon: the request's grid, for a free final time
+  /// The method's grid on the solution's horizon: the result's own mesh when it chose one
+  /// (SolveResult::mesh, adaptive refinement), else the request's grid; for a free final time
   /// stretched to the result's T (the end of its state_grid, else of its controls' grid).
   TimeGrid grid;
   double final_time = std::numeric_limits<double>::quiet_NaN();

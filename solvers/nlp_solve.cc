@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/timer.h"
+#include "solvers/mesh_refinement_loop.h"
 #include "transcriptions/registry.h"
 
 namespace ocpb {
@@ -50,23 +51,21 @@ double NlpViolation(const Nlp& nlp, ConstVecRef z) {
   return worst;
 }
 
-SolveResult SolveTranscribed(const std::string& solver_name,
-                             const Ocp& ocp,
-                             const SolveRequest& request,
-                             const std::function<NlpSolution(const TranscribedNlp& nlp)>& backend) {
-  const TranscriptionInfo& info = RequestTranscription(request);
-  if (!info.takes_free_final_time) {
-    if (auto refused = FreeFinalTimeNotApplicable(ocp, solver_name + " + " + info.name)) {
-      return *refused;
-    }
-  }
-  const Stopwatch watch;
-  const TranscriptionOptions options = TranscriptionOptionsFor(request);
+namespace {
+
+// One transcription on options.grid and one backend run: the result (without timing) and what
+// mesh refinement needs from that solution.
+MeshSolve SolveOnMesh(const std::string& solver_name,
+                      const TranscriptionInfo& info,
+                      const Ocp& ocp,
+                      const TranscriptionOptions& options,
+                      const std::function<NlpSolution(const TranscribedNlp& nlp)>& backend) {
   const NlpScaling& scaling = options.scaling;
   const std::unique_ptr<TranscribedNlp> nlp = info.make()->Transcribe(ocp, options);
   NlpSolution sol = backend(*nlp);
 
-  SolveResult result;
+  MeshSolve out;
+  SolveResult& result = out.result;
   result.solver = solver_name;
   result.status = sol.status;
   result.solver_status = sol.solver_status;
@@ -93,6 +92,36 @@ SolveResult SolveTranscribed(const std::string& solver_name,
   result.solver_stats["nlp_violation"] = NlpViolation(*nlp, sol.z);
   if (nlp->HasFinalTimeVariable()) result.solver_stats["final_time"] = nlp->FinalTime(sol.z);
   if (!sol.has_iterate) result.message += " (no iterate: controls are the starting point)";
+  if (options.mesh.enabled()) {
+    out.errors = nlp->IntervalErrors(sol.z);
+    out.order = nlp->IntervalErrorOrder();
+    out.states = nlp->StateTrajectory(sol.z);
+  }
+  return out;
+}
+
+}  // namespace
+
+SolveResult SolveTranscribed(const std::string& solver_name,
+                             const Ocp& ocp,
+                             const SolveRequest& request,
+                             const std::function<NlpSolution(const TranscribedNlp& nlp)>& backend) {
+  const TranscriptionInfo& info = RequestTranscription(request);
+  if (!info.takes_free_final_time) {
+    if (auto refused = FreeFinalTimeNotApplicable(ocp, solver_name + " + " + info.name)) {
+      return *refused;
+    }
+  }
+  const Stopwatch watch;
+  const TranscriptionOptions options = TranscriptionOptionsFor(request);
+  SolveResult result;
+  if (options.mesh.enabled()) {
+    result = SolveOnRefinedMeshes(options, [&](const TranscriptionOptions& on_mesh) {
+      return SolveOnMesh(solver_name, info, ocp, on_mesh, backend);
+    });
+  } else {
+    result = SolveOnMesh(solver_name, info, ocp, options, backend).result;
+  }
   result.cpu_seconds = watch.cpu();
   result.wall_seconds = watch.wall();
   return result;

@@ -58,9 +58,12 @@ std::unique_ptr<TranscribedNlp> TranscribeRequest(const Ocp& ocp, const SolveReq
 /// multipliers, when the backend returns them) on nlp.StateGrid(z) (stretched to T for a free
 /// final time), objective = the NLP objective re-evaluated at z, and the backend's status,
 /// history and statistics verbatim. `objective` and the history's J are in the problem's units
-/// (divided by the transcription's objective scale). A free final time on a transcription that
-/// does not take one (TranscriptionInfo::takes_free_final_time) is kNotApplicable.
-/// std::invalid_argument from the transcription propagates (an invalid request).
+/// (divided by the transcription's objective scale). With the transcription's mesh refinement
+/// on (option mesh_tolerance > 0) these steps run once per mesh inside SolveOnRefinedMeshes
+/// (solvers/mesh_refinement_loop.h), each mesh transcribed anew; result.mesh is the final mesh,
+/// the one the evaluator judges. A free final time on a transcription that does not take one
+/// (TranscriptionInfo::takes_free_final_time) is kNotApplicable. std::invalid_argument from the
+/// transcription propagates (an invalid request).
 SolveResult SolveTranscribed(const std::string& solver_name,
                              const Ocp& ocp,
                              const SolveRequest& request,

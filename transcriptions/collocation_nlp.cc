@@ -361,6 +361,37 @@ Mat CollocationNlp::States(ConstVecRef zhat) const {
   return X;
 }
 
+TimeGrid CollocationNlp::SolutionMesh(ConstVecRef zhat) const {
+  return free_time_ ? grid_.StretchedTo(FinalTime(zhat)) : grid_;
+}
+
+Mat CollocationNlp::NodeStates(ConstVecRef zhat) const {
+  Mat X(nx_, grid_.size());
+  for (const CollocationLayout::StateBlock& b : layout_.states) {
+    if (b.interval_start < 0) continue;
+    X.col(b.interval_start) =
+        zhat.segment(b.offset, nx_).cwiseProduct(var_scale_.segment(b.offset, nx_));
+  }
+  return X;
+}
+
+Vec CollocationNlp::IntervalErrors(ConstVecRef zhat) const {
+  const std::optional<CollocationInterpolant> scheme = mesh_interpolant();
+  if (!scheme) return Vec();
+  return IntervalDefectErrors(ocp_, *scheme, SolutionMesh(zhat), NodeStates(zhat), Controls(zhat));
+}
+
+int CollocationNlp::IntervalErrorOrder() const {
+  const std::optional<CollocationInterpolant> scheme = mesh_interpolant();
+  return scheme ? DefectEstimateOrder(*scheme) : 0;
+}
+
+ControlTrajectory CollocationNlp::StateTrajectory(ConstVecRef zhat) const {
+  const std::optional<CollocationInterpolant> scheme = mesh_interpolant();
+  if (!scheme) return TranscribedNlp::StateTrajectory(zhat);
+  return StateInterpolant(ocp_, *scheme, SolutionMesh(zhat), NodeStates(zhat), Controls(zhat));
+}
+
 Mat CollocationNlp::Costates(ConstVecRef zhat, ConstVecRef lambda_hat) const {
   if (lambda_hat.size() != num_constraints_) return Mat();
   const Vec z = Unscale(zhat);

@@ -9,6 +9,7 @@
 
 #include "core/integrator.h"
 #include "core/ocp.h"
+#include "transcriptions/mesh_error.h"
 #include "transcriptions/transcription.h"
 
 namespace ocpb {
@@ -147,6 +148,11 @@ class CollocationNlp : public TranscribedNlp {
   /// p (nx x state_grid().size()) from the NLP's multipliers `lambda` at z (as a solver returns
   /// them, scaled NLP); empty when lambda.size() != num_constraints().
   Mat Costates(ConstVecRef z, ConstVecRef lambda) const override;
+  /// IntervalDefectErrors on the mesh (stretched to T for a free final time) with the node
+  /// states (the interval-start blocks) and Controls(z); empty without mesh_interpolant().
+  Vec IntervalErrors(ConstVecRef z) const override;
+  int IntervalErrorOrder() const override;
+  ControlTrajectory StateTrajectory(ConstVecRef z) const override;
 
   // ---- for tests and tools ----
   const CollocationLayout& layout() const { return layout_; }
@@ -169,6 +175,9 @@ class CollocationNlp : public TranscribedNlp {
   /// interpolate in each interval's own coordinate (t - t_k) / h_k, so the stretched controls are
   /// exactly the nominal ones on the stretched time axis, interval by interval.
   virtual ControlTrajectory MakeControls(const Mat& values, const TimeGrid& grid) const = 0;
+  /// The state interpolant of the scheme between mesh nodes, for the mesh error estimate;
+  /// nullopt (default): no estimate.
+  virtual std::optional<CollocationInterpolant> mesh_interpolant() const { return std::nullopt; }
   const TimeGrid& grid() const { return grid_; }
 
  private:
@@ -186,6 +195,9 @@ class CollocationNlp : public TranscribedNlp {
   };
 
   void BuildStructure();
+  // The mesh on the solution's horizon and the node states x(t_k) (nx x N+1) at z.
+  TimeGrid SolutionMesh(ConstVecRef zhat) const;
+  Mat NodeStates(ConstVecRef zhat) const;
   // r = (T - t0) / (tf - t0) at physical z (1 without a free final time).
   double Ratio(const Vec& z) const;
   // Physical evaluations (z physical, lambda physical).

@@ -13,6 +13,9 @@ class HermiteSimpsonNlp final : public CollocationNlp {
   using CollocationNlp::CollocationNlp;
 
  protected:
+  std::optional<CollocationInterpolant> mesh_interpolant() const override {
+    return CollocationInterpolant::kHermiteSimpson;
+  }
   ControlTrajectory MakeControls(const Mat& values, const TimeGrid& grid) const override {
     const TimeGrid g = grid;
     const ControlSet set = ocp().control_set();

@@ -1,6 +1,7 @@
 #include "transcriptions/registry.h"
 
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 #include "core/named_registry.h"
@@ -20,6 +21,38 @@ OptionBinding<TranscriptionOptions> ScalingOnly(const std::string& owner) {
   return b;
 }
 
+// The h-refinement schemes: scaling and mesh refinement options.
+OptionBinding<TranscriptionOptions> ScalingAndMesh(const std::string& owner) {
+  OptionBinding<TranscriptionOptions> b = ScalingOnly(owner);
+  BindMeshOptions(&b);
+  return b;
+}
+
+// One option bound to a number or integer field of TranscriptionOptions::mesh.
+template <class T>
+void BindMeshField(OptionBinding<TranscriptionOptions>* binding,
+                   const char* name,
+                   T MeshRefinementOptions::*field,
+                   std::string doc,
+                   OptionBounds bounds) {
+  OptionSpec s;
+  s.name = name;
+  s.type = std::is_same_v<T, double> ? OptionType::kNumber : OptionType::kInteger;
+  s.doc = std::move(doc);
+  s.default_value = MeshRefinementOptions{}.*field;
+  s.bounds = bounds;
+  binding->Custom(
+      std::move(s),
+      [field](TranscriptionOptions* o, const OptionValue& v) {
+        if constexpr (std::is_same_v<T, double>) {
+          o->mesh.*field = v.number();
+        } else {
+          o->mesh.*field = static_cast<int>(v.integer());
+        }
+      },
+      [field](const TranscriptionOptions& o) { return OptionValue(o.mesh.*field); });
+}
+
 std::vector<TranscriptionInfo> BuildTranscriptions() {
   std::vector<TranscriptionInfo> list;
   // [transcriptions] one entry per transcription, in the order `ocpbench list` prints them.
@@ -33,12 +66,12 @@ std::vector<TranscriptionInfo> BuildTranscriptions() {
       "trapezoid",
       "trapezoidal collocation, piecewise-linear controls (order 2)",
       [] { return std::make_unique<TrapezoidTranscription>(); },
-      ScalingOnly("trapezoid")));
+      ScalingAndMesh("trapezoid")));
   list.push_back(MakeTranscriptionInfo(
       "hermite-simpson",
       "Hermite-Simpson collocation, separated form, quadratic controls (order 4)",
       [] { return std::make_unique<HermiteSimpsonTranscription>(); },
-      ScalingOnly("hermite-simpson"),
+      ScalingAndMesh("hermite-simpson"),
       [](const TranscriptionOptions&) { return 2; }));
   {
     OptionBinding<TranscriptionOptions> b("lgr");
@@ -126,6 +159,32 @@ void BindScalingOptions(OptionBinding<TranscriptionOptions>* binding) {
           return ScaleValue(state ? o.scaling.state : o.scaling.control);
         });
   }
+}
+
+void BindMeshOptions(OptionBinding<TranscriptionOptions>* binding) {
+  BindMeshField(binding,
+                "mesh_tolerance",
+                &MeshRefinementOptions::tolerance,
+                "adaptive h-refinement until every interval's error estimate (Betts' scaled "
+                "integral of the collocation interpolant's defect) is <= this; 0: off, one "
+                "solve on the given grid",
+                OptionBounds::AtLeast(0));
+  BindMeshField(binding,
+                "mesh_max_iterations",
+                &MeshRefinementOptions::max_iterations,
+                "at most this many meshes are solved (the given grid is the first)",
+                OptionBounds::AtLeast(1));
+  BindMeshField(binding,
+                "mesh_max_nodes",
+                &MeshRefinementOptions::max_nodes,
+                "a refined mesh with more nodes (N + 1) than this is not solved; refinement "
+                "stops on the last mesh",
+                OptionBounds::AtLeast(2));
+  BindMeshField(binding,
+                "mesh_max_new_points",
+                &MeshRefinementOptions::max_new_points,
+                "at most this many nodes added to one interval per refinement",
+                OptionBounds::AtLeast(1));
 }
 
 TranscriptionInfo MakeTranscriptionInfo(

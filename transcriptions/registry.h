@@ -51,6 +51,11 @@ void RegisterTranscription(TranscriptionInfo info);
 /// component; empty: all ones). For a transcription written outside OCPBench that honours
 /// TranscriptionOptions::scaling too.
 void BindScalingOptions(OptionBinding<TranscriptionOptions>* binding);
+/// Declares on `binding` the adaptive mesh refinement options (TranscriptionOptions::mesh):
+/// mesh_tolerance (number >= 0, default 0 = off), mesh_max_iterations (integer >= 1, default
+/// 10), mesh_max_nodes (integer >= 2, default 2000), mesh_max_new_points (integer >= 1, default
+/// 5). For schemes whose TranscribedNlp has IntervalErrors (trapezoid, hermite-simpson).
+void BindMeshOptions(OptionBinding<TranscriptionOptions>* binding);
 /// A TranscriptionInfo whose `options` and `configure` come from `binding`.
 TranscriptionInfo MakeTranscriptionInfo(
     std::string name,

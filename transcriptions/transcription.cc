@@ -55,6 +55,7 @@ bool TranscriptionOptions::IsValidOnItsOwn(std::string* error) const {
   }
   std::string why;
   if (!scaling.IsValid(&why)) return Fail(error, "transcription: " + why);
+  if (!mesh.IsValid(&why)) return Fail(error, "transcription: " + why);
   return true;
 }
 
@@ -99,6 +100,13 @@ double TranscriptionOptions::GuessFinalTime(const Ocp& ocp) const {
   }
   const double T = initial_guess->grid().tf();
   return ocp.AdmitsFinalTime(T) ? T : grid.tf();
+}
+
+ControlTrajectory TranscribedNlp::StateTrajectory(ConstVecRef z) const {
+  const Mat X = States(z);
+  const TimeGrid g = StateGrid(z);
+  if (X.size() == 0 || X.cols() != g.size()) return ControlTrajectory();
+  return ControlTrajectory::PiecewiseLinear(g, X);
 }
 
 }  // namespace ocpb

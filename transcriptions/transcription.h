@@ -10,6 +10,7 @@
 #include "core/nlp.h"
 #include "core/ocp.h"
 #include "core/time_grid.h"
+#include "transcriptions/mesh_refinement.h"
 #include "transcriptions/nlp_scaling.h"
 
 namespace ocpb {
@@ -34,6 +35,17 @@ class TranscribedNlp : public Nlp {
   /// A costate estimate from the constraint multipliers lambda (nx x state_grid().size()),
   /// in the convention H = p^T f + L; empty when the transcription has none.
   virtual Mat Costates(ConstVecRef /*z*/, ConstVecRef /*lambda*/) const { return Mat(); }
+
+  // ---- adaptive mesh refinement (transcriptions/mesh_error.h) ----
+  /// The local error estimate of each mesh interval at z (IntervalDefectErrors: Betts' scaled
+  /// integral of the interpolant's defect); empty when the scheme has no estimate.
+  virtual Vec IntervalErrors(ConstVecRef /*z*/) const { return Vec(); }
+  /// The exponent q of h with which IntervalErrors decrease (DefectEstimateOrder); 0 without.
+  virtual int IntervalErrorOrder() const { return 0; }
+  /// The states at z as a function of time on [t0, FinalTime(z)], to start a solve on another
+  /// mesh from: the scheme's state interpolant where it has IntervalErrors, else piecewise
+  /// linear through States(z) on StateGrid(z); empty (nu() == 0) without states.
+  virtual ControlTrajectory StateTrajectory(ConstVecRef z) const;
 };
 
 /// What a transcription needs besides the problem.
@@ -47,6 +59,10 @@ struct TranscriptionOptions {
   std::optional<ControlTrajectory> initial_states;
   int degree = 3;      ///< LGR: collocation points per interval, 1..kMaxRadauPoints (60)
   NlpScaling scaling;  ///< default: none (see nlp_scaling.h)
+  /// Adaptive mesh refinement (trapezoid, hermite-simpson); default off. Read by the NLP
+  /// solvers' driver (solvers/mesh_refinement_loop.h), which re-transcribes on refined grids;
+  /// a single Transcribe() ignores it.
+  MeshRefinementOptions mesh;
   /// Schemes whose objective is a simulation (single shooting): forward Euler (the
   /// Hamiltonian descent's discrete problem) or RK4.
   Integrator integrator = Integrator::kEuler;

@@ -10,6 +10,9 @@ class TrapezoidNlp final : public CollocationNlp {
   using CollocationNlp::CollocationNlp;
 
  protected:
+  std::optional<CollocationInterpolant> mesh_interpolant() const override {
+    return CollocationInterpolant::kTrapezoid;
+  }
   ControlTrajectory MakeControls(const Mat& values, const TimeGrid& grid) const override {
     return ControlTrajectory::PiecewiseLinear(grid, values);
   }

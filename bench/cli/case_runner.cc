@@ -294,7 +294,18 @@ CaseEstimate ValidateCase(const CaseSpec& spec) {
   if (!spec.initial_guess.empty()) {
     CheckInitialGuess(ReadInitialGuess(spec.initial_guess), *ocp, spec.initial_guess);
   }
-  const int N = spec.intervals > 0 ? spec.intervals : pinfo.default_intervals;
+  int N = spec.intervals > 0 ? spec.intervals : pinfo.default_intervals;
+  // Mesh refinement may solve meshes up to mesh_max_nodes nodes: the largest one sets the size.
+  std::string which = "N";
+  if (!spec.transcription.empty()) {
+    const MeshRefinementOptions mesh = FindTranscription(spec.transcription)
+                                           .Configure(ResolveMethodOptions(spec).transcription)
+                                           .mesh;
+    if (mesh.enabled() && mesh.max_nodes - 1 > N) {
+      N = mesh.max_nodes - 1;
+      which = "mesh_max_nodes";
+    }
+  }
   const double need = EstimateCaseMemoryBytes(spec, ocp->nx(), ocp->nu(), N);
   const double budget = CaseMemoryBudgetBytes();
   CaseEstimate estimate;
@@ -302,8 +313,9 @@ CaseEstimate ValidateCase(const CaseSpec& spec) {
   estimate.record_bytes = EstimateRecordBytes(spec, ocp->nx(), ocp->nu(), N);
   if (need > budget) {
     throw std::invalid_argument(fmt::format(
-        "N: {} intervals need about {} by OCPBench's estimate (nx = {}, nu = {}, {}), beyond this "
-        "machine's memory budget of {} (half its physical memory)",
+        "{}: {} intervals need about {} by OCPBench's estimate (nx = {}, nu = {}, {}), beyond "
+        "this machine's memory budget of {} (half its physical memory)",
+        which,
         N,
         Bytes(need),
         ocp->nx(),
@@ -370,6 +382,9 @@ Record RunCase(const CaseSpec& given) {
   rec.parameters = p.params.values();
   rec.uses_seed = pinfo.uses_seed;
   rec.N = p.grid.intervals();
+  if (!result.mesh_stop_reason.empty()) {
+    rec.mesh = RecordMesh{result.mesh_stop_reason, result.mesh.points(), result.mesh_history};
+  }
   if (const OptionValue* degree = p.options.transcription.Find("degree")) {
     rec.degree = static_cast<int>(degree->integer());
   }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "bench/cli/json_values.h"
@@ -129,6 +130,64 @@ json HistoryJson(const std::vector<IterationRecord>& history) {
                         {"cpu_seconds", JsonNumber(h.cpu_seconds)}});
   }
   return hist;
+}
+
+// The SolveStatus whose ToString is `name`.
+std::optional<SolveStatus> ParseSolveStatus(const std::string& name) {
+  for (int i = 0; i <= static_cast<int>(SolveStatus::kError); ++i) {
+    const auto status = static_cast<SolveStatus>(i);
+    if (name == ToString(status)) return status;
+  }
+  return std::nullopt;
+}
+
+json MeshJson(const RecordMesh& m) {
+  json rows = json::array();
+  for (const MeshIterationRecord& row : m.history) {
+    rows.push_back(json{{"intervals", row.intervals},
+                        {"nlp_variables", row.nlp_variables},
+                        {"nlp_constraints", row.nlp_constraints},
+                        {"max_error", JsonNumber(row.max_error)},
+                        {"iterations", row.iterations},
+                        {"cpu_seconds", JsonNumber(row.cpu_seconds)},
+                        {"status", ToString(row.status)},
+                        {"solver_status", row.solver_status}});
+  }
+  return json{{"stop_reason", m.stop_reason}, {"nodes", m.nodes}, {"history", rows}};
+}
+
+RecordMesh MeshFrom(const Reader& r) {
+  const json& m = r.j()["mesh"];
+  if (!m.is_object()) r.Fail("mesh", "an object");
+  const Reader mr(m, "mesh.");
+  RecordMesh out;
+  mr.Text("stop_reason", &out.stop_reason);
+  mr.Numbers("nodes", &out.nodes);
+  if (!mr.Has("history")) return out;
+  if (!m["history"].is_array()) mr.Fail("history", "an array");
+  size_t i = 0;
+  for (const json& h : m["history"]) {
+    const std::string where = "mesh.history[" + std::to_string(i++) + "]";
+    if (!h.is_object()) r.Fail(where, "an object");
+    const Reader row(h, where + ".");
+    MeshIterationRecord rec;
+    row.Integer("intervals", &rec.intervals);
+    row.Integer("nlp_variables", &rec.nlp_variables);
+    row.Integer("nlp_constraints", &rec.nlp_constraints);
+    row.Number("max_error", &rec.max_error);
+    row.Integer("iterations", &rec.iterations);
+    row.Number("cpu_seconds", &rec.cpu_seconds);
+    std::string status;
+    row.Text("status", &status);
+    if (!status.empty()) {
+      const std::optional<SolveStatus> parsed = ParseSolveStatus(status);
+      if (!parsed) row.Fail("status", "a status name");
+      rec.status = *parsed;
+    }
+    row.Text("solver_status", &rec.solver_status);
+    out.history.push_back(rec);
+  }
+  return out;
 }
 
 std::vector<IterationRecord> HistoryFrom(const Reader& r) {
@@ -282,6 +341,7 @@ json Record::ToJson() const {
                              {"iterations", continuation->iterations},
                              {"cpu_seconds", JsonNumber(continuation->cpu_seconds)}};
   }
+  if (mesh) r["mesh"] = MeshJson(*mesh);
   if (trajectory) {
     json t{{"t", trajectory->t},
            {"x", JsonRows(trajectory->x)},
@@ -438,6 +498,7 @@ Record Record::Read(const json& j, json* movable) {
     c.Number("cpu_seconds", &out.cpu_seconds);
     rec.continuation = out;
   }
+  if (r.Has("mesh")) rec.mesh = MeshFrom(r);
   if (r.Has("trajectory")) {
     const json& t = j["trajectory"];
     if (!t.is_object()) r.Fail("trajectory", "an object");

@@ -63,6 +63,15 @@ struct RecordContinuation {
   double cpu_seconds = NAN;
 };
 
+/// An adaptive mesh refinement (transcription option mesh_tolerance > 0): why it stopped, the
+/// final mesh's nodes (nominal horizon; the grid the evaluator judged on, stretched to the
+/// record's final_time for a free final time) and one row per mesh solved (SolveResult).
+struct RecordMesh {
+  std::string stop_reason;
+  std::vector<double> nodes;
+  std::vector<MeshIterationRecord> history;
+};
+
 /// A method's costates as a record keeps them (with its trajectory): the times of the method's
 /// own costate grid (for Hermite-Simpson and LGR its interior points too) and p (nx rows).
 struct RecordCostates {
@@ -152,6 +161,7 @@ struct Record {
   std::vector<RecordWarning> warnings;
   std::optional<RecordStoppingTolerance> stopping_tolerance;
   std::optional<RecordContinuation> continuation;
+  std::optional<RecordMesh> mesh;
 
   /// Costates: where the method's come from (SolveResult::costate_source; empty: it has none),
   /// their error against the problem's known optimal costate (RelativeCostateError; NaN when

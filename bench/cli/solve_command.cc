@@ -59,6 +59,21 @@ void PrintReport(const Record& r) {
                              r.continuation->solver_status,
                              r.continuation->iterations);
   }
+  if (r.mesh) {
+    std::cout << fmt::format(
+        "  mesh refinement: {} ({} meshes)\n", r.mesh->stop_reason, r.mesh->history.size());
+    for (const MeshIterationRecord& m : r.mesh->history) {
+      std::cout << fmt::format(
+          "    N = {:5}  NLP {} x {}  largest estimate {}  {} iterations  CPU {} s  {}\n",
+          m.intervals,
+          m.nlp_variables,
+          m.nlp_constraints,
+          Fmt(m.max_error),
+          m.iterations,
+          Fmt(m.cpu_seconds),
+          m.solver_status);
+    }
+  }
   for (const RecordWarning& w : r.warnings) {
     std::cout << "  warning (" << w.code << "): " << w.message << "\n";
   }

@@ -118,6 +118,14 @@ TEST(MemoryEstimate, GrowsWithTheGridAndTheSparseSolvers) {
             std::string::npos)
       << ErrorOf(h);
   EXPECT_NE(ErrorOf(h).find("beyond this machine's memory budget of"), std::string::npos);
+  // Mesh refinement is sized by the largest mesh it may solve (mesh_max_nodes), not the first.
+  ipopt.intervals = 10;
+  ipopt.options = {{"mesh_tolerance", 1e-6}, {"mesh_max_nodes", 1000000001}};
+  EXPECT_NE(ErrorOf(ipopt).find("mesh_max_nodes: 1000000000 intervals need about"),
+            std::string::npos)
+      << ErrorOf(ipopt);
+  ipopt.options = {{"mesh_max_nodes", 1000000001}};  // refinement off: the first grid only
+  EXPECT_EQ(ErrorOf(ipopt), "(valid)");
 }
 
 TEST(RunCaseRecordingFailures, AnyExceptionBecomesTheCasesRecord) {

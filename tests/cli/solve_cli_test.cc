@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/cli/initial_guess.h"
+#include "bench/cli/record.h"
 #include "problems/registry.h"
 #include "tests/cli/run_ocpbench.h"
 
@@ -370,6 +371,53 @@ TEST(SolveCli, BadInitialGuessFilesExitWithCodeTwo) {
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
     EXPECT_TRUE(run.out.empty()) << "nothing may run: " << run.out;
   }
+}
+
+// Adaptive mesh refinement end to end: the record's mesh (stop reason, final nodes, one row per
+// mesh with its solver status), the evaluator's grid is the final mesh (its re-simulation on the
+// mesh's nodes), the report prints the history, the record reads back unchanged, and a bad
+// mesh option is refused in one line naming it.
+TEST(SolveCli, MeshRefinementIsRecordedAndJudgedOnTheFinalMesh) {
+  const std::string dir = testing::FreshDirectory("solve-mesh-refinement");
+  const std::vector<std::string> head = {"solve",
+                                         "--problem",
+                                         "double-integrator-bounded",
+                                         "--solver",
+                                         "ipopt",
+                                         "--transcription",
+                                         "hermite-simpson",
+                                         "--terminal",
+                                         "hard",
+                                         "--N",
+                                         "10"};
+  const ProgramRun run = RunOcpbenchProgram(
+      Args(head, {"--option", "mesh_tolerance=1e-7", "--json", "out.json"}), dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json r = json::parse(testing::ReadText(dir + "/out.json"));
+  EXPECT_EQ(r["status"], "converged");
+  ASSERT_TRUE(r.contains("mesh"));
+  const json& mesh = r["mesh"];
+  EXPECT_EQ(mesh["stop_reason"], "tolerance_met");
+  ASSERT_GE(mesh["history"].size(), 2u);
+  EXPECT_EQ(mesh["history"][0]["intervals"], 10);
+  EXPECT_EQ(r["N"], 10);  // the request's grid; the final mesh is mesh.nodes
+  const json& last = mesh["history"].back();
+  EXPECT_EQ(last["intervals"].get<size_t>() + 1, mesh["nodes"].size());
+  EXPECT_LE(last["max_error"].get<double>(), 1e-7);
+  EXPECT_EQ(last["solver_status"], r["solver_status"]);
+  for (const json& row : mesh["history"]) EXPECT_EQ(row["status"], "converged") << row.dump();
+  // The evaluator's trajectory is on the final mesh.
+  EXPECT_EQ(r["trajectory"]["t"], mesh["nodes"]);
+  EXPECT_NEAR(r["Jbar_fine"].get<double>(), 6.0450277563, 1e-4 * 6.0450277563);
+  EXPECT_NE(run.out.find("mesh refinement: tolerance_met"), std::string::npos) << run.out;
+  EXPECT_EQ(Record::FromJson(r).ToJson(), r);
+
+  const ProgramRun bad =
+      RunOcpbenchProgram(Args(head, {"--option", "mesh_max_nodes=1", "--json", "bad.json"}), dir);
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("mesh_max_nodes"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find(">= 2"), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }
 
 // The reader itself: piecewise constant when the record says so (the record's controls

@@ -1,0 +1,40 @@
+// Adaptive h-refinement around any NLP backend: solve, estimate the error per interval, refine,
+// re-solve warm-started, until the tolerance is met or a limit stops it.
+#pragma once
+
+#include <functional>
+
+#include "core/control_trajectory.h"
+#include "core/solve_result.h"
+#include "transcriptions/transcription.h"
+
+namespace ocpb {
+
+/// What one solve on one mesh gives the refinement loop.
+struct MeshSolve {
+  SolveResult result;        ///< as SolveTranscribed fills it for that mesh (timing aside)
+  Vec errors;                ///< TranscribedNlp::IntervalErrors at the solution (one per interval)
+  int order = 0;             ///< TranscribedNlp::IntervalErrorOrder
+  ControlTrajectory states;  ///< TranscribedNlp::StateTrajectory at the solution
+};
+
+/// Solves on `options.grid`, then, while the largest interval estimate exceeds
+/// options.mesh.tolerance, on RefineMesh of the last mesh (NodesToAdd per interval), each solve
+/// starting from the previous one's controls (its own interpolation) and states (the scheme's
+/// interpolant) read on the new mesh (primal only: the backends take no multipliers). Stops,
+/// recording why (MeshStopReason), when the tolerance is met, when max_iterations meshes are
+/// solved, when the next mesh would have more than max_nodes nodes, when a solve does not
+/// succeed (IsSuccess), or when the estimate is not finite.
+///
+/// The result is the last mesh's (its status, controls, states, costates, solver_stats), with
+/// mesh = that mesh (nominal horizon), mesh_history (one row per mesh), mesh_stop_reason, a
+/// message saying when the tolerance was not met, iterations summed over meshes and history
+/// rows of every mesh in order (iteration numbers and CPU seconds continued across meshes).
+/// solver_stats gains "mesh_iterations" and "mesh_max_error". cpu_seconds and wall_seconds are
+/// left to the caller (the whole loop). Throws std::invalid_argument when the scheme has no
+/// error estimate (errors empty).
+SolveResult SolveOnRefinedMeshes(
+    TranscriptionOptions options,
+    const std::function<MeshSolve(const TranscriptionOptions& options)>& solve_on_mesh);
+
+}  // namespace ocpb
