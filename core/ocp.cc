@@ -83,6 +83,15 @@ void Ocp::SetHorizon(double t0, double tf) {
     throw std::invalid_argument("horizon: t0 and tf must be finite");
   }
   if (!(tf > t0)) throw std::invalid_argument("horizon: need tf > t0");
+  if (free_final_time_ && !(t0 < free_final_time_->lower && free_final_time_->lower <= tf &&
+                            tf <= free_final_time_->upper)) {
+    std::ostringstream os;
+    os << "horizon: [" << t0 << ", " << tf << "] does not fit the free final time's bounds ["
+       << free_final_time_->lower << ", " << free_final_time_->upper
+       << "] set before (need t0 < lower <= tf <= upper; call SetHorizon before "
+          "SetFreeFinalTime)";
+    throw std::invalid_argument(os.str());
+  }
   t0_ = t0;
   tf_ = tf;
 }
@@ -98,6 +107,17 @@ void Ocp::SetFreeFinalTime(double lower, double upper) {
     throw std::invalid_argument(os.str());
   }
   free_final_time_ = FreeFinalTime{lower, upper};
+}
+
+Vec Ocp::CheckedNominalControl() const {
+  Vec u = NominalControl();
+  if (u.size() != nu_ || !u.allFinite()) {
+    throw std::invalid_argument("problem '" + name() +
+                                "': NominalControl() must return nu = " + std::to_string(nu_) +
+                                " finite values (got " + std::to_string(u.size()) +
+                                (u.allFinite() ? ")" : ", not all finite)"));
+  }
+  return u;
 }
 
 bool Ocp::AdmitsFinalTime(double tf) const {

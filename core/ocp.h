@@ -156,6 +156,9 @@ class Ocp {
   /// time and projected onto U by the method (default: u = 0). A problem overrides it when u = 0
   /// is a poor start (the minimum-time problems: w = 0 does not steer).
   virtual Vec NominalControl() const { return Vec::Zero(nu_); }
+  /// NominalControl(), checked: every method starts from this. Throws std::invalid_argument
+  /// naming the problem when it does not return nu finite values.
+  Vec CheckedNominalControl() const;
 
   // ---- reformulation for the Hamiltonian method ------------------------------------
   /// The problem the Hamiltonian method should solve in place of this one, or nullptr (the

@@ -75,6 +75,27 @@ void AddDiscretizationWarning(const SolveRequest& request,
            "higher-order scheme"});
 }
 
+void AddFeasibilityWarning(const SolveRequest& request, const JudgeOptions& options, Judgement* j) {
+  std::vector<std::string> violated;
+  const double tol = options.feasibility_tolerance;
+  auto check = [&](const char* what, double violation) {
+    if (violation > tol) violated.push_back(std::string(what) + " " + G(violation));
+  };
+  check("control set U", j->fine.control_violation);
+  check("path constraints", j->fine.path_violation);
+  if (request.terminal == TerminalMode::kHard) {
+    check("terminal constraints", j->fine.terminal_violation);
+  }
+  if (violated.empty()) return;
+  std::string list;
+  for (const std::string& v : violated) list += (list.empty() ? "" : ", ") + v;
+  j->warnings.push_back({"infeasible",
+                         "the controls re-simulated on the fine grid violate " + list + " (> " +
+                             G(tol) +
+                             "): the answer is not feasible, whatever the "
+                             "status says"});
+}
+
 }  // namespace
 
 bool Judgement::HasWarning(const std::string& code) const {
@@ -90,6 +111,9 @@ Judgement JudgeResult(const Ocp& ocp,
   if (!(options.discretization_tolerance > 0.0) ||
       !std::isfinite(options.discretization_tolerance)) {
     throw std::invalid_argument("JudgeOptions.discretization_tolerance: must be a number > 0");
+  }
+  if (!(options.feasibility_tolerance > 0.0) || !std::isfinite(options.feasibility_tolerance)) {
+    throw std::invalid_argument("JudgeOptions.feasibility_tolerance: must be a number > 0");
   }
   Judgement j;
   if (result.status == SolveStatus::kNotApplicable) {
@@ -123,6 +147,7 @@ Judgement JudgeResult(const Ocp& ocp,
              " on the fine grid; set them (SetTerminalWeights) or solve the hard form"});
   }
   AddDiscretizationWarning(request, result, options, &j);
+  AddFeasibilityWarning(request, options, &j);
   return j;
 }
 

@@ -21,7 +21,7 @@ std::optional<SolveResult> FreeFinalTimeNotApplicable(const Ocp& ocp, const std:
 }
 
 ControlTrajectory DefaultInitialGuess(const Ocp& ocp, const TimeGrid& grid) {
-  Vec u = ocp.NominalControl();
+  Vec u = ocp.CheckedNominalControl();
   ocp.control_set().Project(u);
   return ControlTrajectory::Constant(grid, u);
 }

@@ -279,7 +279,7 @@ void CollocationNlp::Bounds(Vec* z_lower, Vec* z_upper, Vec* g_lower, Vec* g_upp
 
 Vec CollocationNlp::StartingPoint() const {
   const ControlTrajectory guess = initial_guess_ ? *initial_guess_ : [&] {
-    Vec u0 = ocp_.NominalControl();
+    Vec u0 = ocp_.CheckedNominalControl();
     ocp_.control_set().Project(u0);
     return ControlTrajectory::Constant(grid_, u0);
   }();

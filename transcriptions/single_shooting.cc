@@ -92,7 +92,7 @@ SingleShootingNlp::SingleShootingNlp(const Ocp& ocp,
 
   // Starting point: the guess on this grid, projected onto U.
   Mat U0 = options.initial_guess ? options.initial_guess->SampleIntervals(options.grid)
-                                 : ocp.NominalControl().replicate(1, N_).eval();
+                                 : ocp.CheckedNominalControl().replicate(1, N_).eval();
   if (U.dimension() == nu_) {
     for (int k = 0; k < N_; ++k) U.Project(U0.col(k));
   }

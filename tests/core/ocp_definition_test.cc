@@ -7,11 +7,13 @@
 
 #include "core/evaluator.h"
 #include "problems/registry.h"
+#include "tests/core/slip_ocp.h"
 #include "tests/core/user_double_integrator.h"
 
 namespace ocpb {
 namespace {
 
+using testing::SlipOcp;
 using testing::UserDoubleIntegrator;
 
 TEST(AutoDiffOcpDimensions, AreTheTemplateArgumentsWithoutSetDimensions) {
@@ -41,6 +43,38 @@ TEST(AutoDiffOcpDimensions, AnAgreeingStatementChangesNothingSetBeforeIt) {
   const UserDoubleIntegrator ocp(/*declared_npsi=*/2, /*weight=*/0.0, /*x0_first=*/true);
   EXPECT_EQ(ocp.num_terminal(), 2);
   EXPECT_EQ(ocp.x0(), Vec::Constant(2, 0.5));  // not reset to 0 by the second statement
+}
+
+// A NominalControl of the wrong size used to crash a method (an empty one: a segfault in
+// ControlSet::Project); every method starts from CheckedNominalControl, which names the problem.
+// (tests/solvers/judge_test.cc: each method refuses it.)
+TEST(NominalControl, OfTheWrongSizeIsRefusedNamingTheProblem) {
+  EXPECT_EQ(SlipOcp(1).CheckedNominalControl().size(), 1);
+  for (const int size : {0, 2}) {
+    try {
+      SlipOcp(size).CheckedNominalControl();
+      FAIL() << size << " components accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()),
+                "problem 'slip': NominalControl() must return nu = 1 finite values (got " +
+                    std::to_string(size) + ")");
+    }
+  }
+}
+
+// SetFreeFinalTime before SetHorizon was checked against the default tf, and the horizon set
+// after it was not checked at all: the constructor now says so.
+TEST(FreeFinalTime, AHorizonOutsideBoundsDeclaredBeforeIsRefused) {
+  EXPECT_NO_THROW(SlipOcp(1, /*free_upper=*/5.0, /*tf=*/2.0));
+  try {
+    SlipOcp(1, /*free_upper=*/5.0, /*tf=*/8.0);
+    FAIL() << "a horizon outside the free final time's bounds was accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("[0, 8] does not fit the free final time's bounds [0.5, 5]"),
+              std::string::npos)
+        << what;
+  }
 }
 
 TEST(TerminalWeights, AreMarkedChosenOnlyWhenTheProblemSetsThem) {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -12,11 +14,13 @@
 #include "core/evaluator.h"
 #include "problems/registry.h"
 #include "solvers/registry.h"
+#include "tests/core/slip_ocp.h"
 #include "tests/core/user_double_integrator.h"
 
 namespace ocpb {
 namespace {
 
+using testing::SlipOcp;
 using testing::UserDoubleIntegrator;
 
 SolveRequest RequestFor(const Ocp& ocp, int N, TerminalMode terminal, const char* transcription) {
@@ -146,6 +150,70 @@ TEST(JudgeResult, JudgesNothingForAMethodThatDidNotRun) {
   EXPECT_TRUE(std::isnan(j.final_time));
 }
 
+// What a status cannot say about feasibility: controls outside U (a MinimizeHamiltonian that
+// forgets to clamp), or, in the hard form, a terminal miss, are "infeasible" whatever the
+// status. double-integrator-bounded: |u| <= 5, x(1) = (0, 0) in the hard form.
+TEST(JudgeResult, ReportsControlsThatLeaveTheFeasibleSet) {
+  const auto ocp = MakeProblem("double-integrator-bounded", {}, 0);
+  const SolveRequest hard = RequestFor(*ocp, 50, TerminalMode::kHard, "hermite-simpson");
+  const SolveResult solved = Solve("ipopt", *ocp, hard);
+  ASSERT_EQ(solved.status, SolveStatus::kConverged) << solved.message;
+  const Judgement honest = JudgeResult(*ocp, hard, solved);
+  EXPECT_FALSE(honest.HasWarning("infeasible"))
+      << honest.fine.control_violation << " " << honest.fine.terminal_violation;
+
+  SolveResult unclamped = solved;  // the same answer, its controls doubled: |u| up to 10
+  unclamped.controls = ControlTrajectory::PiecewiseConstant(
+      hard.grid, 2.0 * solved.controls.SampleIntervals(hard.grid));
+  const Judgement j = JudgeResult(*ocp, hard, unclamped);
+  ASSERT_TRUE(j.HasWarning("infeasible"));
+  EXPECT_GT(j.fine.control_violation, 1.0);
+  for (const JudgeWarning& w : j.warnings) {
+    if (w.code != "infeasible") continue;
+    EXPECT_NE(w.message.find("control set U"), std::string::npos) << w.message;
+    EXPECT_NE(w.message.find("terminal constraints"), std::string::npos) << w.message;
+  }
+
+  // Inside U but off the target: infeasible in the hard form; the penalty form's terminal miss
+  // is its answer, not a violation (its own warning is terminal_weights_default where it applies).
+  SolveResult idle = solved;
+  idle.controls = ControlTrajectory::Constant(hard.grid, Vec::Zero(1));
+  EXPECT_TRUE(JudgeResult(*ocp, hard, idle).HasWarning("infeasible"));
+  const SolveRequest penalty = RequestFor(*ocp, 50, TerminalMode::kPenalty, "hermite-simpson");
+  EXPECT_FALSE(JudgeResult(*ocp, penalty, idle).HasWarning("infeasible"));
+
+  // The tolerance is the rule: a looser one accepts the terminal miss of the idle controls.
+  JudgeOptions loose;
+  loose.feasibility_tolerance = 1e3;
+  EXPECT_FALSE(JudgeResult(*ocp, hard, idle, loose).HasWarning("infeasible"));
+}
+
+// A NominalControl of the wrong size: every method refuses it naming the problem (it used to
+// crash, or pass silently with two components).
+TEST(DefaultStart, ANominalControlOfTheWrongSizeIsRefusedByEveryMethod) {
+  for (const int size : {0, 2}) {
+    const SlipOcp ocp(size);
+    for (const auto& [solver, transcription] :
+         std::vector<std::pair<std::string, std::string>>{{"ipopt", "trapezoid"},
+                                                          {"ipopt", "single-shooting"},
+                                                          {"hamiltonian", ""},
+                                                          {"indirect-newton", ""}}) {
+      SolveRequest request;
+      request.grid = TimeGrid::Uniform(0.0, 1.0, 10);
+      request.transcription = transcription;
+      const std::string method = solver + " " + transcription;
+      try {
+        FindSolver(solver).make()->Solve(ocp, request);
+        ADD_FAILURE() << method << " accepted " << size << " components";
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("NominalControl() must return nu = 1"),
+                  std::string::npos)
+            << method << ": " << e.what();
+      }
+    }
+  }
+}
+
 TEST(JudgeResult, RefusesOptionsOutOfRange) {
   const auto ocp = MakeProblem("hager", {}, 0);
   const SolveRequest request = RequestFor(*ocp, 10, TerminalMode::kPenalty, "");
@@ -155,6 +223,9 @@ TEST(JudgeResult, RefusesOptionsOutOfRange) {
   EXPECT_THROW(JudgeResult(*ocp, request, r, bad), std::invalid_argument);
   bad = JudgeOptions();
   bad.discretization_tolerance = 0.0;
+  EXPECT_THROW(JudgeResult(*ocp, request, r, bad), std::invalid_argument);
+  bad = JudgeOptions();
+  bad.feasibility_tolerance = -1.0;
   EXPECT_THROW(JudgeResult(*ocp, request, r, bad), std::invalid_argument);
 }
 
