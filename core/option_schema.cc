@@ -151,9 +151,13 @@ OptionValue OptionSpec::Resolve(const OptionValue& given) const {
           given.kind() == Kind::kInteger
               ? std::optional<double>(static_cast<double>(given.integer()))
               : AsNumber(given);
-      if (!v || !std::isfinite(*v) || *v != std::floor(*v) || *v < kIntMin || *v > kIntMax ||
-          !bounds.Contains(*v)) {
+      if (!v || !std::isfinite(*v) || *v != std::floor(*v) || !bounds.Contains(*v)) {
         Refuse(*this, given);
+      }
+      if (*v < kIntMin || *v > kIntMax) {  // within the rule's bounds, beyond an int's
+        throw std::invalid_argument("option '" + name + "': must be " + Rule() +
+                                    " and within an int, [-2147483648, 2147483647] (got " +
+                                    Got(given) + ")");
       }
       return static_cast<long long>(*v);
     }

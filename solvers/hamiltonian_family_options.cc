@@ -1,5 +1,6 @@
 // The option schemas of the Hamiltonian family's registered methods (one binding, three sets of
 // defaults).
+#include <cctype>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -302,7 +303,20 @@ bool HamiltonianFamilyOptions::IsValid(std::string* error) const {
   };
   std::string why;
   if (!proximal.IsValid(&why)) return fail("proximal: " + why);
-  if (!augmented_lagrangian.IsValid(&why)) return fail("augmented_lagrangian: " + why);
+  if (!augmented_lagrangian.IsValid(&why)) {
+    // The rule names its fields; the family's options are those names with "al_" before them.
+    std::string named;
+    for (size_t i = 0; i < why.size(); ++i) {
+      const bool word_start =
+          i == 0 || !(std::isalnum(static_cast<unsigned char>(why[i - 1])) || why[i - 1] == '_');
+      if (word_start && (std::islower(static_cast<unsigned char>(why[i]))) &&
+          why.find('_', i) < why.find(' ', i)) {
+        named += "al_";
+      }
+      named += why[i];
+    }
+    return fail("augmented-Lagrangian options: " + named);
+  }
   return true;
 }
 

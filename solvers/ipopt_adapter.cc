@@ -431,8 +431,34 @@ IpoptOptionValue TextOption(const std::string& name, const std::string& v) {
 
 // ---- options ---------------------------------------------------------------------------
 
+// The table with each number and integer option's range from the linked Ipopt's registry.
+std::vector<IpoptOptionSpec> TableWithIpoptsRanges() {
+  std::vector<IpoptOptionSpec> table = BuildTable();
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  Ipopt::SmartPtr<Ipopt::RegisteredOptions> reg = app->RegOptions();
+  for (IpoptOptionSpec& s : table) {
+    if (s.type == IpoptOptionType::kString) continue;
+    Ipopt::SmartPtr<const Ipopt::RegisteredOption> opt = reg->GetOption(s.name);
+    if (!Ipopt::IsValid(opt)) continue;  // reported by IpoptOptionTableMatchesIpopt
+    if (s.type == IpoptOptionType::kNumber) {
+      if (opt->HasLower()) {
+        s.bounds.min = opt->LowerNumber();
+        s.bounds.min_exclusive = opt->LowerStrict();
+      }
+      if (opt->HasUpper()) {
+        s.bounds.max = opt->UpperNumber();
+        s.bounds.max_exclusive = opt->UpperStrict();
+      }
+    } else {
+      if (opt->HasLower()) s.bounds.min = opt->LowerInteger();
+      if (opt->HasUpper()) s.bounds.max = opt->UpperInteger();
+    }
+  }
+  return table;
+}
+
 const std::vector<IpoptOptionSpec>& IpoptOptionTable() {
-  static const std::vector<IpoptOptionSpec> table = BuildTable();
+  static const std::vector<IpoptOptionSpec> table = TableWithIpoptsRanges();
   return table;
 }
 

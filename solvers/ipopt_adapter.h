@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/nlp.h"
@@ -17,10 +18,17 @@ enum class IpoptOptionType { kNumber, kInteger, kString };
 
 /// One entry of OCPBench's table of Ipopt (3.11) options that may be passed through.
 struct IpoptOptionSpec {
+  IpoptOptionSpec(std::string name_, IpoptOptionType type_, std::vector<std::string> values_ = {})
+      : name(std::move(name_)), type(type_), values(std::move(values_)) {}
+
   std::string name;
   IpoptOptionType type = IpoptOptionType::kNumber;
   /// String options: the values Ipopt accepts (empty: any string, e.g. a file name).
   std::vector<std::string> values;
+  /// Number and integer options: the range the linked Ipopt registers for the option (read
+  /// from its registry, so that a value Ipopt would refuse at solve time is refused when the
+  /// options are checked, before any work).
+  OptionBounds bounds;
 };
 
 /// The pass-through table: the Ipopt options OCPBench lets a request set, with their types.

@@ -1,6 +1,7 @@
 // IpoptOptions' option table: its named fields and Ipopt's pass-through options, by type.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 #include "core/option_binding.h"
@@ -27,6 +28,7 @@ void BindPassThrough(OptionBinding<IpoptOptions>* t, const IpoptOptionSpec& ipop
   s.name = ipopt.name;
   s.type = TypeOf(ipopt);
   s.choices = ipopt.values;
+  s.bounds = ipopt.bounds;
   s.doc = "Ipopt option, passed through";
   s.unset_doc = "Ipopt's default";
   const std::string name = ipopt.name;
@@ -130,6 +132,23 @@ bool IpoptOptions::IsValid(std::string* error) const {
     return false;
   }
   for (const IpoptOptionValue& v : extra) {
+    // Ipopt opens (and truncates) its output file only when the solve starts: a place it cannot
+    // open would fail the solve after the work before it.
+    if (v.name == "output_file" && !v.text.empty()) {
+      std::error_code ec;
+      const std::filesystem::path file(v.text);
+      const std::filesystem::path folder =
+          file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
+      if (std::filesystem::is_directory(file, ec) || !std::filesystem::is_directory(folder, ec)) {
+        if (error) {
+          *error =
+              "ipopt option 'output_file': '" + v.text +
+              "' must name a file in an existing folder (it is " +
+              (std::filesystem::is_directory(file, ec) ? "a folder)" : "in no folder that exists)");
+        }
+        return false;
+      }
+    }
     const IpoptOptionSpec* spec = FindIpoptOption(v.name);
     if (spec == nullptr || spec->type != v.type) {
       if (error) *error = "ipopt: extra option '" + v.name + "' is not in the table with that type";

@@ -107,7 +107,11 @@ TEST(OptionSpec, ResolvesTypedValuesAndTextByOneRule) {
   EXPECT_EQ(integer.Resolve(7).integer(), 7);
   EXPECT_NE(ErrorOf([&] { integer.Resolve("2.5"); }), "(accepted)");
   EXPECT_NE(ErrorOf([&] { integer.Resolve(-1); }), "(accepted)");
-  EXPECT_NE(ErrorOf([&] { integer.Resolve("1e10"); }), "(accepted)");  // beyond int
+  // Beyond an int: the message says so (the rule "integer >= 0" alone would be wrong).
+  EXPECT_EQ(ErrorOf([&] { integer.Resolve("2147483648"); }),
+            "option 'k': must be an integer >= 0 and within an int, [-2147483648, 2147483647] "
+            "(got '2147483648')");
+  EXPECT_EQ(integer.Resolve("2147483647").integer(), 2147483647);
 
   const OptionSpec flag = Spec(OptionType::kBool);
   EXPECT_TRUE(flag.Resolve("1").boolean());

@@ -79,11 +79,14 @@ TEST(HamiltonianFamilyOptions, IsValidRejectsEachBadField) {
   invalid([](Options& o) { o.proximal.initial_eps = 0.0; }, "proximal_eps");
   invalid([](Options& o) { o.proximal.growth = 0.5; }, "growth");
   invalid([](Options& o) { o.proximal.max_eps = 1e-20; }, "max_eps");
-  invalid([](Options& o) { o.augmented_lagrangian.penalty_growth = 1.0; }, "penalty_growth");
+  // The outer loop's rules name the options a user sets (al_*), not the rule's fields.
+  invalid([](Options& o) { o.augmented_lagrangian.penalty_growth = 1.0; }, "al_penalty_growth");
   invalid([](Options& o) { o.augmented_lagrangian.final_inner_tolerance = 1.0; },
-          "final_inner_tolerance");
+          "al_final_inner_tolerance must lie in (0, al_initial_inner_tolerance]");
   invalid([](Options& o) { o.augmented_lagrangian.max_outer_iterations = 0; },
-          "max_outer_iterations");
+          "al_max_outer_iterations");
+  invalid([](Options& o) { o.augmented_lagrangian.max_penalty = 0.5; },
+          "al_max_penalty must be finite and >= al_initial_penalty");
   invalid([](Options& o) { o.free_time_initial_fraction = 0.0; }, "free_time_initial_fraction");
   invalid([](Options& o) { o.polish_switch = 0.0; }, "polish_switch");
   invalid([](Options& o) { o.newton_tolerance = 0.0; }, "newton_tolerance");

@@ -254,6 +254,21 @@ TEST(IpoptOptions, ParsesEachTypeAndRejectsBadInput) {
   EXPECT_NE(message({{"mu_strategy", "fast"}}).find("monotone"), std::string::npos);
   EXPECT_NE(message({{"linear_solver", "ma27"}}).find("mumps"), std::string::npos);
   EXPECT_NE(message({{"print_level", "13"}}).find("print_level"), std::string::npos);
+  // Pass-through options take the range the linked Ipopt registers: refused when the options
+  // are checked, not by Ipopt at solve time (an invalid_input record after the work).
+  EXPECT_NE(message({{"mu_init", "-5"}}).find("'mu_init': must be a number > 0"), std::string::npos)
+      << message({{"mu_init", "-5"}});
+  EXPECT_NE(message({{"max_soc", "-1"}}).find("'max_soc': must be an integer >= 0"),
+            std::string::npos)
+      << message({{"max_soc", "-1"}});
+  EXPECT_NE(message({{"mumps_mem_percent", "-100"}}).find("mumps_mem_percent"), std::string::npos);
+  EXPECT_EQ(message({{"mu_init", "1e-3"}, {"max_soc", "2"}}), "no exception");
+  // Ipopt's output file: a place Ipopt could not open is refused before the solve.
+  const std::string folder = ::testing::TempDir();
+  EXPECT_NE(message({{"output_file", folder}}).find("'output_file'"), std::string::npos);
+  EXPECT_NE(message({{"output_file", folder + "/no-such-folder/ipopt.out"}}).find("in no folder"),
+            std::string::npos);
+  EXPECT_EQ(message({{"output_file", folder + "/ipopt.out"}}), "no exception");
 }
 
 // ---- the solver on optimal-control problems ---------------------------------------------------
@@ -420,8 +435,17 @@ TEST(IpoptSolver, MumpsOrderingChangesNoIterate) {
     EXPECT_EQ(amd.iterations, automatic.iterations) << scheme;
     EXPECT_NEAR(amd.objective, automatic.objective, 1e-10 * std::abs(automatic.objective))
         << scheme;
-    request.options = {{"mumps_pivot_order", "8"}};  // applied: Ipopt's range is 0..7
-    EXPECT_EQ(IpoptSolver().Solve(*ocp, request).status, SolveStatus::kInvalidInput) << scheme;
+    // Ipopt's range is 0..7: refused when the options are read, before the solve (it used to
+    // reach Ipopt and come back as an invalid_input result after the transcription's work).
+    request.options = {{"mumps_pivot_order", "8"}};
+    try {
+      IpoptSolver().Solve(*ocp, request);
+      ADD_FAILURE() << scheme << ": mumps_pivot_order = 8 accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("'mumps_pivot_order': must be an integer in [0, 7]"),
+                std::string::npos)
+          << e.what();
+    }
   }
   IpoptOptions o;
   EXPECT_EQ(o.mumps_pivot_order, -1);
