@@ -10,6 +10,7 @@
 #include "bench/cli/compare.h"
 #include "bench/cli/compare_report.h"
 #include "bench/cli/io.h"
+#include "bench/cli/output_place.h"
 
 namespace ocpb {
 namespace {
@@ -22,7 +23,24 @@ struct CompareArgs {
   OptionMap thresholds;  ///< as given, resolved by CompareThresholdSchema()
 };
 
-// An output file must not be a folder, nor one of the records files it is computed from.
+// Two names of one file: the same file where both exist, else the same normalized path.
+bool SamePlace(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+}
+
+// The files a side is read from: its records and, for a result folder, its suite.json.
+std::vector<std::string> InputsOf(const CompareSide& side) {
+  std::vector<std::string> inputs = {side.records_path};
+  std::error_code ec;
+  if (fs::is_directory(side.path, ec))
+    inputs.push_back((fs::path(side.path) / "suite.json").string());
+  return inputs;
+}
+
+// An output file must be writable where it is (checked before the comparison is computed), and
+// must not be one of the files it is computed from.
 void CheckOutput(const std::string& flag,
                  const std::string& path,
                  const std::vector<std::string>& inputs) {
@@ -30,12 +48,12 @@ void CheckOutput(const std::string& flag,
   if (fs::is_directory(path)) {
     throw std::invalid_argument(flag + " '" + path + "': is a folder (expected a file name)");
   }
-  std::error_code ec;
   for (const std::string& input : inputs) {
-    if (fs::exists(path) && fs::equivalent(path, input, ec)) {
+    if (SamePlace(path, input)) {
       throw std::invalid_argument(flag + " '" + path + "': is an input of the comparison");
     }
   }
+  CheckOutputFile(path, flag);
 }
 
 void RunCompare(const CompareArgs& args) {
@@ -44,8 +62,15 @@ void RunCompare(const CompareArgs& args) {
   options.ignore_options = args.ignore_options;
   const CompareSide base = LoadCompareSide(args.base);
   const CompareSide next = LoadCompareSide(args.next);
-  CheckOutput("--json", args.json_path, {base.records_path, next.records_path});
-  CheckOutput("--markdown", args.markdown_path, {base.records_path, next.records_path});
+  std::vector<std::string> inputs = InputsOf(base);
+  for (const std::string& input : InputsOf(next)) inputs.push_back(input);
+  CheckOutput("--json", args.json_path, inputs);
+  CheckOutput("--markdown", args.markdown_path, inputs);
+  if (!args.json_path.empty() && !args.markdown_path.empty() &&
+      SamePlace(args.json_path, args.markdown_path)) {
+    throw std::invalid_argument("--markdown '" + args.markdown_path +
+                                "': is also the --json file (one would overwrite the other)");
+  }
   const Comparison comparison = Compare(base, next, options);
   const std::string markdown = CompareMarkdown(comparison);
   if (!args.json_path.empty()) {

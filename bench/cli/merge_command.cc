@@ -50,6 +50,9 @@ Sweep ReadSweep(const std::string& command, const MergeArgs& args) {
   Sweep sweep;
   if (!args.suite_path.empty()) {
     sweep.suite = LoadSuite(args.suite_path);
+    // A --suite that is not the one the shards ran would merge nothing of theirs and replace
+    // the merged records: refused, as `run --shard` refuses it.
+    if (manifest) CheckShardManifest(args.dir, sweep.suite, manifest->shards);
   } else if (manifest) {
     sweep.suite = ParseSuite(manifest->suite, ShardManifestPath(args.dir) + ": suite");
   } else {

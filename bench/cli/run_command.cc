@@ -114,6 +114,23 @@ void Run(const RunArgs& args) {
                                   "start over (the old file is kept as .prev)");
     }
     previous = ReadRecords(records_path);
+    // A record of a case this run does not hold means the folder belongs to another suite (or
+    // another shard): resuming would mix the two in one records file and one summary.
+    std::set<std::string> mine;
+    for (size_t i = 0; i < suite.cases.size(); ++i) {
+      if (!shard || shard->Owns(i)) mine.insert(suite.cases[i].Key());
+    }
+    for (size_t i = 0; i < previous.records.size(); ++i) {
+      if (mine.count(previous.records[i].key)) continue;
+      throw std::invalid_argument(fmt::format(
+          "{}: record {} (case {}) is not a case of suite '{}'{}: --resume continues a folder "
+          "with the suite that wrote it (use another --out, or --overwrite)",
+          records_path,
+          i + 1,
+          previous.records[i].key,
+          suite.name,
+          shard ? " in shard " + shard->Text() : ""));
+    }
   }
 
   // ---- writes ------------------------------------------------------------------------------

@@ -326,6 +326,12 @@ TEST(CliRun, AFolderHoldsOneSweep) {
   EXPECT_NE(other.err.find("holds shards of another suite document"), std::string::npos)
       << other.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/out/records.shard-2-of-2.jsonl"));
+  // merge --suite with another suite than the shards ran: refused before anything is written.
+  const ProgramRun foreign = RunOcpbenchProgram({"merge", "out", "--suite", "other.json"}, dir);
+  EXPECT_EQ(foreign.exit_code, 2);
+  EXPECT_NE(foreign.err.find("holds shards of another suite document"), std::string::npos)
+      << foreign.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out/records.jsonl"));
 
   std::filesystem::create_directories(dir + "/old");
   testing::WriteText(dir + "/old/records.shard-0-of-2.jsonl", "");
@@ -335,6 +341,31 @@ TEST(CliRun, AFolderHoldsOneSweep) {
             std::string::npos)
       << old.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/old/records.jsonl"));
+}
+
+// --resume continues a folder with the suite that wrote it: a suite that grew may resume it
+// (every record is one of its cases), one that holds fewer or other cases may not (the records
+// file and the summary would mix two suites); nothing is written.
+TEST(CliRun, ResumeRefusesAFolderOfAnotherSuite) {
+  const std::string dir = testing::FreshDirectory("resume-other-suite");
+  testing::WriteText(dir + "/two.json", TinySuite(2, 20));
+  testing::WriteText(dir + "/three.json", TinySuite(3, 20));
+  testing::WriteText(dir + "/other.json", TinySuite(2, 30));
+  ASSERT_EQ(RunOcpbenchProgram({"run", "three.json", "--out", "big"}, dir).exit_code, 0);
+  const std::string before = testing::ReadText(dir + "/big/records.jsonl");
+  for (const char* smaller : {"two.json", "other.json"}) {
+    const ProgramRun run = RunOcpbenchProgram({"run", smaller, "--out", "big", "--resume"}, dir);
+    EXPECT_EQ(run.exit_code, 2) << smaller << ": " << run.err;
+    EXPECT_NE(run.err.find("is not a case of suite 'tiny'"), std::string::npos) << run.err;
+    EXPECT_EQ(testing::ReadText(dir + "/big/records.jsonl"), before) << smaller;
+  }
+  ASSERT_EQ(RunOcpbenchProgram({"run", "two.json", "--out", "small"}, dir).exit_code, 0);
+  const ProgramRun grown =
+      RunOcpbenchProgram({"run", "three.json", "--out", "small", "--resume"}, dir);
+  EXPECT_EQ(grown.exit_code, 0) << grown.err;
+  EXPECT_NE(grown.err.find("resuming: 2 of 3 cases already recorded"), std::string::npos)
+      << grown.err;
+  EXPECT_EQ(ReadJsonLines(dir + "/small/records.jsonl").size(), 3u);
 }
 
 // Timing fields are the only ones that may differ between runs of the same case: the record's
