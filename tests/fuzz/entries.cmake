@@ -4,9 +4,12 @@
 # into the libFuzzer executable <name>_fuzzer (CMakeLists.txt here, OCPB_FUZZ) and into the test
 # fuzz_replay.<name> (replay.cmake), which replays the corpus and regressions in every test run.
 # .ci/fuzz fuzzes every target of this list unless FUZZ_TARGETS names some.
-include_guard(GLOBAL)
+# The list and its folder are set on every include: tests/ (the replay tests) and tests/fuzz/ (the
+# fuzzers, added from the top level) are sibling scopes, and the guard below skips the rest of
+# this file the second time, so a variable set after it would be empty in the second scope.
 set(OCPB_FUZZ_DIR ${PROJECT_SOURCE_DIR}/tests/fuzz)
 set(OCPB_FUZZ_TARGETS measurement suite records initial_guess)
+include_guard(GLOBAL)
 foreach(target IN LISTS OCPB_FUZZ_TARGETS)
   add_library(${target}_fuzz_entry OBJECT ${OCPB_FUZZ_DIR}/${target}_fuzzer.cc)
   # All of OCPBench (ocpb_cli and what it links): one link line for every entry.
