@@ -2,19 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
+#include "solvers/message_number.h"
 #include "solvers/registry.h"
 
 namespace ocpb {
 namespace {
 
-std::string G(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", v);
-  return text;
-}
+// Numbers in messages (solvers/message_number.h), 4 significant digits.
+std::string JudgeNumber(double v) { return MessageNumber(v, 4); }
 
 // The grid and horizon the solution is judged on: for a free final time the end of the method's own
 // state grid (collocation, indirect Newton), else of its controls' grid; the problem's tf
@@ -67,9 +64,10 @@ void AddDiscretizationWarning(const SolveRequest& request,
   const bool reform = reformulated != result.solver_stats.end() && reformulated->second == 1.0;
   j->warnings.push_back(
       {"discretization",
-       "the method's own objective " + G(own) + " and the fine re-simulation's " +
-           (penalty ? "J " : "Jbar ") + G(fine) + " differ by " + G(j->discretization_gap) +
-           " relative (> " + G(options.discretization_tolerance) + "): on this grid" +
+       "the method's own objective " + JudgeNumber(own) + " and the fine re-simulation's " +
+           (penalty ? "J " : "Jbar ") + JudgeNumber(fine) + " differ by " +
+           JudgeNumber(j->discretization_gap) + " relative (> " +
+           JudgeNumber(options.discretization_tolerance) + "): on this grid" +
            (reform ? " (and through the reformulation the method solved)" : "") +
            " the discrete problem is not the continuous one; refine the grid or use a "
            "higher-order scheme"});
@@ -79,7 +77,7 @@ void AddFeasibilityWarning(const SolveRequest& request, const JudgeOptions& opti
   std::vector<std::string> violated;
   const double tol = options.feasibility_tolerance;
   auto check = [&](const char* what, double violation) {
-    if (violation > tol) violated.push_back(std::string(what) + " " + G(violation));
+    if (violation > tol) violated.push_back(std::string(what) + " " + JudgeNumber(violation));
   };
   check("control set U", j->fine.control_violation);
   check("path constraints", j->fine.path_violation);
@@ -91,7 +89,7 @@ void AddFeasibilityWarning(const SolveRequest& request, const JudgeOptions& opti
   for (const std::string& v : violated) list += (list.empty() ? "" : ", ") + v;
   j->warnings.push_back({"infeasible",
                          "the controls re-simulated on the fine grid violate " + list + " (> " +
-                             G(tol) +
+                             JudgeNumber(tol) +
                              "): the answer is not feasible, whatever the "
                              "status says"});
 }
@@ -143,7 +141,7 @@ Judgement JudgeResult(const Ocp& ocp,
         {"terminal_weights_default",
          "penalty form, and problem " + ocp.name() +
              " never chose its terminal weights (w = 1 by default): terminal violation " +
-             G(j.fine.terminal_violation) +
+             JudgeNumber(j.fine.terminal_violation) +
              " on the fine grid; set them (SetTerminalWeights) or solve the hard form"});
   }
   AddDiscretizationWarning(request, result, options, &j);

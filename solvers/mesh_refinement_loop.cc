@@ -2,23 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/timer.h"
+#include "solvers/message_number.h"
 #include "transcriptions/mesh_refinement.h"
 
 namespace ocpb {
 namespace {
 
-std::string G(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", v);
-  return text;
-}
+// Numbers in messages (solvers/message_number.h), 3 significant digits.
+std::string MeshNumber(double v) { return MessageNumber(v, 3); }
 
 // max of the estimates, NaN when any is not finite.
 double LargestError(const Vec& errors) {
@@ -115,7 +112,8 @@ SolveResult SolveOnRefinedMeshes(
     std::string why = "mesh refinement stopped (" + std::string(ToString(reason)) + ") after " +
                       std::to_string(result.mesh_history.size()) + " meshes";
     if (std::isfinite(max_error)) {
-      why += ", largest error estimate " + G(max_error) + " > mesh_tolerance " + G(mesh.tolerance);
+      why += ", largest error estimate " + MeshNumber(max_error) + " > mesh_tolerance " +
+             MeshNumber(mesh.tolerance);
     }
     why += " on " + std::to_string(options.grid.intervals()) + " intervals";
     result.message = result.message.empty() ? why : result.message + "; " + why;

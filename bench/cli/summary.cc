@@ -267,7 +267,8 @@ std::string SummaryMarkdown(const std::string& suite_name,
         "controls differ by more than 1% (the grid, not the method, limits the answer), "
         "`terminal_weights_default` for the penalty form of a problem that never chose its "
         "terminal weights, `infeasible` when the controls re-simulated on the fine grid violate "
-        "U, a path constraint or (hard form) the terminal constraints by more than 1e-3. Each record's `stopping_tolerance` names the option that bounds its "
+        "U, a path constraint or (hard form) the terminal constraints by more than 1e-3. Each "
+        "record's `stopping_tolerance` names the option that bounds its "
         "accuracy (Ipopt: `tol`).\n\n";
   const Labels labels = LabelRecords(records);
   const std::vector<DerivedFields> derived = DeriveTargets(records);
