@@ -61,7 +61,7 @@ def main():
         "`ocpbench run bench/suites/regime-online.json`; do not edit. Gain = 1 - E_online / "
         "E_offline on the true simulated channel (E: motion + transmission energy of the "
         "executed trajectory, J); transmission gain: the same on the transmission energy alone; "
-        "share: the transmission part of the offline plan's energy. Median [10 %, 90 %] over "
+        "share: the transmission part of the offline plan's energy. Median [10 %%, 90 %%] over "
         "channel seeds. Records without finite energies: %d." % skipped,
         "",
         "| new measurements per update | gamma | cases | gain | transmission gain | "
