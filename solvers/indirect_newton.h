@@ -18,8 +18,12 @@ namespace ocpb {
 struct IndirectNewtonOptions {
   /// The sparse LU that factors the Newton matrix (unsymmetric), through Eigen's wrappers of
   /// SuiteSparse 5: UMFPACK (multifrontal, Davis 2004) or KLU (left-looking with BTF, Davis and
-  /// Palamadai Natarajan 2010). Key "linear_solver": "umfpack" | "klu".
-  enum class LinearSolver { kUmfpack, kKlu };
+  /// Palamadai Natarajan 2010), or kRiccati: the structured sweep of BvpRiccatiSolver (O(N nx^3),
+  /// no fill; on comm-path2d, N = 400, about 10x fewer instructions than KLU's factorization:
+  /// solvers/README-family.md), with KLU where the sweep declines (a singular interval block or
+  /// a solve whose residual fails its test; solver_stats "riccati_fallbacks" counts them).
+  /// Key "linear_solver": "umfpack" | "klu" | "riccati".
+  enum class LinearSolver { kUmfpack, kKlu, kRiccati };
   /// Where Newton starts. Key "warm_start": "none" | "hamiltonian" | "ipopt".
   ///  - kNone: from the request's controls (states by RK4 simulation; costates from those
   ///    controls as `costates` says; IndirectNewton::StartFromControls);
