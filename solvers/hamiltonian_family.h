@@ -66,8 +66,13 @@ struct HamiltonianFamilyOptions {
   double newton_tolerance = 1e-10;
   /// How Newton's linear systems are solved (IndirectNewtonOptions::LinearSolver; key
   /// "newton_linear_solver": "riccati" | "klu" | "umfpack"): the Riccati sweep of
-  /// BvpRiccatiSolver (KLU where it declines) by default, the same steps as KLU's to roundoff at
-  /// a tenth of the factorization's instructions (solvers/README-family.md).
+  /// BvpRiccatiSolver (KLU where it declines) by default: the same steps as KLU's to roundoff
+  /// (the path of a long semismooth solve can still part at a kink) for about half of KLU's
+  /// factorization and solve instructions (solvers/README-family.md).
+  /// IndirectNewtonOptions::stall_steps: an attempt ends ("stalled") after this many Newton
+  /// steps in a row of length <= 1/256, and the descent continues (>= 0; 0: off). Key
+  /// "newton_stall_steps".
+  int newton_stall_steps = 0;
   IndirectNewtonOptions::LinearSolver newton_linear_solver =
       IndirectNewtonOptions::LinearSolver::kRiccati;
   /// Newton attempts at most (>= 1). When Newton does not converge, the descent continues from

@@ -195,6 +195,11 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
            &O::newton_tolerance,
            "polish: Newton converged at ||F||_inf <= this",
            OptionBounds::Above(0));
+  t.Integer("newton_stall_steps",
+            &O::newton_stall_steps,
+            "polish: an attempt ends after this many Newton steps in a row of length <= 1/256 "
+            "(0: off)",
+            OptionBounds::AtLeast(0));
   t.template Enum<IndirectNewtonOptions::LinearSolver>(
       "newton_linear_solver",
       &O::newton_linear_solver,

@@ -313,6 +313,22 @@ class NewtonIteration {
       }
       if (!Direction()) return;
       if (!LineSearch(residual, &have_jacobian)) return;
+      stalled_steps_ = accepted_step_ <= IndirectNewtonOptions::kStallStep ? stalled_steps_ + 1 : 0;
+      if (o.stall_steps > 0 && stalled_steps_ >= o.stall_steps) {
+        ++iterations_;
+        rec.iteration = iterations_;
+        rec.J = J_;
+        rec.armijo_j = backtracks_;
+        rec.primal_inf = F_.lpNorm<Eigen::Infinity>();
+        rec.cpu_seconds = run_.watch.cpu();
+        r->history.push_back(rec);
+        Stop(SolveStatus::kStepTooSmall,
+             "stalled",
+             std::to_string(o.stall_steps) + " steps in a row of length <= 1/256 at iterate " +
+                 std::to_string(iterations_) + " (||F||_inf = " + NewtonNumber(rec.primal_inf) +
+                 ")");
+        return;
+      }
       ++iterations_;
     }
   }
@@ -438,6 +454,7 @@ class NewtonIteration {
         F_.swap(F_trial_);
         J_ = J_trial_;
         backtracks_ = j;
+        accepted_step_ = step;
         return true;
       }
       step *= o.backtrack;
@@ -462,7 +479,8 @@ class NewtonIteration {
   double J_ = 0.0, J_trial_ = 0.0;
   double assembly_ = 0.0, factorization_ = 0.0, solve_ = 0.0;
   int residual_evaluations_ = 0, jacobian_evaluations_ = 0;
-  int iterations_ = 0, backtracks_ = -1;
+  int iterations_ = 0, backtracks_ = -1, stalled_steps_ = 0;
+  double accepted_step_ = 1.0;
   SolveStatus status_ = SolveStatus::kError;
   std::string solver_status_, message_;
 };
@@ -538,6 +556,10 @@ const OptionBinding<IndirectNewtonOptions>& NewtonBinding() {
              &O::min_step,
              "smallest step tried (else line_search_failed)",
              OptionBounds::OpenClosed(0, 1));
+    t.Integer("stall_steps",
+              &O::stall_steps,
+              "end ('stalled') after this many steps in a row of length <= 1/256 (0: off)",
+              OptionBounds::AtLeast(0));
     t.Enum("linear_solver",
            &O::linear_solver,
            {{"umfpack", O::LinearSolver::kUmfpack},
