@@ -459,6 +459,37 @@ TEST(Polish, PolishedJIsNeverAboveTheDescentsOnCommPath2d) {
   }
 }
 
+// newton_stall_steps: an attempt that takes three steps in a row of length <= 1/256 ends
+// "stalled" (comm-path2d, gamma = 1e-5, N = 100, after 50 descent steps: measured), the descent
+// continues and a later attempt converges; the record's Newton rows show the three short steps.
+TEST(Polish, StalledNewtonAttemptHandsBackToTheDescent) {
+  const auto ocp = MakeProblem("comm-path2d", {"channel=0", "gamma=1e-5"}, 1);
+  Options o = HamiltonianFamily::Polished();
+  o.max_iterations = 50;
+  o.newton_stall_steps = 3;
+  const SolveResult r = HamiltonianFamily(o).Solve(*ocp, Request(*ocp, 100, TerminalMode::kHard));
+  ASSERT_EQ(r.status, SolveStatus::kConverged) << r.message;
+  EXPECT_GE(Stat(r, "newton_attempts"), 2.0);
+  const size_t stalled = r.message.find("steps in a row of length <= 1/256");
+  ASSERT_NE(stalled, std::string::npos) << r.message;
+  EXPECT_LT(stalled, r.message.find("Newton 2")) << r.message;
+  // The rows before the first continuation of the descent: Newton's, the last three with at
+  // least 8 backtracks (step <= 1/256).
+  const int first_newton = 51;  // 50 descent rows after the start's row 0
+  int last = first_newton;
+  while (last + 1 < static_cast<int>(r.history.size()) && r.history[last + 1].primal_inf > 0.0) {
+    ++last;
+  }
+  ASSERT_GE(last - first_newton, 3);
+  for (int i = last - 2; i <= last; ++i) EXPECT_GE(r.history[i].armijo_j, 8) << i;
+  // The option is validated.
+  Options bad = o;
+  bad.newton_stall_steps = -1;
+  std::string error;
+  EXPECT_FALSE(bad.IsValid(&error));
+  EXPECT_NE(error.find("newton_stall_steps"), std::string::npos) << error;
+}
+
 // The polish reports both phases.
 TEST(Polish, RecordShowsBothPhases) {
   const auto ocp = MakeProblem("comm-path2d", {"channel=0"}, 1);
