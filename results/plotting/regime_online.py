@@ -5,12 +5,15 @@
 
 DIR (default results/regime-online) holds the run's records.jsonl. Writes to DIR:
 
-  regime.md                 per (measurements per update, gamma): cases, the median and the 10 %
-                            and 90 % quantiles over channel seeds of the online gain on the true
-                            channel, 1 - energy_true / offline_energy_true, of the same gain on
-                            the transmission part alone, of the transmission share of the
-                            offline plan's energy, and the median CPU seconds of a case
-  fig_online_gain.png       both gains against gamma, median with a 10-90 % band per budget
+  regime.md                 per (re-planner, placement, measurements per update, gamma): cases,
+                            the median and the 10 % and 90 % quantiles over channel seeds of the
+                            online gain on the true channel, 1 - energy_true /
+                            offline_energy_true, of the same gain on the transmission part
+                            alone, of the transmission share of the offline plan's energy, the
+                            statuses (a record's is its cycles' worst) and the median CPU
+                            seconds of a case (every cycle's prediction and solve)
+  fig_online_gain.png       both gains against gamma, median with a 10-90 % band per
+                            (re-planner, placement, budget)
 
 A gain > 0 means the re-planned execution spent less energy on the true simulated channel than
 executing the offline plan (made from the 100 measurements known at t0 = 0). Needs numpy and
@@ -23,6 +26,9 @@ import os
 import sys
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from figure_io import save_figure  # noqa: E402
 
 
 def load(path):
@@ -51,7 +57,8 @@ def main():
         if not ok:
             skipped += 1
             continue
-        key = (int(r["online"]["measurements_per_update"]), float(r["parameters"]["gamma"]))
+        key = (r["solver"], r["online"]["placement"], int(r["online"]["measurements_per_update"]),
+               float(r["parameters"]["gamma"]))
         cells.setdefault(key, []).append(r)
 
     lines = [
@@ -62,25 +69,34 @@ def main():
         "E_offline on the true simulated channel (E: motion + transmission energy of the "
         "executed trajectory, J); transmission gain: the same on the transmission energy alone; "
         "share: the transmission part of the offline plan's energy. Median [10 %%, 90 %%] over "
-        "channel seeds. Records without finite energies: %d." % skipped,
+        "channel seeds. Status: the worst cycle's. Records without finite energies: %d."
+        % skipped,
         "",
-        "| new measurements per update | gamma | cases | gain | transmission gain | "
-        "transmission share | E offline (median) | CPU s (median) |",
-        "|---|---|---|---|---|---|---|---|",
+        "| re-planner | placement | new measurements per update | gamma | cases | gain | "
+        "transmission gain | transmission share | E offline (median) | statuses | "
+        "CPU s (median) |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     curves = {}
-    for (budget, gamma) in sorted(cells, key=lambda k: (k[0], -k[1])):
-        rs = cells[(budget, gamma)]
+    for key in sorted(cells, key=lambda k: (k[0] != "hamiltonian-polish", k[1], k[2], -k[3])):
+        solver, placement, budget, gamma = key
+        rs = cells[key]
         gain = [1 - r["energy_true"] / r["offline_energy_true"] for r in rs]
         tgain = [1 - r["transmit_energy_true"] / r["offline_transmit_energy_true"] for r in rs]
         share = [r["offline_transmit_energy_true"] / r["offline_energy_true"] for r in rs]
         energy = [r["offline_energy_true"] for r in rs]
         cpu = [r["cpu_seconds"] for r in rs]
-        g, t, s = quantiles(gain), quantiles(tgain), quantiles(share)
-        lines.append("| %d | %g | %d | %.3g [%.3g, %.3g] | %.3g [%.3g, %.3g] | %.3g [%.3g, %.3g] "
-                     "| %.4g | %.3g |" % (budget, gamma, len(rs), *g, *t, *s,
-                                          np.median(energy), np.median(cpu)))
-        curves.setdefault(budget, []).append((gamma, g, t))
+        statuses = {}
+        for r in rs:
+            statuses[r["status"]] = statuses.get(r["status"], 0) + 1
+        g, t, sh = quantiles(gain), quantiles(tgain), quantiles(share)
+        lines.append("| %s | %s | %d | %g | %d | %.3g [%.3g, %.3g] | %.3g [%.3g, %.3g] | "
+                     "%.3g [%.3g, %.3g] | %.4g | %s | %.3g |" % (
+                         solver, placement, budget, gamma, len(rs), *g, *t, *sh,
+                         np.median(energy),
+                         ", ".join("%s %d" % kv for kv in sorted(statuses.items())),
+                         np.median(cpu)))
+        curves.setdefault((solver, placement, budget), []).append((gamma, g, t))
     with open(os.path.join(folder, "regime.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
@@ -91,26 +107,32 @@ def main():
     except ImportError:
         print("matplotlib missing: wrote %s/regime.md only" % folder)
         return
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for budget, pts in sorted(curves.items()):
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4))
+    for (solver, placement, budget), pts in sorted(curves.items()):
         pts.sort()
         gam = [p[0] for p in pts]
+        style = "--" if solver != "hamiltonian-polish" else "-"
         for ax, idx in ((axes[0], 1), (axes[1], 2)):
             med = [100 * p[idx][0] for p in pts]
             lo = [100 * p[idx][1] for p in pts]
             hi = [100 * p[idx][2] for p in pts]
-            ax.plot(gam, med, marker="o", label="%d new measurements / update" % budget)
-            ax.fill_between(gam, lo, hi, alpha=0.2)
+            ax.plot(gam, med, style, marker="o", ms=3,
+                    label="%s, %s, %d / update" % (solver, placement, budget))
+            ax.fill_between(gam, lo, hi, alpha=0.12)
     for ax, title in ((axes[0], "total energy"), (axes[1], "transmission energy")):
         ax.set_xscale("log")
+        ax.set_yscale("symlog", linthresh=1e-3 if ax is axes[0] else 1.0)
         ax.axhline(0.0, color="k", lw=0.5)
         ax.set_xlabel("gamma (weight of motion)")
         ax.set_ylabel("online gain on the true channel (%)")
-        ax.set_title("online vs offline plan: " + title)
+        ax.set_title("online vs offline plan: " + title, fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
+    axes[0].legend(fontsize=7)
+    fig.suptitle("median and 10-90 %% band over channel seeds (%d records)"
+                 % (len(records) - skipped), fontsize=9)
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "fig_online_gain.png"), dpi=120)
+    save_figure(fig, os.path.join(folder, "fig_online_gain.png"), dpi=120)
+    plt.close(fig)
     print("wrote %s/regime.md and fig_online_gain.png (%d records, %d skipped)"
           % (folder, len(records) - skipped, skipped))
 

@@ -31,16 +31,17 @@ CommPath2d::Options JudgeSmallProblem() {
 }
 
 TEST(TrueChannelJudge, TheCommProblemsTruthIsTheOnlineDriversRealization) {
-  Parameters params;
-  MakeProblem("comm-path2d", kSmallSet, 4, &params);
+  // The truth needs the parameters only (no prediction: 100 samples do not always estimate).
+  Parameters params(FindProblem("comm-path2d").parameters);
+  for (const std::string& a : kSmallSet) params.SetFromString(a);
   const auto truth = MakeCommTrueChannel(params, 4);
   OnlineChannelOptions c;
   c.simulation.grid = GridSpec::Workspace(25.0, 25.0, 0.25);
   const OnlineChannel online(4, c);
-  for (const Eigen::Vector2d q : {Eigen::Vector2d(20.0, 20.0),
-                                  Eigen::Vector2d(5.3, 7.9),
-                                  Eigen::Vector2d(0.01, 24.99),
-                                  Eigen::Vector2d(12.5, 12.5)}) {
+  for (const Eigen::Vector2d& q : {Eigen::Vector2d(20.0, 20.0),
+                                   Eigen::Vector2d(5.3, 7.9),
+                                   Eigen::Vector2d(0.01, 24.99),
+                                   Eigen::Vector2d(12.5, 12.5)}) {
     double s = 0.0;
     Eigen::Vector2d g(1.0, 1.0);
     truth->Evaluate(q, &s, &g, nullptr);
