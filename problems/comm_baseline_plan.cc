@@ -1,11 +1,11 @@
 #include "problems/comm_baseline_plan.h"
 
-#include "problems/comm_fixed_path.h"
-#include "problems/comm_path2d.h"
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+
+#include "problems/comm_fixed_path.h"
+#include "problems/comm_path2d.h"
 
 namespace ocpb {
 
