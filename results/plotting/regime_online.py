@@ -12,8 +12,11 @@ DIR (default results/regime-online) holds the run's records.jsonl. Writes to DIR
                             alone, of the transmission share of the offline plan's energy, the
                             statuses (a record's is its cycles' worst) and the median CPU
                             seconds of a case (every cycle's prediction and solve)
-  fig_online_gain.png       both gains against gamma, median with a 10-90 % band per
-                            (re-planner, placement, budget)
+  fig_online_gain.png       the gains against gamma, median with a 10-90 % band, in three
+                            panels: how many new measurements (50, 500; Ipopt's and the
+                            polish's re-plans), where they are taken (random, path, plan), and
+                            the transmission part alone; each with the control (re-planning
+                            without new information)
 
 A gain > 0 means the re-planned execution spent less energy on the true simulated channel than
 executing the offline plan (made from the 100 measurements known at t0 = 0). Seeds whose plan at
@@ -120,27 +123,39 @@ def main():
     except ImportError:
         print("matplotlib missing: wrote %s/regime.md only" % folder)
         return
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4))
-    for (solver, placement, budget), pts in sorted(curves.items()):
-        pts.sort()
-        gam = [p[0] for p in pts]
-        style = "--" if solver != "hamiltonian-polish" else "-"
-        for ax, idx in ((axes[0], 1), (axes[1], 2)):
+    polish, control = "hamiltonian-polish", "random, never refreshed"
+    panels = [
+        ("how many new measurements (total energy)", 1,
+         [(polish, "random", 50), (polish, "random", 500), ("ipopt", "random", 50),
+          (polish, control, 500)]),
+        ("where they are taken, 500 per update (total energy)", 1,
+         [(polish, "random", 500), (polish, "path", 500), (polish, "plan", 500),
+          (polish, control, 500)]),
+        ("transmission energy alone, 500 per update", 2,
+         [(polish, "random", 500), (polish, "plan", 500), (polish, control, 500)]),
+    ]
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+    for ax, (title, idx, keys) in zip(axes, panels):
+        for key in keys:
+            if key not in curves:
+                continue
+            pts = sorted(curves[key])
+            gam = [p[0] for p in pts]
             med = [100 * p[idx][0] for p in pts]
             lo = [100 * p[idx][1] for p in pts]
             hi = [100 * p[idx][2] for p in pts]
-            ax.plot(gam, med, style, marker="o", ms=3,
-                    label="%s, %s, %d / update" % (solver, placement, budget))
-            ax.fill_between(gam, lo, hi, alpha=0.12)
-    for ax, title in ((axes[0], "total energy"), (axes[1], "transmission energy")):
+            style = "--" if key[0] != polish or key[1] == control else "-"
+            line, = ax.plot(gam, med, style, marker="o", ms=3,
+                            label="%s, %s, %d / update" % key)
+            ax.fill_between(gam, lo, hi, alpha=0.12, color=line.get_color())
         ax.set_xscale("log")
-        ax.set_yscale("symlog", linthresh=1e-3 if ax is axes[0] else 1.0)
+        ax.set_yscale("symlog", linthresh=1e-3 if idx == 1 else 1.0)
         ax.axhline(0.0, color="k", lw=0.5)
         ax.set_xlabel("gamma (weight of motion)")
         ax.set_ylabel("online gain on the true channel (%)")
-        ax.set_title("online vs offline plan: " + title, fontsize=10)
+        ax.set_title(title, fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
-    axes[0].legend(fontsize=7)
+        ax.legend(fontsize=7)
     fig.suptitle("median and 10-90 %% band over channel seeds (%d records; %d whose plan at "
                  "t0 = 0 failed left out)" % (len(records) - skipped,
                                               sum(failed_offline.values())), fontsize=9)
