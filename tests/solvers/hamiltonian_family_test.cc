@@ -316,7 +316,9 @@ TEST(AugmentedLagrangianLoop, HardFormMultipliersMatchIpopt) {
 // after 10,000 descent steps the multipliers hold J within 2e-3 of Ipopt + Euler's hard-form
 // optimum with the path constraint, from above (measured: 8e-4; violation 9.9e-4, terminal
 // residual 1.3e-5), where the penalty reformulation (rho = 1e5) ends below it by violating the
-// constraint. Not 1e-8: the inner descent is first order and the subproblems stiffen as rho
+// constraint (already after 500 steps, measured: J 3.992 with violation 2.2e-3 against Ipopt's
+// 4.036; the reformulation's run is kept that short because this test is among the slowest).
+// Not 1e-8: the inner descent is first order and the subproblems stiffen as rho
 // grows (solvers/README-family.md).
 TEST(AugmentedLagrangianLoop, PathConstraintsOfBrysonDenham) {
   const auto ocp = MakeProblem("bryson-denham", {}, 0);
@@ -336,7 +338,7 @@ TEST(AugmentedLagrangianLoop, PathConstraintsOfBrysonDenham) {
   EXPECT_GE(r.objective, ipopt.objective * (1.0 - 1e-6));
   EXPECT_LE(r.objective, ipopt.objective * (1.0 + 2e-3));
   Options reformulation;
-  reformulation.max_iterations = 10000;
+  reformulation.max_iterations = 500;
   const SolveResult p = HamiltonianFamily(reformulation).Solve(*ocp, FamilyRequest(*ocp, N));
   const Evaluation ev_p = Evaluate(*ocp, p.controls, p.state_grid, Integrator::kEuler);
   EXPECT_LT(ev_p.Jbar, ipopt.objective);
