@@ -38,7 +38,9 @@ TEST(BaselineAccelerations, CoverTheLengthExactlyWithTheShortestSpeedUp) {
     // The speed-up is as short as the bound allows: one step less would need a > umax.
     const int m = speed_up;
     EXPECT_GE(m, 1);
-    if (m > 1) EXPECT_GT(length / (h * h * (m - 1) * (N - m + 1)), umax);
+    if (m > 1) {
+      EXPECT_GT(length / (h * h * (m - 1) * (N - m + 1)), umax);
+    }
   }
   std::string why;
   EXPECT_FALSE(BaselineAccelerations(1000.0, h, N, umax, &why).has_value());
