@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 #include "core/autodiff_ocp.h"
 #include "core/derivative_check.h"
