@@ -5,30 +5,26 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/invalid.h"
+
 namespace ocpb {
-namespace {
-
-bool Fail(std::string* error, const std::string& why) {
-  if (error) *error = why;
-  return false;
-}
-
-}  // namespace
 
 bool MeshRefinementOptions::IsValid(std::string* error) const {
   if (!(tolerance >= 0.0) || !std::isfinite(tolerance)) {
-    return Fail(error,
-                "mesh_tolerance: must be >= 0 and finite (0: no refinement), got " +
-                    std::to_string(tolerance));
+    return Invalid(error,
+                   "mesh_tolerance: must be >= 0 and finite (0: no refinement), got " +
+                       std::to_string(tolerance));
   }
   if (max_iterations < 1) {
-    return Fail(error, "mesh_max_iterations: must be >= 1, got " + std::to_string(max_iterations));
+    return Invalid(error,
+                   "mesh_max_iterations: must be >= 1, got " + std::to_string(max_iterations));
   }
   if (max_nodes < 2) {
-    return Fail(error, "mesh_max_nodes: must be >= 2, got " + std::to_string(max_nodes));
+    return Invalid(error, "mesh_max_nodes: must be >= 2, got " + std::to_string(max_nodes));
   }
   if (max_new_points < 1) {
-    return Fail(error, "mesh_max_new_points: must be >= 1, got " + std::to_string(max_new_points));
+    return Invalid(error,
+                   "mesh_max_new_points: must be >= 1, got " + std::to_string(max_new_points));
   }
   return true;
 }
