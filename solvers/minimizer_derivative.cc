@@ -42,6 +42,43 @@ bool MinimizerDerivativeProducts(int nx_runtime,
   return finite;
 }
 
+// Factors the n x n column-major KKT matrix K in place and writes Z, the top-left nu x nu block
+// of K^-1 (column-major), solving for unit vectors in w (length n); kN > 0 fixes n at compile
+// time. False when K is singular (SmallLuFactor).
+template <int kN>
+bool MinimizerDerivativeInverseBlockOfOrder(
+    double* K, int* pivot, int n, int nu, double* w, double* Z) {
+  if (!SmallLuFactor<kN>(K, pivot, n)) return false;
+  for (int c = 0; c < nu; ++c) {
+    std::fill(w, w + n, 0.0);
+    w[c] = 1.0;
+    SmallLuSolve<kN>(K, pivot, n, w);
+    for (int i = 0; i < nu; ++i) Z[c * nu + i] = w[i];
+  }
+  return true;
+}
+
+// The same at the compile-time order n = nu + (active rows) when it is at most 6 (nu <= 3: every
+// registered problem with a minimizer), else at runtime size.
+bool MinimizerDerivativeInverseBlock(double* K, int* pivot, int n, int nu, double* w, double* Z) {
+  switch (n) {
+    case 1:
+      return MinimizerDerivativeInverseBlockOfOrder<1>(K, pivot, n, nu, w, Z);
+    case 2:
+      return MinimizerDerivativeInverseBlockOfOrder<2>(K, pivot, n, nu, w, Z);
+    case 3:
+      return MinimizerDerivativeInverseBlockOfOrder<3>(K, pivot, n, nu, w, Z);
+    case 4:
+      return MinimizerDerivativeInverseBlockOfOrder<4>(K, pivot, n, nu, w, Z);
+    case 5:
+      return MinimizerDerivativeInverseBlockOfOrder<5>(K, pivot, n, nu, w, Z);
+    case 6:
+      return MinimizerDerivativeInverseBlockOfOrder<6>(K, pivot, n, nu, w, Z);
+    default:
+      return MinimizerDerivativeInverseBlockOfOrder<0>(K, pivot, n, nu, w, Z);
+  }
+}
+
 }  // namespace
 
 MinimizerDerivative::MinimizerDerivative(const Ocp& ocp)
@@ -114,17 +151,10 @@ bool MinimizerDerivative::Compute(
       K[j * n + i] = v;
     }
   }
-  if (!SmallLuFactor<0>(K, pivot_.data(), n)) return false;
   // (du_dx, du_dp) = -Z (H_ux, f_u^T), Z the top-left nu x nu block of K^-1 (the right-hand
   // sides vanish in the constraint rows).
   double* Z = inverse_.data();
-  for (int c = 0; c < nu; ++c) {
-    double* w = work_.data();
-    std::fill(w, w + n, 0.0);
-    w[c] = 1.0;
-    SmallLuSolve<0>(K, pivot_.data(), n, w);
-    for (int i = 0; i < nu; ++i) Z[c * nu + i] = w[i];
-  }
+  if (!MinimizerDerivativeInverseBlock(K, pivot_.data(), n, nu, work_.data(), Z)) return false;
   return WithSmallDims(nx, nu, [&]<int kNx, int kNu>() {
     return MinimizerDerivativeProducts<kNx, kNu>(nx,
                                                  nu,
