@@ -2,7 +2,7 @@
 // (decoupling) sweep over its intervals, in place of a general sparse LU.
 #pragma once
 
-#include <vector>
+#include <memory>
 
 #include "core/types.h"
 #include "solvers/pmp_residual.h"
@@ -24,9 +24,16 @@ namespace ocpb {
 /// affine function of x_k and dnu; a forward pass from x_0 then gives x_N = a_N + W_N dnu, and
 /// the psi rows fix dnu (an npsi x npsi LU). For the Newton matrix of an optimal-control problem
 /// this is the Riccati recursion of the linear-quadratic subproblem (for Euler, S_k is the
-/// linearized costate's dependence on the state; 2nx x 2nx LU stands for I - B_k S_{k+1}). A free
-/// final time is a border: the core system without the T row and column is solved for b and for
-/// the T column, and the last row fixes dT.
+/// linearized costate's dependence on the state; R_x = (I; 0) and L_p = (0; I), so the block is
+/// [M 0; G I] with M = I + R_p,top S_{k+1}: one nx x nx LU). A free final time is a border: the
+/// core system without the T row and column is solved for b and for the T column, and the last
+/// row fixes dT.
+///
+/// The per-interval work is done in plain loops on contiguous storage (solvers/small_lu.h),
+/// compiled for nx = 1 .. 6 at fixed size (unrolled) and for any other nx at runtime size
+/// (Kernel::kRuntimeSize forces the latter: tests check the two agree). On comm-path2d (nx = 5,
+/// N = 400, hard form) a factorization costs about 1/6 of the instructions of the previous
+/// Eigen-dynamic version (solvers/README-family.md).
 ///
 /// The sweep does not pivot across intervals: an LU block can be singular where the sparse LU of
 /// the whole matrix is not (a conjugate point of the linearization far from an optimum). So
@@ -36,26 +43,18 @@ namespace ocpb {
 /// counts it).
 class BvpRiccatiSolver {
  public:
-  /// Partial-pivoting LU of a small dense block in plain loops (Eigen's blocked kernels cost
-  /// more than the arithmetic at these sizes: 2 nx = 10 on comm-path2d).
-  class SmallLu {
-   public:
-    /// False when a pivot is not finite or negligible (|pivot| <= 1e-13 max |pivot|).
-    bool Compute(ConstMatRef a);
-    /// x := A^-1 x, for a vector or each column of a matrix.
-    void SolveVector(VecRef x) const;
-    void SolveColumns(MatRef x) const;
-
-   private:
-    Mat lu_;
-    std::vector<int> pivot_;
-  };
-
   /// The accepted relative residual of a solve (|J d - b|_inf <= this |b|_inf).
   static constexpr double kRelativeResidual = 1e-10;
 
+  /// Which compiled kernel runs the sweep: the fixed-size one when nx has one (nx <= 6), or the
+  /// runtime-size one (every nx; the same arithmetic, for tests and larger nx).
+  enum class Kernel { kFixedSize, kRuntimeSize };
+
   /// `pmp` must outlive the solver; its layout is fixed at construction.
-  explicit BvpRiccatiSolver(const PmpResidual& pmp);
+  explicit BvpRiccatiSolver(const PmpResidual& pmp, Kernel kernel = Kernel::kFixedSize);
+  ~BvpRiccatiSolver();
+  BvpRiccatiSolver(const BvpRiccatiSolver&) = delete;
+  BvpRiccatiSolver& operator=(const BvpRiccatiSolver&) = delete;
 
   /// Factors pmp.jacobian() (the last Evaluate with the Jacobian). False when an interval block,
   /// the multipliers' block or the free-time border is singular or not finite.
@@ -63,35 +62,16 @@ class BvpRiccatiSolver {
   /// d from J d = b with the last factorization; false when the residual test fails.
   bool Solve(const Vec& b, Vec* d);
 
- private:
-  // r = J d from the blocks (the factorized matrix; no sparse matrix needed).
-  void Multiply(ConstVecRef d, Vec& r) const;
-  // x := K_k^-1 x (2 nx rows): the LU of K_k, or for Euler its block form.
-  void SolveK(int k, MatRef x) const;
-  // The core system (no T row/column): d_core from b_core.
-  void SolveCore(ConstVecRef b, VecRef d);
-  // The whole system (the border of a free final time included), no checks.
-  void ApplyInverse(ConstVecRef b, VecRef d);
+  /// The sweep's work per nx (implemented by a template on the compile-time nx, 0 = runtime).
+  class Sweep {
+   public:
+    virtual ~Sweep() = default;
+    virtual bool Factorize() = 0;
+    virtual bool Solve(const Vec& b, Vec* d) = 0;
+  };
 
-  const PmpResidual& pmp_;
-  int nx_, nnu_, N_, core_;
-  bool free_time_;
-  bool euler_;  // Scheme::kEuler: K_k = [M 0; G I], one nx x nx LU (see Factorize)
-  Mat terminal_, K_, RpT_;
-  Vec rhs_;
-  std::vector<SmallLu> lu_;  // per interval, of K_k = [R_x + R_p S | L_p]
-  std::vector<Mat> S_, T_;   // per node: p_k = S_k x_k + T_k dnu + s_k
-  std::vector<Mat> Y_, V_;   // per interval: K^-1 L_x, K^-1 R_p T_{k+1}
-  std::vector<Mat> Rp_;      // per interval: R_p
-  std::vector<Mat> G_;       // Euler, per interval: R_p,bottom S_{k+1}
-  std::vector<Mat> W_;       // per node: x_k = a_k + W_k dnu
-  SmallLu terminal_lu_;      // of the terminal costate rows' p_N block
-  SmallLu nu_lu_;            // of Psi_x W_N
-  Mat terminal_x_, terminal_nu_, psi_x_;
-  // Solve scratch: s per node, y per interval, a per node.
-  std::vector<Vec> s_, y_, a_;
-  Vec time_column_, time_row_, w_, core_d_, residual_, correction_;
-  double border_ = 0.0;  // -time_row_ . w_ (the (T, T) entry is zero)
+ private:
+  std::unique_ptr<Sweep> sweep_;
 };
 
 }  // namespace ocpb

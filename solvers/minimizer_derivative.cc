@@ -3,11 +3,92 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solvers/small_dims.h"
+#include "solvers/small_lu.h"
+
 namespace ocpb {
+namespace {
+
+// du_dx = -Z H_ux and du_dp = -Z f_u^T (Z nu x nu, H_ux the rows nx.. of the PointHessian, all
+// column-major with the given leading dimensions), at the compile-time sizes kNx, kNu when
+// nonzero (solvers/small_dims.h). False when an entry is not finite.
+template <int kNx, int kNu>
+bool MinimizerDerivativeProducts(int nx_runtime,
+                                 int nu_runtime,
+                                 const double* __restrict Z,
+                                 const double* __restrict hux,
+                                 int ld_hess,
+                                 const double* __restrict fu,
+                                 int ld_fu,
+                                 double* __restrict du_dx,
+                                 int ld_dx,
+                                 double* __restrict du_dp,
+                                 int ld_dp) {
+  const int nx = SmallDim<kNx>(nx_runtime), nu = SmallDim<kNu>(nu_runtime);
+  bool finite = true;
+  for (int j = 0; j < nx; ++j) {
+    for (int i = 0; i < nu; ++i) {
+      double vx = 0.0, vp = 0.0;
+      for (int l = 0; l < nu; ++l) {
+        vx += Z[l * nu + i] * hux[j * ld_hess + l];
+        vp += Z[l * nu + i] * fu[l * ld_fu + j];
+      }
+      du_dx[j * ld_dx + i] = -vx;
+      du_dp[j * ld_dp + i] = -vp;
+      finite &= std::isfinite(vx);
+      finite &= std::isfinite(vp);
+    }
+  }
+  return finite;
+}
+
+// Factors the n x n column-major KKT matrix K in place and writes Z, the top-left nu x nu block
+// of K^-1 (column-major), solving for unit vectors in w (length n); kN > 0 fixes n at compile
+// time. False when K is singular (SmallLuFactor).
+template <int kN>
+bool MinimizerDerivativeInverseBlockOfOrder(
+    double* K, int* pivot, int n, int nu, double* w, double* Z) {
+  if (!SmallLuFactor<kN>(K, pivot, n)) return false;
+  for (int c = 0; c < nu; ++c) {
+    std::fill(w, w + n, 0.0);
+    w[c] = 1.0;
+    SmallLuSolve<kN>(K, pivot, n, w);
+    for (int i = 0; i < nu; ++i) Z[c * nu + i] = w[i];
+  }
+  return true;
+}
+
+// The same at the compile-time order n = nu + (active rows) when it is at most 6 (nu <= 3: every
+// registered problem with a minimizer), else at runtime size.
+bool MinimizerDerivativeInverseBlock(double* K, int* pivot, int n, int nu, double* w, double* Z) {
+  switch (n) {
+    case 1:
+      return MinimizerDerivativeInverseBlockOfOrder<1>(K, pivot, n, nu, w, Z);
+    case 2:
+      return MinimizerDerivativeInverseBlockOfOrder<2>(K, pivot, n, nu, w, Z);
+    case 3:
+      return MinimizerDerivativeInverseBlockOfOrder<3>(K, pivot, n, nu, w, Z);
+    case 4:
+      return MinimizerDerivativeInverseBlockOfOrder<4>(K, pivot, n, nu, w, Z);
+    case 5:
+      return MinimizerDerivativeInverseBlockOfOrder<5>(K, pivot, n, nu, w, Z);
+    case 6:
+      return MinimizerDerivativeInverseBlockOfOrder<6>(K, pivot, n, nu, w, Z);
+    default:
+      return MinimizerDerivativeInverseBlockOfOrder<0>(K, pivot, n, nu, w, Z);
+  }
+}
+
+}  // namespace
 
 MinimizerDerivative::MinimizerDerivative(const Ocp& ocp)
     : ocp_(ocp), nx_(ocp.nx()), nu_(ocp.nu()), box_active_(ocp.nu(), false) {
   A_.resize(nu_, nu_);
+  m_.resize(nu_, nu_);
+  kkt_.resize(4 * nu_ * nu_);
+  pivot_.resize(2 * nu_);
+  inverse_.resize(nu_ * nu_);
+  work_.resize(2 * nu_);
   f_.resize(nx_);
   Lx_.resize(nx_);
   Lu_.resize(nu_);
@@ -53,45 +134,40 @@ bool MinimizerDerivative::Compute(
   }
   num_active_ = na;
 
-  Mat& K = kkt_;
-  K.setZero(nu + na, nu + na);
-  K.topLeftCorner(nu, nu) = M;
-  if (na > 0) {
-    K.topRightCorner(nu, na) = A_.topRows(na).transpose();
-    K.bottomLeftCorner(na, nu) = A_.topRows(na);
-  }
-  lu_.compute(K);
-  if (!lu_.isInvertible()) return false;
-  // (du_dx, du_dp) = -Z (H_ux, f_u^T), Z the top-left nu x nu block of K^-1 (the right-hand
-  // sides vanish in the constraint rows): nu solves with P K Q = L U in plain loops (Eigen's
-  // blocked triangular solves cost more than the arithmetic at these sizes).
+  // K = [M A^T; A 0] (n = nu + na), column-major, factored by a partial-pivoting LU in plain
+  // loops (solvers/small_lu.h; the reduced KKT matrix is symmetric indefinite and tiny).
   const int n = nu + na;
-  const Mat& lu = lu_.matrixLU();
-  const auto& p = lu_.permutationP().indices();
-  const auto& q = lu_.permutationQ().indices();
-  work_.resize(n);
-  inverse_.resize(nu, nu);
-  for (int c = 0; c < nu; ++c) {
-    work_.setZero();
-    work_[p[c]] = 1.0;
-    for (int j = 0; j < n; ++j) {
-      const double v = work_[j];
-      if (v == 0.0) continue;
-      for (int i = j + 1; i < n; ++i) work_[i] -= lu(i, j) * v;
-    }
-    for (int j = n - 1; j >= 0; --j) {
-      work_[j] /= lu(j, j);
-      const double v = work_[j];
-      if (v == 0.0) continue;
-      for (int i = 0; i < j; ++i) work_[i] -= lu(i, j) * v;
-    }
+  double* K = kkt_.data();
+  for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
-      if (q[i] < nu) inverse_(q[i], c) = work_[i];
+      double v = 0.0;
+      if (i < nu && j < nu) {
+        v = M(i, j);
+      } else if (i < nu) {
+        v = A_(j - nu, i);
+      } else if (j < nu) {
+        v = A_(i - nu, j);
+      }
+      K[j * n + i] = v;
     }
   }
-  du_dx = -inverse_.lazyProduct(hess.bottomLeftCorner(nu, nx));
-  du_dp = -inverse_.lazyProduct(fu.transpose());
-  return du_dx.allFinite() && du_dp.allFinite();
+  // (du_dx, du_dp) = -Z (H_ux, f_u^T), Z the top-left nu x nu block of K^-1 (the right-hand
+  // sides vanish in the constraint rows).
+  double* Z = inverse_.data();
+  if (!MinimizerDerivativeInverseBlock(K, pivot_.data(), n, nu, work_.data(), Z)) return false;
+  return WithSmallDims(nx, nu, [&]<int kNx, int kNu>() {
+    return MinimizerDerivativeProducts<kNx, kNu>(nx,
+                                                 nu,
+                                                 Z,
+                                                 hess.data() + nx,
+                                                 static_cast<int>(hess.outerStride()),
+                                                 fu.data(),
+                                                 static_cast<int>(fu.outerStride()),
+                                                 du_dx.data(),
+                                                 static_cast<int>(du_dx.outerStride()),
+                                                 du_dp.data(),
+                                                 static_cast<int>(du_dp.outerStride()));
+  });
 }
 
 bool MinimizerDerivative::ComputeAt(

@@ -3,8 +3,6 @@
 
 #include <vector>
 
-#include <Eigen/LU>
-
 #include "core/ocp.h"
 
 namespace ocpb {
@@ -75,9 +73,10 @@ class MinimizerDerivative {
   int nx_, nu_;
   int num_active_ = 0;
   std::vector<bool> box_active_;
-  Mat m_, kkt_, inverse_, A_;
-  Vec work_;
-  Eigen::FullPivLU<Mat> lu_;
+  Mat m_, A_;
+  // The KKT matrix and its LU (at most 2 nu x 2 nu, column-major), Z (nu x nu), a solve's column.
+  std::vector<double> kkt_, inverse_, work_;
+  std::vector<int> pivot_;
   // Scratch for ComputeAt.
   Vec f_, Lx_, Lu_, Hu_;
   Mat fx_, fu_, hess_;

@@ -4,16 +4,48 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "solvers/small_dims.h"
+#include "solvers/small_lu.h"
+
 namespace ocpb {
 namespace {
 
 bool SameTime(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); }
 
-// True when every entry is finite: x * 0 is 0 for a finite x and NaN otherwise (one vectorized
-// pass; Eigen's allFinite() costs several times more on these small blocks, every node).
-template <class M>
-bool FiniteEntries(const M& m) {
-  return (m.array() * 0.0).sum() == 0.0;
+// Gx = f_x + f_u U_x, Gp = f_u U_p, Ex = H_xx + H_xu U_x, Ep = f_x^T + H_xu U_p: the node's
+// blocks, column-major (H_xx, H_xu the blocks of the (nx+nu)^2 PointHessian `hess`), in plain
+// loops at the compile-time sizes kNx, kNu when nonzero (solvers/small_dims.h): nx x nu x nx is
+// far too small for Eigen's dynamic-size kernels, whose dispatch costs more than the arithmetic.
+template <int kNx, int kNu>
+void PmpNodeBlocks(int nx_runtime,
+                   int nu_runtime,
+                   const double* __restrict fx,
+                   const double* __restrict fu,
+                   const double* __restrict hess,
+                   const double* __restrict Ux,
+                   const double* __restrict Up,
+                   double* __restrict Gx,
+                   double* __restrict Gp,
+                   double* __restrict Ex,
+                   double* __restrict Ep) {
+  const int nx = SmallDim<kNx>(nx_runtime), nu = SmallDim<kNu>(nu_runtime), nz = nx + nu;
+  for (int j = 0; j < nx; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      double gx = fx[j * nx + i], gp = 0.0, ex = hess[j * nz + i], ep = fx[i * nx + j];
+      for (int l = 0; l < nu; ++l) {
+        const double ux = Ux[j * nu + l], up = Up[j * nu + l];
+        const double fil = fu[l * nx + i], hil = hess[(nx + l) * nz + i];
+        gx += fil * ux;
+        gp += fil * up;
+        ex += hil * ux;
+        ep += hil * up;
+      }
+      Gx[j * nx + i] = gx;
+      Gp[j * nx + i] = gp;
+      Ex[j * nx + i] = ex;
+      Ep[j * nx + i] = ep;
+    }
+  }
 }
 
 }  // namespace
@@ -184,23 +216,45 @@ ControlTrajectory PmpResidual::ControlFunction(ConstVecRef z) const {
 
 bool PmpResidual::EvaluateNode(
     int k, double t, ConstVecRef x, ConstVecRef p, bool with_jacobian, Node* n) {
+  const int nx = nx_, nu = nu_;
   ocp_.MinimizeHamiltonian(t, x, p, n->u);
   ocp_.DynamicsJacobian(t, x, n->u, n->f, n->fx, n->fu);
   ocp_.RunningCostGradient(t, x, n->u, &n->L, n->Lx, n->Lu);
-  n->Hx = n->Lx;
-  n->Hx += n->fx.transpose().lazyProduct(p);
   failure_node_ = k;
-  if (!FiniteEntries(n->u) || !FiniteEntries(n->f) || !FiniteEntries(n->Hx) ||
-      !std::isfinite(n->L)) {
+  // The node's blocks in plain loops on their column-major storage (nx x nu x nx is too small
+  // for Eigen's dynamic-size kernels, whose dispatch costs more than the arithmetic).
+  const double* fx = n->fx.data();
+  const double* fu = n->fu.data();
+  const double* pv = p.data();
+  double* Hx = n->Hx.data();
+  // Finiteness by flags (a running sum of x * 0 would chain every addition: latency-bound).
+  bool finite = std::isfinite(n->L);
+  for (int j = 0; j < nx; ++j) {
+    double v = n->Lx[j];
+    for (int i = 0; i < nx; ++i) v += fx[j * nx + i] * pv[i];
+    Hx[j] = v;
+    finite &= std::isfinite(v);
+    finite &= std::isfinite(n->f[j]);
+  }
+  for (int j = 0; j < nu; ++j) finite &= std::isfinite(n->u[j]);
+  if (!finite) {
     failure_ = Failure::kNonFinite;
     return false;
   }
   if (!with_jacobian) return true;
-  n->Hu = n->Lu;
-  n->Hu += n->fu.transpose().lazyProduct(p);
+  for (int j = 0; j < nu; ++j) {
+    double v = n->Lu[j];
+    for (int i = 0; i < nx; ++i) v += fu[j * nx + i] * pv[i];
+    n->Hu[j] = v;
+  }
   const Vec no_mu;
   ocp_.PointHessian(t, x, n->u, 1.0, p, no_mu, n->hess);
-  if (!FiniteEntries(n->hess) || !FiniteEntries(n->fx) || !FiniteEntries(n->fu)) {
+  const int nz = nx + nu;
+  const double* hess = n->hess.data();
+  for (int e = 0; e < nz * nz; ++e) finite &= std::isfinite(hess[e]);
+  for (int e = 0; e < nx * nx; ++e) finite &= std::isfinite(fx[e]);
+  for (int e = 0; e < nx * nu; ++e) finite &= std::isfinite(fu[e]);
+  if (!finite) {
     failure_ = Failure::kNonFinite;
     return false;
   }
@@ -208,16 +262,19 @@ bool PmpResidual::EvaluateNode(
     failure_ = Failure::kSingularMinimizer;
     return false;
   }
-  const auto Hxx = n->hess.topLeftCorner(nx_, nx_);
-  const auto Hxu = n->hess.topRightCorner(nx_, nu_);
-  // Coefficient-wise products: nx x nu x nx is too small for Eigen's blocked kernels.
-  n->Gx = n->fx;
-  n->Gx += n->fu.lazyProduct(n->Ux);
-  n->Gp = n->fu.lazyProduct(n->Up);
-  n->Ex = Hxx;
-  n->Ex += Hxu.lazyProduct(n->Ux);
-  n->Ep = n->fx.transpose();
-  n->Ep += Hxu.lazyProduct(n->Up);
+  WithSmallDims(nx, nu, [&]<int kNx, int kNu>() {
+    PmpNodeBlocks<kNx, kNu>(nx,
+                            nu,
+                            fx,
+                            fu,
+                            hess,
+                            n->Ux.data(),
+                            n->Up.data(),
+                            n->Gx.data(),
+                            n->Gp.data(),
+                            n->Ex.data(),
+                            n->Ep.data());
+  });
   return true;
 }
 
@@ -282,32 +339,56 @@ bool PmpResidual::EvaluateEuler(
   const double duration = T - grid_.t0();
   double J = 0.0, dJdT = 0.0;
   Node& a = nodes_[0];
+  const double* zd = z.data();
+  double* Fd = F.data();
   for (int k = 0; k < N_; ++k) {
-    const auto xa = z.segment(Col(k), nx), pa = z.segment(Col(k) + nx, nx);
-    const auto xb = z.segment(Col(k + 1), nx), pb = z.segment(Col(k + 1) + nx, nx);
+    const double* xa = zd + Col(k);
+    const double* pa = xa + nx;
+    const double* xb = zd + Col(k + 1);
+    const double* pb = xb + nx;
     // u_k = u*(t_k, x_k, p_{k+1}): the node evaluation with the next costate.
-    if (!EvaluateNode(k, NodeTime(k, T), xa, pb, with_jacobian, &a)) return false;
+    if (!EvaluateNode(k,
+                      NodeTime(k, T),
+                      z.segment(Col(k), nx),
+                      z.segment(Col(k + 1) + nx, nx),
+                      with_jacobian,
+                      &a)) {
+      return false;
+    }
     const double ds = free_time_ ? s_[k + 1] - s_[k] : 0.0;
     const double h = free_time_ ? duration * ds : grid_.h(k);
-    F.segment(Row(k), nx) = xb - xa - h * a.f;
-    F.segment(Row(k) + nx, nx) = pa - pb - h * a.Hx;
+    double* Fs = Fd + Row(k);
+    double* Fc = Fs + nx;
+    const double* f = a.f.data();
+    const double* Hx = a.Hx.data();
+    double pf = 0.0;
+    for (int i = 0; i < nx; ++i) {
+      Fs[i] = xb[i] - xa[i] - h * f[i];
+      Fc[i] = pa[i] - pb[i] - h * Hx[i];
+      pf += pb[i] * f[i];
+    }
     J += h * a.L;
-    if (free_time_) dJdT += ds * (pb.dot(a.f) + a.L);
+    if (free_time_) dJdT += ds * (pf + a.L);
     if (!with_jacobian) continue;
     const int base = nx + k * interval_entries_;
+    const double* Gx = a.Gx.data();
+    const double* Gp = a.Gp.data();
+    const double* Ex = a.Ex.data();
+    const double* Ep = a.Ep.data();
     for (int i = 0; i < nx; ++i) {
-      const int s = base + i * W;         // state row i: columns x_k, p_k, x_{k+1}, p_{k+1}
-      const int c = base + (nx + i) * W;  // costate row i
+      double* s = v + base + i * W;         // state row i: columns x_k, p_k, x_{k+1}, p_{k+1}
+      double* c = v + base + (nx + i) * W;  // costate row i
       for (int j = 0; j < nx; ++j) {
         const double eye = i == j ? 1.0 : 0.0;
-        put(s + j, -h * a.Gx(i, j) - eye);
-        put(s + nx + j, 0.0);
-        put(s + 2 * nx + j, eye);
-        put(s + 3 * nx + j, -h * a.Gp(i, j));
-        put(c + j, -h * a.Ex(i, j));
-        put(c + nx + j, eye);
-        put(c + 2 * nx + j, 0.0);
-        put(c + 3 * nx + j, -h * a.Ep(i, j) - eye);
+        const int ij = j * nx + i;  // (i, j) of the column-major node blocks
+        s[j] = -h * Gx[ij] - eye;
+        s[nx + j] = 0.0;
+        s[2 * nx + j] = eye;
+        s[3 * nx + j] = -h * Gp[ij];
+        c[j] = -h * Ex[ij];
+        c[nx + j] = eye;
+        c[2 * nx + j] = 0.0;
+        c[3 * nx + j] = -h * Ep[ij] - eye;
       }
     }
     if (free_time_) {

@@ -40,18 +40,23 @@ void ExpectSweepMatchesSparseLu(PmpResidual* pmp, const Vec& z) {
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(pmp->jacobian());
   ASSERT_EQ(lu.info(), Eigen::Success);
   const Vec expected = lu.solve(b);
-  BvpRiccatiSolver sweep(*pmp);
-  ASSERT_TRUE(sweep.Factorize());
-  Vec d;
-  ASSERT_TRUE(sweep.Solve(b, &d));
-  EXPECT_LE((d - expected).lpNorm<Eigen::Infinity>(),
-            1e-9 * std::max(1.0, expected.lpNorm<Eigen::Infinity>()));
-  // A second right-hand side with the same factorization.
   const Vec b2 = -2.0 * b + Vec::Ones(b.size());
-  ASSERT_TRUE(sweep.Solve(b2, &d));
   const Vec expected2 = lu.solve(b2);
-  EXPECT_LE((d - expected2).lpNorm<Eigen::Infinity>(),
-            1e-9 * std::max(1.0, expected2.lpNorm<Eigen::Infinity>()));
+  // Both compiled kernels: the fixed-size one of this nx and the runtime-size one.
+  for (const auto kernel :
+       {BvpRiccatiSolver::Kernel::kFixedSize, BvpRiccatiSolver::Kernel::kRuntimeSize}) {
+    SCOPED_TRACE(kernel == BvpRiccatiSolver::Kernel::kFixedSize ? "fixed size" : "runtime size");
+    BvpRiccatiSolver sweep(*pmp, kernel);
+    ASSERT_TRUE(sweep.Factorize());
+    Vec d;
+    ASSERT_TRUE(sweep.Solve(b, &d));
+    EXPECT_LE((d - expected).lpNorm<Eigen::Infinity>(),
+              1e-9 * std::max(1.0, expected.lpNorm<Eigen::Infinity>()));
+    // A second right-hand side with the same factorization.
+    ASSERT_TRUE(sweep.Solve(b2, &d));
+    EXPECT_LE((d - expected2).lpNorm<Eigen::Infinity>(),
+              1e-9 * std::max(1.0, expected2.lpNorm<Eigen::Infinity>()));
+  }
 }
 
 TEST(BvpRiccatiSolver, MatchesSparseLuOnEveryLayout) {

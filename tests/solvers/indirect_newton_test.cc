@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 #include "core/autodiff_ocp.h"
 #include "core/derivative_check.h"
@@ -100,6 +101,44 @@ class LocalPendulum final : public AutoDiffOcp<LocalPendulum, 2, 1, 2, 0> {
 
  private:
   double umax_;
+};
+
+/// nx = 7, nu = 4: dimensions past the compiled pairs of solvers/small_dims.h, so that the
+/// runtime-size kernels (node blocks, minimizer derivative, Riccati sweep) run. A chain
+///   x_i' = x_{i+1 mod 7} - 0.3 sin(x_i) + g_i(x) u_{i mod 4},  g_i = 1 + 0.2 cos(x_i),
+///   L = 1/2 (|u|^2 + |x|^2),  psi = x(tf) with weights 10;
+/// H_u_j = u_j + sum_{i mod 4 = j} g_i p_i, so u*_j = -sum_{i mod 4 = j} g_i(x) p_i.
+class LocalSevenStateChain final : public AutoDiffOcp<LocalSevenStateChain, 7, 4, 7, 0> {
+ public:
+  LocalSevenStateChain() {
+    SetDimensions(7, 4, 7, 0);
+    SetHorizon(0.0, 1.0);
+    SetInitialState(Vec::LinSpaced(7, 0.5, -0.5));
+    SetTerminalWeights(Vec::Constant(7, 10.0));
+  }
+  std::string name() const override { return "local-seven-state-chain"; }
+  template <class T>
+  void EvalDynamics(double, const VecT<T, 7>& x, const VecT<T, 4>& u, VecT<T, 7>* f) const {
+    for (int i = 0; i < 7; ++i) {
+      (*f)[i] = x[(i + 1) % 7] - 0.3 * sin(x[i]) + (1.0 + 0.2 * cos(x[i])) * u[i % 4];
+    }
+  }
+  template <class T>
+  T EvalRunningCost(double, const VecT<T, 7>& x, const VecT<T, 4>& u) const {
+    T sum = u[0] * u[0];
+    for (int j = 1; j < 4; ++j) sum += u[j] * u[j];
+    for (int i = 0; i < 7; ++i) sum += x[i] * x[i];
+    return 0.5 * sum;
+  }
+  template <class T>
+  void EvalTerminalConstraints(const VecT<T, 7>& x, VecT<T, 7>* psi) const {
+    *psi = x;
+  }
+  bool HasHamiltonianMinimizer() const override { return true; }
+  void MinimizeHamiltonian(double, ConstVecRef x, ConstVecRef p, VecRef u) const override {
+    u.setZero();
+    for (int i = 0; i < 7; ++i) u[i % 4] -= (1.0 + 0.2 * std::cos(x[i])) * p[i];
+  }
 };
 
 /// x' = u, L = u^4/4 + x^2/2, x(0) = 1: u* = -cbrt(p), H_uu = 3 u^2 vanishes at p = 0.
@@ -425,6 +464,18 @@ TEST(PmpResidual, JacobianMatchesFiniteDifferencesOnComm) {
     }
     Vec nu = Vec::Constant(pmp.num_multipliers(), 0.5);
     ExpectJacobianMatchesFiniteDifferences(*ocp, mode, pmp.Pack(X, P, nu));
+  }
+}
+
+// The runtime-size kernels (nx = 7, nu = 4) against finite differences, both schemes and forms.
+TEST(PmpResidual, JacobianMatchesFiniteDifferencesPastTheCompiledSizes) {
+  const LocalSevenStateChain chain;
+  for (const auto scheme : {PmpResidual::Scheme::kTrapezoid, PmpResidual::Scheme::kEuler}) {
+    for (TerminalMode mode : {TerminalMode::kPenalty, TerminalMode::kHard}) {
+      SCOPED_TRACE(ToString(mode));
+      const PmpResidual pmp(chain, TimeGrid::Uniform(0.0, 1.0, 5), mode, scheme);
+      ExpectJacobianMatchesFiniteDifferences(chain, mode, SomePoint(pmp.size(), 0.8, 0.1), scheme);
+    }
   }
 }
 
