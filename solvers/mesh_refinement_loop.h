@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <vector>
 
 #include "core/control_trajectory.h"
 #include "core/solve_result.h"
@@ -16,15 +17,20 @@ struct MeshSolve {
   Vec errors;                ///< TranscribedNlp::IntervalErrors at the solution (one per interval)
   int order = 0;             ///< TranscribedNlp::IntervalErrorOrder
   ControlTrajectory states;  ///< TranscribedNlp::StateTrajectory at the solution
+  std::vector<int> degrees;  ///< TranscribedNlp::IntervalDegrees (ph-refinement); empty for h
 };
 
 /// Solves on `options.grid`, then, while the largest interval estimate exceeds
-/// options.mesh.tolerance, on RefineMesh of the last mesh (NodesToAdd per interval), each solve
-/// starting from the previous one's controls (its own interpolation) and states (the scheme's
+/// options.mesh.tolerance, on the refined mesh: RefineMesh of the last mesh (NodesToAdd per
+/// interval) for the fixed-order schemes, PhRefineMesh of the last mesh and its degrees
+/// (written to options.degrees) when the scheme reports IntervalDegrees (LGR; the mesh before
+/// the last one is passed as `previous`, and when the refined mesh is one already solved, a
+/// cycle of reductions and refinements, it is refined again without reduction). Each solve starts
+/// from the previous one's controls (its own interpolation) and states (the scheme's
 /// interpolant) read on the new mesh (primal only: the backends take no multipliers). Stops,
 /// recording why (MeshStopReason), when the tolerance is met, when max_iterations meshes are
-/// solved, when the next mesh would have more than max_nodes nodes, when a solve does not
-/// succeed (IsSuccess), or when the estimate is not finite.
+/// solved, when the next mesh would have more than max_nodes nodes (PhMesh::nodes for ph), when
+/// a solve does not succeed (IsSuccess), or when the estimate is not finite.
 ///
 /// The result is the last mesh's (its status, controls, states, costates, solver_stats), with
 /// mesh = that mesh (nominal horizon), mesh_history (one row per mesh), mesh_stop_reason, a

@@ -96,6 +96,7 @@ MeshSolve SolveOnMesh(const std::string& solver_name,
     out.errors = nlp->IntervalErrors(sol.z);
     out.order = nlp->IntervalErrorOrder();
     out.states = nlp->StateTrajectory(sol.z);
+    out.degrees = nlp->IntervalDegrees();
   }
   return out;
 }

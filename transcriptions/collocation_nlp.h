@@ -148,8 +148,9 @@ class CollocationNlp : public TranscribedNlp {
   /// p (nx x state_grid().size()) from the NLP's multipliers `lambda` at z (as a solver returns
   /// them, scaled NLP); empty when lambda.size() != num_constraints().
   Mat Costates(ConstVecRef z, ConstVecRef lambda) const override;
-  /// IntervalDefectErrors on the mesh (stretched to T for a free final time) with the node
-  /// states (the interval-start blocks) and Controls(z); empty without mesh_interpolant().
+  /// With TranscriptionOptions::mesh.estimate == kSimulation IntervalSimulationErrors on the
+  /// mesh (stretched to T for a free final time) with every state block and Controls(z), else
+  /// SchemeIntervalErrors(z).
   Vec IntervalErrors(ConstVecRef z) const override;
   int IntervalErrorOrder() const override;
   ControlTrajectory StateTrajectory(ConstVecRef z) const override;
@@ -178,7 +179,12 @@ class CollocationNlp : public TranscribedNlp {
   /// The state interpolant of the scheme between mesh nodes, for the mesh error estimate;
   /// nullopt (default): no estimate.
   virtual std::optional<CollocationInterpolant> mesh_interpolant() const { return std::nullopt; }
+  /// The scheme's own estimate (MeshErrorEstimate::kScheme): IntervalDefectErrors with the node
+  /// states (the interval-start blocks) and Controls(z); empty without mesh_interpolant().
+  virtual Vec SchemeIntervalErrors(ConstVecRef zhat) const;
   const TimeGrid& grid() const { return grid_; }
+  // The mesh on the solution's horizon (stretched to T for a free final time).
+  TimeGrid SolutionMesh(ConstVecRef zhat) const;
 
  private:
   struct PointUse {  // point e appears in defect d with coefficient -b
@@ -195,8 +201,7 @@ class CollocationNlp : public TranscribedNlp {
   };
 
   void BuildStructure();
-  // The mesh on the solution's horizon and the node states x(t_k) (nx x N+1) at z.
-  TimeGrid SolutionMesh(ConstVecRef zhat) const;
+  // The node states x(t_k) (nx x N+1) at z.
   Mat NodeStates(ConstVecRef zhat) const;
   // r = (T - t0) / (tf - t0) at physical z (1 without a free final time).
   double Ratio(const Vec& z) const;
@@ -215,6 +220,7 @@ class CollocationNlp : public TranscribedNlp {
   const Ocp& ocp_;
   TimeGrid grid_;
   TerminalMode mode_;
+  MeshErrorEstimate mesh_estimate_;
   std::optional<ControlTrajectory> initial_guess_;
   std::optional<ControlTrajectory> initial_states_;
   double start_final_time_;  // T of the starting point (TranscriptionOptions::GuessFinalTime)

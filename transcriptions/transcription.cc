@@ -47,6 +47,21 @@ bool TranscriptionOptions::IsValidOnItsOwn(std::string* error) const {
                 "transcription: degree must be in [1, " + std::to_string(kMaxRadauPoints) +
                     "], got " + std::to_string(degree));
   }
+  if (!degrees.empty()) {
+    if (static_cast<int>(degrees.size()) != grid.intervals()) {
+      return Fail(error,
+                  "transcription: degrees must have one entry per grid interval (" +
+                      std::to_string(grid.intervals()) + "), got " +
+                      std::to_string(degrees.size()));
+    }
+    for (int d : degrees) {
+      if (d < 1 || d > kMaxRadauPoints) {
+        return Fail(error,
+                    "transcription: every entry of degrees must be in [1, " +
+                        std::to_string(kMaxRadauPoints) + "], got " + std::to_string(d));
+      }
+    }
+  }
   if (initial_guess && initial_guess->nu() < 1) {
     return Fail(error, "transcription: the initial guess has no control components");
   }
