@@ -54,7 +54,8 @@ SolveResult SolveOnRefinedMeshes(
   std::vector<MeshIterationRecord> rows;
   std::vector<IterationRecord> history;
   int iterations = 0;
-  double cpu_before = 0.0;  // CPU of the meshes before the current one
+  int multiplier_starts = 0;  // solves offered mapped multipliers
+  double cpu_before = 0.0;    // CPU of the meshes before the current one
   MeshSolve last;
   MeshStopReason reason = MeshStopReason::kMaxIterations;
   std::optional<PhMesh> previous;  // ph: the mesh before the last one, and its estimates
@@ -76,6 +77,7 @@ SolveResult SolveOnRefinedMeshes(
       history.push_back(rec);
     }
     iterations += std::max(0, last.result.iterations);
+    if (last.multipliers_offered) ++multiplier_starts;
     cpu_before += cpu;
 
     if (!IsSuccess(last.result.status)) {
@@ -131,6 +133,7 @@ SolveResult SolveOnRefinedMeshes(
     }
     options.initial_guess = last.result.controls;
     if (last.states.nu() > 0) options.initial_states = last.states;
+    options.initial_multipliers = std::move(last.multipliers);
   }
 
   SolveResult result = std::move(last.result);
@@ -141,6 +144,7 @@ SolveResult SolveOnRefinedMeshes(
   result.history = std::move(history);
   result.solver_stats["mesh_iterations"] = static_cast<double>(result.mesh_history.size());
   result.solver_stats["mesh_max_error"] = max_error;
+  result.solver_stats["mesh_multiplier_starts"] = multiplier_starts;
   if (reason != MeshStopReason::kToleranceMet) {
     std::string why = "mesh refinement stopped (" + std::string(ToString(reason)) + ") after " +
                       std::to_string(result.mesh_history.size()) + " meshes";

@@ -154,6 +154,23 @@ class CollocationNlp : public TranscribedNlp {
   Vec IntervalErrors(ConstVecRef z) const override;
   int IntervalErrorOrder() const override;
   ControlTrajectory StateTrajectory(ConstVecRef z) const override;
+  /// Costates(z, y.lambda) on the state points, interpolated per mesh interval; path, ball and
+  /// control-bound multipliers divided by their point's weight r w_e (r: the final-time ratio);
+  /// terminal and final-time multipliers as they are (MultiplierTrajectories). Physical units.
+  std::optional<MultiplierTrajectories> MultiplierTrajectoriesAt(
+      ConstVecRef z, const NlpMultipliers& y) const override;
+  /// The inverse of MultiplierTrajectoriesAt on this layout, at the starting point z0 (times
+  /// stretched by its final-time ratio): p read at every state point, path, ball and
+  /// control-bound multipliers r w_e times the densities at their points, terminal and
+  /// final-time multipliers carried; then the defect multipliers that make Costates(z0, lambda)
+  /// equal those p: for a point inside an interval its costate_defect's multiplier from
+  /// (p_j - sum_c c p_c) / costate_scale, then per interval the one remaining defect from its
+  /// start block's costate relation (an nx x nx solve at z0). Exact (to rounding) on the
+  /// mesh the trajectories came from at their own z. Empty when an interval has other than one
+  /// defect without an interior block, a solve is singular, or the trajectories' sizes do not
+  /// fit.
+  NlpMultipliers StartingMultipliers(ConstVecRef z0,
+                                     const MultiplierTrajectories& from) const override;
 
   // ---- for tests and tools ----
   const CollocationLayout& layout() const { return layout_; }

@@ -24,7 +24,8 @@ enum class MeshErrorEstimate {
 };
 
 /// The options of adaptive mesh refinement (transcription options "mesh_tolerance",
-/// "mesh_max_iterations", "mesh_max_nodes", "mesh_estimate", and "mesh_max_new_points" of
+/// "mesh_max_iterations", "mesh_max_nodes", "mesh_estimate", "mesh_warm_multipliers", and
+/// "mesh_max_new_points" of
 /// trapezoid and hermite-simpson, "mesh_min_degree", "mesh_max_degree", "mesh_reduce" of lgr).
 /// With the default tolerance 0 refinement is off: one solve on the request's grid, as without
 /// these options.
@@ -51,6 +52,10 @@ struct MeshRefinementOptions {
   /// ph-refinement (LGR): merge adjacent intervals and lower degrees where the tolerance is met
   /// with room to spare (PhRefineMesh); false: intervals are only raised or split.
   bool reduce = true;
+  /// Start each mesh after the first from the previous solution's multipliers too, mapped to
+  /// the new mesh (MultiplierTrajectories; the backend must take them: Ipopt's warm start,
+  /// NLopt takes none); false: primal start only.
+  bool warm_multipliers = true;
 
   bool enabled() const { return tolerance > 0.0; }
   /// True when every field keeps its rule above; otherwise false with "mesh_NAME: must be ..."

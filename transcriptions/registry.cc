@@ -211,6 +211,20 @@ void BindMeshOptions(OptionBinding<TranscriptionOptions>* binding, MeshRefinemen
                                                                                : own);
         });
   }
+  binding->Custom(
+      [] {
+        OptionSpec s;
+        s.name = "mesh_warm_multipliers";
+        s.type = OptionType::kBool;
+        s.doc =
+            "start each refined mesh from the previous solution's multipliers too (costates "
+            "interpolated and mapped to the new defects; Ipopt's warm start; NLopt takes none); "
+            "false: controls and states only";
+        s.default_value = MeshRefinementOptions{}.warm_multipliers;
+        return s;
+      }(),
+      [](TranscriptionOptions* o, const OptionValue& v) { o->mesh.warm_multipliers = v.boolean(); },
+      [](const TranscriptionOptions& o) { return OptionValue(o.mesh.warm_multipliers); });
   if (h) {
     BindMeshField(binding,
                   "mesh_max_new_points",

@@ -12,6 +12,7 @@
 #include "core/ocp.h"
 #include "core/time_grid.h"
 #include "transcriptions/mesh_refinement.h"
+#include "transcriptions/multiplier_trajectories.h"
 #include "transcriptions/nlp_scaling.h"
 
 namespace ocpb {
@@ -53,6 +54,21 @@ class TranscribedNlp : public Nlp {
   /// mesh from: the scheme's state interpolant where it has IntervalErrors, else piecewise
   /// linear through States(z) on StateGrid(z); empty (nu() == 0) without states.
   virtual ControlTrajectory StateTrajectory(ConstVecRef z) const;
+
+  // ---- multiplier warm starts across meshes (transcriptions/multiplier_trajectories.h) ----
+  /// The multipliers `y` of a solution z as functions of time; nullopt when the transcription
+  /// has no such map, or y does not fit (NlpMultipliers::Fits) or gives no finite costates.
+  virtual std::optional<MultiplierTrajectories> MultiplierTrajectoriesAt(
+      ConstVecRef /*z*/, const NlpMultipliers& /*y*/) const {
+    return std::nullopt;
+  }
+  /// Multipliers to start this NLP with at its primal starting point z0, read from another
+  /// mesh's MultiplierTrajectoriesAt; empty when the transcription has no such map or the
+  /// trajectories do not fit the problem.
+  virtual NlpMultipliers StartingMultipliers(ConstVecRef /*z0*/,
+                                             const MultiplierTrajectories& /*from*/) const {
+    return NlpMultipliers();
+  }
 };
 
 /// What a transcription needs besides the problem.
@@ -64,6 +80,10 @@ struct TranscriptionOptions {
   /// States to start from (nx components, on the horizon of initial_guess), for the schemes
   /// with state variables; default: simulated from the controls. Single shooting ignores them.
   std::optional<ControlTrajectory> initial_states;
+  /// Multipliers to start from (a previous mesh's MultiplierTrajectoriesAt), read by the NLP
+  /// solvers' driver (StartingMultipliers at the starting point, handed to the backend); a
+  /// single Transcribe() ignores them. Set by mesh refinement with mesh.warm_multipliers.
+  std::optional<MultiplierTrajectories> initial_multipliers;
   int degree = 3;  ///< LGR: collocation points per interval, 1..kMaxRadauPoints (60)
   /// LGR: collocation points of each grid interval (grid.intervals() entries, each
   /// 1..kMaxRadauPoints), as ph mesh refinement sets them; empty: `degree` on every interval.
