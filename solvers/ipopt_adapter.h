@@ -99,16 +99,20 @@ struct IpoptOptions {
   /// Ipopt's warm_start_bound_push, also used for warm_start_bound_frac (at most 0.5),
   /// warm_start_slack_bound_push and warm_start_slack_bound_frac: how far a starting variable
   /// (slack) at or outside a bound is pushed into the interior, absolutely and relative to the
-  /// bounds' distance. Ipopt's default (1e-3) moves an interpolated bang-bang control off its
-  /// bound by 1e-3; OCPBench's keeps the start where it is. > 0.
-  double warm_start_bound_push = 1e-9;
+  /// bounds' distance. 1e-6: on results/mesh/warm-multipliers.md's cases as many or fewer
+  /// Ipopt iterations than 1e-9 on each (fewer on bryson-denham and goddard); Ipopt's default
+  /// 1e-3 took 3.5x as many on goddard with Hermite-Simpson. > 0.
+  double warm_start_bound_push = 1e-6;
   /// Ipopt's warm_start_mult_bound_push: the given bound multipliers (and the slacks' of
-  /// inequality rows) are raised to at least this. > 0.
+  /// inequality rows) are raised to at least this. 1e-9: 1e-6 and Ipopt's default 1e-3 took
+  /// as many or more iterations on each case (1e-3: 3.7x on robot-arm with LGR). > 0.
   double warm_start_mult_bound_push = 1e-9;
   /// The barrier parameter a warm-started solve begins with (Ipopt's mu_init, for that solve
   /// only; a pass-through mu_init applies to cold starts). Ipopt's default 0.1 would first
-  /// solve a barrier problem far from the given point's complementarity. > 0.
-  double warm_start_mu_init = 1e-10;
+  /// solve a barrier problem far from the given point's complementarity. 1e-12: as many or
+  /// fewer iterations than 1e-6, 1e-8 and 1e-10 on each case; 1e-14 took 4x more on goddard with
+  /// Hermite-Simpson. > 0.
+  double warm_start_mu_init = 1e-12;
   // ---- output -------------------------------------------------------------------
   /// 0 = silent (OCPBench's default), 5 = Ipopt's usual iteration log, up to 12.
   int print_level = 0;

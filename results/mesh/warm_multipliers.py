@@ -43,7 +43,7 @@ SETTINGS = {
     "Ipopt's defaults (tol 1e-8)": [],
 }
 SWEEPS = {
-    "warm_start_mu_init": ["1e-6", "1e-8", "1e-10", "1e-12"],
+    "warm_start_mu_init": ["1e-6", "1e-8", "1e-10", "1e-12", "1e-14"],
     "warm_start_bound_push": ["1e-9", "1e-6", "1e-3"],
     "warm_start_mult_bound_push": ["1e-9", "1e-6", "1e-3"],
 }
@@ -79,7 +79,8 @@ def solve(ocpbench, workdir, problem, scheme, tol, ipopt, extra):
 
 
 def later(row, key):
-    return sum(row[key][1:]) if row.get(key) else None
+    """The sum over meshes 2, 3, ...; None when there is no second mesh."""
+    return sum(row[key][1:]) if row.get(key) and len(row[key]) > 1 else None
 
 
 def loadavg():
@@ -132,8 +133,10 @@ def summary(runs):
     first = runs[0]
     if first.get("iterations") is None:
         return first["status"], None, None, None, None
-    cpu = statistics.median(later(r, "cpu") for r in runs)
     whole = statistics.median(r["cpu_seconds"] for r in runs)
+    if later(first, "iterations") is None:
+        return first["status"], first["meshes"], None, None, whole
+    cpu = statistics.median(later(r, "cpu") for r in runs)
     return first["status"], first["meshes"], later(first, "iterations"), cpu, whole
 
 
@@ -167,15 +170,17 @@ def print_report(tables, sweeps, load_start, load_end):
         for problem, scheme, tol, runs in rows:
             p = summary(runs["primal"])
             w = summary(runs["warm"])
-            for mode, s in (("primal", p), ("warm", w)):
-                if s[2] is not None:
+            # Totals over the rows where both modes solved a second mesh.
+            if p[2] is not None and w[2] is not None:
+                for mode, s in (("primal", p), ("warm", w)):
                     totals[mode][0] += s[2]
                     totals[mode][1] += s[3]
             print(f"| {problem} | {scheme} | {tol:g} | {p[0]}, {fmt(p[1], 'd')}, "
                   f"{fmt(p[2], 'd')}, {fmt(p[3], '.4f')} | {w[0]}, {fmt(w[1], 'd')}, "
                   f"{fmt(w[2], 'd')}, {fmt(w[3], '.4f')} | {ratio(p[2], w[2])} | "
                   f"{ratio(p[3], w[3])} | {ratio(p[4], w[4])} |")
-        print(f"| all | | | {totals['primal'][0]} iterations, {totals['primal'][1]:.3f} s | "
+        print(f"| all (rows with a 2nd mesh in both) | | | {totals['primal'][0]} iterations, "
+              f"{totals['primal'][1]:.3f} s | "
               f"{totals['warm'][0]} iterations, {totals['warm'][1]:.3f} s | "
               f"{ratio(totals['primal'][0], totals['warm'][0])} | "
               f"{ratio(totals['primal'][1], totals['warm'][1])} | |\n")
