@@ -120,6 +120,11 @@ Vec Ocp::CheckedNominalControl() const {
   return u;
 }
 
+std::optional<ControlTrajectory> Ocp::BaselinePlan(const TimeGrid&, std::string* why_not) const {
+  if (why_not) *why_not = "problem '" + name() + "' defines no baseline plan";
+  return std::nullopt;
+}
+
 bool Ocp::AdmitsFinalTime(double tf) const {
   if (!std::isfinite(tf)) return false;
   const double tol = 1e-9 * std::max({1.0, std::abs(t0_), std::abs(tf_)});

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "core/control_set.h"
+#include "core/control_trajectory.h"
+#include "core/time_grid.h"
 #include "core/types.h"
 
 namespace ocpb {
@@ -159,6 +161,13 @@ class Ocp {
   /// NominalControl(), checked: every method starts from this. Throws std::invalid_argument
   /// naming the problem when it does not return nu finite values.
   Vec CheckedNominalControl() const;
+  /// Optional: the plan a user would run without optimizing anything, on `grid` (the comm
+  /// problems: the straight segment S-D, or the given path, at constant speed with the shortest
+  /// speed-up and braking |u| <= umax allows, and a constant rate that sends c bits by tf). The
+  /// "baseline" method returns it, so it is judged like any method's answer. The default (and a
+  /// problem whose parameters admit no such plan) returns nullopt with the reason in *why_not.
+  virtual std::optional<ControlTrajectory> BaselinePlan(const TimeGrid& grid,
+                                                        std::string* why_not) const;
 
   // ---- reformulation for the Hamiltonian method ------------------------------------
   /// The problem the Hamiltonian method should solve in place of this one, or nullptr (the

@@ -62,7 +62,7 @@ class PlanarPath {
 /// keeps the kink, and the derivatives there are one-sided).
 /// Hamiltonian minimizer: u* = -sign(p2) r with r = CommPowerModel::AccelerationMagnitude(|p2|,
 /// n(x2), umax) (= clip(-p2 / (2 gamma k1), -umax, umax) when k5 = k6 = 0), R* as in CommPath2d.
-class CommFixedPath final : public AutoDiffOcp<CommFixedPath, 3, 2, 3, 0> {
+class CommFixedPath final : public AutoDiffOcp<CommFixedPath, 3, 2, 3, 0>, public CommEnergyModel {
  public:
   struct Options {
     double bits = 150.0;                        ///< c (>= 0)
@@ -109,6 +109,24 @@ class CommFixedPath final : public AutoDiffOcp<CommFixedPath, 3, 2, 3, 0> {
   /// gamma k4, as in CommPath2d.
   std::optional<double> RunningCostLowerBound() const override {
     return options_.power.gamma * options_.power.k[3];
+  }
+  /// The path at constant speed (BaselineAccelerations along the arc length: the shortest
+  /// speed-up and braking |u| <= umax allows, ending at its end at rest on the Euler grid) and
+  /// the constant rate that sends c bits by tf. Needs a uniform grid spanning [0, tf].
+  std::optional<ControlTrajectory> BaselinePlan(const TimeGrid& grid,
+                                                std::string* why_not) const override;
+
+  // ---- CommEnergyModel ----
+  Eigen::Vector2d Position(ConstVecRef x) const override {
+    Eigen::Vector2d q;
+    path_->Evaluate(x[0], &q, nullptr, nullptr);
+    return q;
+  }
+  double MotionPower(ConstVecRef x, ConstVecRef u) const override {
+    return options_.power.Motion(u[0] * u[0], x[1] * x[1]);
+  }
+  double TransmitPower(ConstVecRef u, double s) const override {
+    return options_.power.Transmission(u[1], s, inv_k_);
   }
 
   /// s(q(sigma)) as a double or a jet in sigma.

@@ -9,6 +9,7 @@
 #include "problems/channel/channel_memory.h"
 #include "problems/channel/measurement_sampling.h"
 #include "problems/channel/paper_channel.h"
+#include "problems/channel/true_channel.h"
 #include "problems/comm_channel_cache.h"
 
 namespace ocpb {
@@ -622,6 +623,25 @@ std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params,
       CommChannelKey(params, seed), static_cast<std::size_t>(bytes) + 4096, [&] {
         const PaperChannel channel = MakePaperChannel(seed, samples, options);
         return channel.Quality(model == 2 ? ChannelProvider::kMap : ChannelProvider::kExact);
+      });
+}
+
+std::shared_ptr<const ChannelQuality> MakeCommTrueChannel(const Parameters& params,
+                                                          std::uint64_t seed) {
+  const int model = params.Integer("channel");
+  if (model == 0) return MakeCommChannel(params, seed);
+  const PaperChannelOptions options = CommPaperChannelOptions(params, model);
+  // The realization only: the gain grid (one double a cell) and its grid.
+  const double bytes = 8.0 * static_cast<double>(options.simulation.grid.num_points());
+  return ChannelCache::Global().GetOrBuild(
+      "truth;" + CommChannelKey(params, seed), static_cast<std::size_t>(bytes) + 4096, [&] {
+        SimulatedChannel truth = SimulateChannel(options.truth, options.simulation, seed);
+        // Only the gain is read (GainAt): the components are dropped to keep the cache small.
+        truth.path_loss_db.resize(0, 0);
+        truth.shadowing_db.resize(0, 0);
+        truth.multipath_db.resize(0, 0);
+        return std::make_shared<const TrueChannelQuality>(
+            std::make_shared<const SimulatedChannel>(std::move(truth)), options.predictor.units);
       });
 }
 

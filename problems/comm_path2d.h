@@ -15,6 +15,7 @@
 #include "core/parameters.h"
 #include "core/proximal_hamiltonian.h"
 #include "problems/channel/channel_quality.h"
+#include "problems/comm_energy_model.h"
 #include "problems/registry.h"
 
 namespace ocpb {
@@ -157,7 +158,8 @@ class PathLossChannel final : public ChannelQuality {
 /// transmission term, >= 0 on U, is what it leaves out).
 class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0>,
                          public EulerStageModel,
-                         public ProximalHamiltonianMinimizer {
+                         public ProximalHamiltonianMinimizer,
+                         public CommEnergyModel {
  public:
   struct Options {
     Eigen::Vector2d start{20.0, 40.0};          ///< S, in the workspace
@@ -245,6 +247,21 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0>,
   /// gamma k4: every other term of L is >= 0 on U (R >= 0, s = E[1/CNR] > 0, k_i >= 0, n >= 0).
   std::optional<double> RunningCostLowerBound() const override {
     return options_.power.gamma * options_.power.k[3];
+  }
+  /// The straight segment from the start to D at constant speed (BaselineAccelerations: the
+  /// shortest speed-up and braking |u| <= umax allows, ending at D at rest on the Euler grid)
+  /// and the constant rate that sends the remaining bits by tf (BaselineRate). Needs a uniform
+  /// grid spanning [t0, tf] and a start at rest (v0 = 0).
+  std::optional<ControlTrajectory> BaselinePlan(const TimeGrid& grid,
+                                                std::string* why_not) const override;
+
+  // ---- CommEnergyModel ----
+  Eigen::Vector2d Position(ConstVecRef x) const override { return Eigen::Vector2d(x[0], x[1]); }
+  double MotionPower(ConstVecRef x, ConstVecRef u) const override {
+    return options_.power.Motion(u[0] * u[0] + u[1] * u[1], x[2] * x[2] + x[3] * x[3]);
+  }
+  double TransmitPower(ConstVecRef u, double s) const override {
+    return options_.power.Transmission(u[2], s, inv_k_);
   }
 
   // ---- EulerStageModel (see the class comment) ----
@@ -340,6 +357,13 @@ std::shared_ptr<const ChannelQuality> MakeCommChannel(const Parameters& params, 
 /// shared comm parameter except the task's and the motion model's (S, D, c, tf, umax, Rmax,
 /// gamma, C, k, eps, pb).
 std::string CommChannelKey(const Parameters& params, std::uint64_t seed);
+/// The true channel of `params` and realization `seed`, what plans made on MakeCommChannel's
+/// prediction really pay: channel 0 (deterministic path loss) is its own truth; channels 1 and
+/// 2 give the TrueChannelQuality of the realization MakeCommChannel simulates (the same
+/// SimulateChannel call, so the same cells as the online driver's OnlineChannel of that seed).
+/// Cached in ChannelCache::Global() beside the predictions (about 2 MB at the paper's grid).
+std::shared_ptr<const ChannelQuality> MakeCommTrueChannel(const Parameters& params,
+                                                          std::uint64_t seed);
 /// Runs the checks of MakeCommChannel without simulating anything and returns a path-loss
 /// stand-in with the same base station and constants (for ProblemInfo::make_for_checks).
 std::shared_ptr<const ChannelQuality> MakeCommChannelForChecks(const Parameters& params);

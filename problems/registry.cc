@@ -7,6 +7,7 @@
 #include "problems/channel_sample.h"
 #include "problems/comm_fixed_path.h"
 #include "problems/comm_path2d.h"
+#include "problems/comm_true_energy.h"
 #include "problems/double_integrator.h"
 #include "problems/reference/reference_problems.h"
 
@@ -48,7 +49,9 @@ std::vector<ProblemInfo> BuildRegistry() {
   AppendReferenceProblems(&list);  // bryson-denham, lqr, hager, vanderpol, rayleigh, catmix
   list.push_back(CommPath2dProblemInfo());
   list.back().sample_for_figures = SampleCommPath2dChannel;
+  list.back().judge_on_truth = JudgeCommPlanOnTruth;
   list.push_back(CommFixedPathProblemInfo());
+  list.back().judge_on_truth = JudgeCommPlanOnTruth;
   return list;
 }
 

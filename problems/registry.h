@@ -1,6 +1,7 @@
 // The problems OCPBench knows by name.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -11,8 +12,25 @@
 #include "core/field_sample.h"
 #include "core/ocp.h"
 #include "core/parameters.h"
+#include "core/time_grid.h"
+#include "core/types.h"
 
 namespace ocpb {
+
+/// A solution judged on the problem's *true* data, where the problem plans on an estimate of
+/// it (the comm problems plan on a channel predicted from measurements; the truth is the
+/// simulated realization): ProblemInfo::judge_on_truth. Numbers not computed are NaN.
+struct TruthJudgement {
+  std::string truth;                  ///< what the truth is ("true channel seed=3 cells=0.1m")
+  double energy_true = NAN;           ///< Jbar of the executed controls on the truth
+  double transmit_energy_true = NAN;  ///< its transmission part
+  double J_true = NAN;                ///< energy_true + the terminal penalty
+  double terminal_violation = NAN;    ///< max |psi_i| at the executed final state
+  /// The executed path in the plane: its largest distance from the straight segment S-D, and
+  /// its closest approach to the base station (m).
+  double max_distance_from_segment = NAN;
+  double min_distance_to_base = NAN;
+};
 
 /// A registered problem: how to build it, its parameters, and what is known about its optimum.
 struct ProblemInfo {
@@ -54,6 +72,16 @@ struct ProblemInfo {
   /// Optional: a field to draw a solution over (comm-path2d: its channel map), kept in records
   /// that keep their trajectory (field s_map). Empty, or nullopt for a given problem: none.
   std::function<std::optional<FieldSample>(const Ocp& ocp)> sample_for_figures;
+  /// Optional: judges controls on the problem's true data (see TruthJudgement): `controls`
+  /// (nu x N, each interval's value) executed on `grid` from the problem's initial state, the
+  /// problem built by `make(params, seed)`. Records of every solve carry the result
+  /// (energy_true, ...). Empty, or nullopt for given parameters: nothing to judge.
+  std::function<std::optional<TruthJudgement>(const Parameters& params,
+                                              std::uint64_t seed,
+                                              const Ocp& ocp,
+                                              const TimeGrid& grid,
+                                              const Mat& controls)>
+      judge_on_truth;
 };
 
 /// Every registered problem, in a fixed order.

@@ -101,6 +101,10 @@ class ForwardingOcp : public Ocp {
   }
   bool HasAffineDynamics() const override { return inner_.HasAffineDynamics(); }
   Vec NominalControl() const override { return inner_.NominalControl(); }
+  std::optional<ControlTrajectory> BaselinePlan(const TimeGrid& grid,
+                                                std::string* why_not) const override {
+    return inner_.BaselinePlan(grid, why_not);
+  }
 
  private:
   const Ocp& inner_;

@@ -124,6 +124,8 @@ void HamiltonianFamily::Polish(const Options& o,
   no.scheme = IndirectNewtonOptions::Scheme::kEuler;
   no.max_iterations = o.newton_max_iterations;
   no.tolerance = o.newton_tolerance;
+  no.linear_solver = o.newton_linear_solver;
+  no.stall_steps = o.newton_stall_steps;
   no.path_penalty = o.path_penalty;  // SolveFrom resolves the same reformulation
   no.regularization = o.regularization;
   int descent_iterations = static_cast<int>(stats["descent_iterations"]);

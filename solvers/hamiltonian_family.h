@@ -9,6 +9,7 @@
 #include "core/option_schema.h"
 #include "solvers/augmented_lagrangian_loop.h"
 #include "solvers/descent_loop.h"
+#include "solvers/indirect_newton.h"
 #include "solvers/solver.h"
 
 namespace ocpb {
@@ -63,6 +64,17 @@ struct HamiltonianFamilyOptions {
   /// Newton's limits (IndirectNewtonOptions: max_iterations >= 0, tolerance > 0 on ||F||_inf).
   int newton_max_iterations = 100;
   double newton_tolerance = 1e-10;
+  /// How Newton's linear systems are solved (IndirectNewtonOptions::LinearSolver; key
+  /// "newton_linear_solver": "riccati" | "klu" | "umfpack"): the Riccati sweep of
+  /// BvpRiccatiSolver (KLU where it declines) by default: the same steps as KLU's to roundoff
+  /// (the path of a long semismooth solve can still part at a kink) for about half of KLU's
+  /// factorization and solve instructions (solvers/README-family.md).
+  /// IndirectNewtonOptions::stall_steps: an attempt ends ("stalled") after this many Newton
+  /// steps in a row of length <= 1/256, and the descent continues (>= 0; 0: off). Key
+  /// "newton_stall_steps".
+  int newton_stall_steps = 0;
+  IndirectNewtonOptions::LinearSolver newton_linear_solver =
+      IndirectNewtonOptions::LinearSolver::kRiccati;
   /// Newton attempts at most (>= 1). When Newton does not converge, the descent continues from
   /// its own last iterate for as many steps again as it has taken (its budget doubles) and Newton
   /// starts over from there: Newton's basin on the semismooth maximum principle is irregular

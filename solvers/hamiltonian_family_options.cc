@@ -195,6 +195,18 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
            &O::newton_tolerance,
            "polish: Newton converged at ||F||_inf <= this",
            OptionBounds::Above(0));
+  t.Integer("newton_stall_steps",
+            &O::newton_stall_steps,
+            "polish: an attempt ends after this many Newton steps in a row of length <= 1/256 "
+            "(0: off)",
+            OptionBounds::AtLeast(0));
+  t.template Enum<IndirectNewtonOptions::LinearSolver>(
+      "newton_linear_solver",
+      &O::newton_linear_solver,
+      {{"riccati", IndirectNewtonOptions::LinearSolver::kRiccati},
+       {"klu", IndirectNewtonOptions::LinearSolver::kKlu},
+       {"umfpack", IndirectNewtonOptions::LinearSolver::kUmfpack}},
+      "polish: Newton's linear solver (the Riccati sweep, KLU its fallback; or a sparse LU)");
   t.Integer("polish_attempts",
             &O::polish_attempts,
             "polish: Newton attempts at most (the descent continues between them)",

@@ -18,6 +18,7 @@
 #include "core/evaluator.h"
 #include "core/option_binding.h"
 #include "core/timer.h"
+#include "solvers/bvp_riccati_solver.h"
 #include "solvers/hamiltonian_descent.h"
 #include "solvers/hamiltonian_target.h"
 #include "solvers/pmp_residual.h"
@@ -60,9 +61,10 @@ class EigenSparseLu final : public SparseLu {
   Lu lu_;
 };
 
+// kRiccati's fallback is KLU.
 std::unique_ptr<SparseLu> MakeLu(IndirectNewtonOptions::LinearSolver solver) {
   using Sparse = Eigen::SparseMatrix<double>;
-  if (solver == IndirectNewtonOptions::LinearSolver::kKlu) {
+  if (solver != IndirectNewtonOptions::LinearSolver::kUmfpack) {
     return std::make_unique<EigenSparseLu<Eigen::KLU<Sparse>>>();
   }
   return std::make_unique<EigenSparseLu<Eigen::UmfPackLU<Sparse>>>();
@@ -233,7 +235,11 @@ class NewtonIteration {
       : run_(run),
         pmp_(pmp),
         lu_(MakeLu(run.options.linear_solver)),
-        lu_name_(ToString(run.options.linear_solver)) {}
+        lu_name_(ToString(run.options.linear_solver)) {
+    if (run.options.linear_solver == IndirectNewtonOptions::LinearSolver::kRiccati) {
+      riccati_ = std::make_unique<BvpRiccatiSolver>(pmp);
+    }
+  }
 
   // z from the start (X0, P0 and the terminal multipliers nu0, or their estimate).
   void Start(const Mat& X0, const Mat& P0, const Vec* nu0) {
@@ -307,6 +313,22 @@ class NewtonIteration {
       }
       if (!Direction()) return;
       if (!LineSearch(residual, &have_jacobian)) return;
+      stalled_steps_ = accepted_step_ <= IndirectNewtonOptions::kStallStep ? stalled_steps_ + 1 : 0;
+      if (o.stall_steps > 0 && stalled_steps_ >= o.stall_steps) {
+        ++iterations_;
+        rec.iteration = iterations_;
+        rec.J = J_;
+        rec.armijo_j = backtracks_;
+        rec.primal_inf = F_.lpNorm<Eigen::Infinity>();
+        rec.cpu_seconds = run_.watch.cpu();
+        r->history.push_back(rec);
+        Stop(SolveStatus::kStepTooSmall,
+             "stalled",
+             std::to_string(o.stall_steps) + " steps in a row of length <= 1/256 at iterate " +
+                 std::to_string(iterations_) + " (||F||_inf = " + NewtonNumber(rec.primal_inf) +
+                 ")");
+        return;
+      }
       ++iterations_;
     }
   }
@@ -340,6 +362,7 @@ class NewtonIteration {
     s["jacobian_nonzeros"] = static_cast<double>(pmp_.jacobian().nonZeros());
     s["residual_evaluations"] = residual_evaluations_;
     s["jacobian_evaluations"] = jacobian_evaluations_;
+    if (riccati_) s["riccati_fallbacks"] = riccati_fallbacks_;
   }
 
  private:
@@ -369,8 +392,21 @@ class NewtonIteration {
   // The Newton step d from J(z) d = -F(z) (the Jacobian evaluated at z); false after a stop.
   bool Direction() {
     double t0 = CpuSeconds();
+    if (riccati_) {
+      // The structured sweep, or the sparse LU when it declines (BvpRiccatiSolver).
+      const bool factored = riccati_->Factorize();
+      factorization_ += CpuSeconds() - t0;
+      t0 = CpuSeconds();
+      rhs_ = -F_;
+      const bool solved = factored && riccati_->Solve(rhs_, &d_);
+      solve_ += CpuSeconds() - t0;
+      if (solved) return true;
+      ++riccati_fallbacks_;
+      t0 = CpuSeconds();
+    }
     bool factored = true;
-    if (iterations_ == 0) factored = lu_->Analyze(pmp_.jacobian());
+    if (!analyzed_) factored = lu_->Analyze(pmp_.jacobian());
+    analyzed_ = true;
     factored = factored && lu_->Factorize(pmp_.jacobian());
     factorization_ += CpuSeconds() - t0;
     if (!factored) {
@@ -418,6 +454,7 @@ class NewtonIteration {
         F_.swap(F_trial_);
         J_ = J_trial_;
         backtracks_ = j;
+        accepted_step_ = step;
         return true;
       }
       step *= o.backtrack;
@@ -434,12 +471,16 @@ class NewtonIteration {
   const NewtonRun& run_;
   PmpResidual& pmp_;
   std::unique_ptr<SparseLu> lu_;
+  std::unique_ptr<BvpRiccatiSolver> riccati_;  // kRiccati: tried first, lu_ (KLU) its fallback
+  bool analyzed_ = false;
+  int riccati_fallbacks_ = 0;
   const char* lu_name_;
   Vec z_, F_, F_trial_, d_, z_trial_, rhs_;
   double J_ = 0.0, J_trial_ = 0.0;
   double assembly_ = 0.0, factorization_ = 0.0, solve_ = 0.0;
   int residual_evaluations_ = 0, jacobian_evaluations_ = 0;
-  int iterations_ = 0, backtracks_ = -1;
+  int iterations_ = 0, backtracks_ = -1, stalled_steps_ = 0;
+  double accepted_step_ = 1.0;
   SolveStatus status_ = SolveStatus::kError;
   std::string solver_status_, message_;
 };
@@ -461,7 +502,15 @@ void RunNewton(const NewtonRun& run, const Mat& X0, const Mat& P0, const Vec* nu
 }  // namespace
 
 const char* ToString(IndirectNewtonOptions::LinearSolver solver) {
-  return solver == IndirectNewtonOptions::LinearSolver::kKlu ? "klu" : "umfpack";
+  switch (solver) {
+    case IndirectNewtonOptions::LinearSolver::kKlu:
+      return "klu";
+    case IndirectNewtonOptions::LinearSolver::kRiccati:
+      return "riccati";
+    case IndirectNewtonOptions::LinearSolver::kUmfpack:
+      break;
+  }
+  return "umfpack";
 }
 
 const char* ToString(IndirectNewtonOptions::WarmStart warm_start) {
@@ -507,10 +556,16 @@ const OptionBinding<IndirectNewtonOptions>& NewtonBinding() {
              &O::min_step,
              "smallest step tried (else line_search_failed)",
              OptionBounds::OpenClosed(0, 1));
+    t.Integer("stall_steps",
+              &O::stall_steps,
+              "end ('stalled') after this many steps in a row of length <= 1/256 (0: off)",
+              OptionBounds::AtLeast(0));
     t.Enum("linear_solver",
            &O::linear_solver,
-           {{"umfpack", O::LinearSolver::kUmfpack}, {"klu", O::LinearSolver::kKlu}},
-           "sparse LU of the Newton matrix");
+           {{"umfpack", O::LinearSolver::kUmfpack},
+            {"klu", O::LinearSolver::kKlu},
+            {"riccati", O::LinearSolver::kRiccati}},
+           "the Newton matrix's solver: a sparse LU, or the Riccati sweep (KLU its fallback)");
     t.Enum("warm_start",
            &O::warm_start,
            {{"none", O::WarmStart::kNone},

@@ -18,8 +18,12 @@ namespace ocpb {
 struct IndirectNewtonOptions {
   /// The sparse LU that factors the Newton matrix (unsymmetric), through Eigen's wrappers of
   /// SuiteSparse 5: UMFPACK (multifrontal, Davis 2004) or KLU (left-looking with BTF, Davis and
-  /// Palamadai Natarajan 2010). Key "linear_solver": "umfpack" | "klu".
-  enum class LinearSolver { kUmfpack, kKlu };
+  /// Palamadai Natarajan 2010), or kRiccati: the structured sweep of BvpRiccatiSolver (O(N nx^3),
+  /// no fill; on comm-path2d, N = 400, a factorization and solve in about 7e6 instructions
+  /// against KLU's 1.5e7 (callgrind; solvers/README-family.md)), with KLU where the sweep declines
+  /// (a singular interval block or a solve whose residual fails its test; solver_stats
+  /// "riccati_fallbacks" counts them). Key "linear_solver": "umfpack" | "klu" | "riccati".
+  enum class LinearSolver { kUmfpack, kKlu, kRiccati };
   /// Where Newton starts. Key "warm_start": "none" | "hamiltonian" | "ipopt".
   ///  - kNone: from the request's controls (states by RK4 simulation; costates from those
   ///    controls as `costates` says; IndirectNewton::StartFromControls);
@@ -62,6 +66,14 @@ struct IndirectNewtonOptions {
   /// Smallest step tried, in (0, 1]; when no step >= min_step is accepted the solve ends with
   /// kStepTooSmall ("line_search_failed").
   double min_step = 1e-10;
+  /// Stall test (>= 0; 0: off): the solve ends with kStepTooSmall ("stalled") after this many
+  /// consecutive steps accepted only at a length <= kStallStep. Such steps leave ||F|| where it
+  /// is: the semismooth merit has a kink there that the generalized Jacobian does not see
+  /// (comm-path2d, gamma = 1e-4, hard form: 60 steps of length 2^-10 .. 2^-15 at ||F|| = 0.093,
+  /// solvers/README-family.md); a caller with another way forward (the polish: more descent)
+  /// saves those steps. Key "stall_steps".
+  int stall_steps = 0;
+  static constexpr double kStallStep = 1.0 / 256.0;
   /// KLU by default: on these banded systems it factors 2-4x faster than UMFPACK (measured in
   /// solvers/README-indirect.md).
   LinearSolver linear_solver = LinearSolver::kKlu;
@@ -141,6 +153,7 @@ const char* ToString(IndirectNewtonOptions::Costates costates);
 ///  - ||F||_inf <= tolerance                      -> kConverged        "converged"
 ///  - max_iterations steps taken                  -> kMaxIterations    "max_iterations"
 ///  - no step >= min_step accepted                -> kStepTooSmall     "line_search_failed"
+///  - stall_steps steps in a row of length <= kStallStep -> kStepTooSmall "stalled"
 ///  - the sparse LU reports the matrix singular   -> kNumericalFailure "singular_jacobian"
 ///  - NaN/inf in F or its Jacobian, or in the step -> kNumericalFailure "nonfinite_residual" /
 ///                                                                    "nonfinite_step"
@@ -161,7 +174,8 @@ const char* ToString(IndirectNewtonOptions::Costates costates);
 /// (Solve only: the start's states and costates from its controls, after any warm start),
 /// "warm_start_cpu_seconds" and "warm_start_iterations" (warm starts only), "residual_inf",
 /// "unknowns",
-/// "jacobian_nonzeros", "residual_evaluations", "jacobian_evaluations", "reformulated".
+/// "jacobian_nonzeros", "residual_evaluations", "jacobian_evaluations", "reformulated";
+/// "riccati_fallbacks" with linear_solver = kRiccati (steps whose system KLU solved instead).
 class IndirectNewton final : public Solver {
  public:
   using Options = IndirectNewtonOptions;

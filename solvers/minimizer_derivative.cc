@@ -41,14 +41,13 @@ bool MinimizerDerivative::Compute(
         }
       }
     } else {
-      const Vec d = u.segment(b.offset, b.size) - b.center;
+      const auto d = u.segment(b.offset, b.size) - b.center;
       const double nd = d.norm();
       if (b.radius > 0.0 && nd >= b.radius * (1.0 - kActiveTolerance)) {
-        const Vec n = d / nd;
-        // H_u + mu (u - c) = 0 on the sphere, mu >= 0.
-        const double mu = std::max(0.0, -n.dot(Hu.segment(b.offset, b.size)) / nd);
+        // n = d / |d|; H_u + mu (u - c) = 0 on the sphere, mu >= 0.
+        const double mu = std::max(0.0, -d.dot(Hu.segment(b.offset, b.size)) / (nd * nd));
         M.block(b.offset, b.offset, b.size, b.size).diagonal().array() += mu;
-        A_.block(na++, b.offset, 1, b.size) = n.transpose();
+        A_.block(na++, b.offset, 1, b.size) = d.transpose() / nd;
       }
     }
   }
@@ -61,14 +60,37 @@ bool MinimizerDerivative::Compute(
     K.topRightCorner(nu, na) = A_.topRows(na).transpose();
     K.bottomLeftCorner(na, nu) = A_.topRows(na);
   }
-  rhs_.setZero(nu + na, 2 * nx);
-  rhs_.topLeftCorner(nu, nx) = -hess.bottomLeftCorner(nu, nx);
-  rhs_.topRightCorner(nu, nx) = -fu.transpose();
   lu_.compute(K);
   if (!lu_.isInvertible()) return false;
-  sol_ = lu_.solve(rhs_);
-  du_dx = sol_.topLeftCorner(nu, nx);
-  du_dp = sol_.block(0, nx, nu, nx);
+  // (du_dx, du_dp) = -Z (H_ux, f_u^T), Z the top-left nu x nu block of K^-1 (the right-hand
+  // sides vanish in the constraint rows): nu solves with P K Q = L U in plain loops (Eigen's
+  // blocked triangular solves cost more than the arithmetic at these sizes).
+  const int n = nu + na;
+  const Mat& lu = lu_.matrixLU();
+  const auto& p = lu_.permutationP().indices();
+  const auto& q = lu_.permutationQ().indices();
+  work_.resize(n);
+  inverse_.resize(nu, nu);
+  for (int c = 0; c < nu; ++c) {
+    work_.setZero();
+    work_[p[c]] = 1.0;
+    for (int j = 0; j < n; ++j) {
+      const double v = work_[j];
+      if (v == 0.0) continue;
+      for (int i = j + 1; i < n; ++i) work_[i] -= lu(i, j) * v;
+    }
+    for (int j = n - 1; j >= 0; --j) {
+      work_[j] /= lu(j, j);
+      const double v = work_[j];
+      if (v == 0.0) continue;
+      for (int i = 0; i < j; ++i) work_[i] -= lu(i, j) * v;
+    }
+    for (int i = 0; i < n; ++i) {
+      if (q[i] < nu) inverse_(q[i], c) = work_[i];
+    }
+  }
+  du_dx = -inverse_.lazyProduct(hess.bottomLeftCorner(nu, nx));
+  du_dp = -inverse_.lazyProduct(fu.transpose());
   return du_dx.allFinite() && du_dp.allFinite();
 }
 

@@ -75,7 +75,8 @@ class MinimizerDerivative {
   int nx_, nu_;
   int num_active_ = 0;
   std::vector<bool> box_active_;
-  Mat m_, kkt_, rhs_, sol_, A_;
+  Mat m_, kkt_, inverse_, A_;
+  Vec work_;
   Eigen::FullPivLU<Mat> lu_;
   // Scratch for ComputeAt.
   Vec f_, Lx_, Lu_, Hu_;

@@ -9,6 +9,13 @@ namespace {
 
 bool SameTime(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); }
 
+// True when every entry is finite: x * 0 is 0 for a finite x and NaN otherwise (one vectorized
+// pass; Eigen's allFinite() costs several times more on these small blocks, every node).
+template <class M>
+bool FiniteEntries(const M& m) {
+  return (m.array() * 0.0).sum() == 0.0;
+}
+
 }  // namespace
 
 PmpResidual::PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode, Scheme scheme)
@@ -107,6 +114,7 @@ void PmpResidual::BuildStructure() {
   jacobian_.setFromTriplets(t.begin(), t.end());
   jacobian_.makeCompressed();
   value_index_.resize(t.size());
+  entries_.assign(t.size(), 0.0);
   const int* outer = jacobian_.outerIndexPtr();
   const int* inner = jacobian_.innerIndexPtr();
   for (size_t e = 0; e < t.size(); ++e) {
@@ -179,17 +187,20 @@ bool PmpResidual::EvaluateNode(
   ocp_.MinimizeHamiltonian(t, x, p, n->u);
   ocp_.DynamicsJacobian(t, x, n->u, n->f, n->fx, n->fu);
   ocp_.RunningCostGradient(t, x, n->u, &n->L, n->Lx, n->Lu);
-  n->Hx.noalias() = n->Lx + n->fx.transpose() * p;
+  n->Hx = n->Lx;
+  n->Hx += n->fx.transpose().lazyProduct(p);
   failure_node_ = k;
-  if (!n->u.allFinite() || !n->f.allFinite() || !n->Hx.allFinite() || !std::isfinite(n->L)) {
+  if (!FiniteEntries(n->u) || !FiniteEntries(n->f) || !FiniteEntries(n->Hx) ||
+      !std::isfinite(n->L)) {
     failure_ = Failure::kNonFinite;
     return false;
   }
   if (!with_jacobian) return true;
-  n->Hu.noalias() = n->Lu + n->fu.transpose() * p;
+  n->Hu = n->Lu;
+  n->Hu += n->fu.transpose().lazyProduct(p);
   const Vec no_mu;
   ocp_.PointHessian(t, x, n->u, 1.0, p, no_mu, n->hess);
-  if (!n->hess.allFinite() || !n->fx.allFinite() || !n->fu.allFinite()) {
+  if (!FiniteEntries(n->hess) || !FiniteEntries(n->fx) || !FiniteEntries(n->fu)) {
     failure_ = Failure::kNonFinite;
     return false;
   }
@@ -199,21 +210,22 @@ bool PmpResidual::EvaluateNode(
   }
   const auto Hxx = n->hess.topLeftCorner(nx_, nx_);
   const auto Hxu = n->hess.topRightCorner(nx_, nu_);
+  // Coefficient-wise products: nx x nu x nx is too small for Eigen's blocked kernels.
   n->Gx = n->fx;
-  n->Gx.noalias() += n->fu * n->Ux;
-  n->Gp.noalias() = n->fu * n->Up;
+  n->Gx += n->fu.lazyProduct(n->Ux);
+  n->Gp = n->fu.lazyProduct(n->Up);
   n->Ex = Hxx;
-  n->Ex.noalias() += Hxu * n->Ux;
+  n->Ex += Hxu.lazyProduct(n->Ux);
   n->Ep = n->fx.transpose();
-  n->Ep.noalias() += Hxu * n->Up;
+  n->Ep += Hxu.lazyProduct(n->Up);
   return true;
 }
 
 bool PmpResidual::EvaluateTrapezoid(
     ConstVecRef z, VecRef F, double T, bool with_jacobian, double* cost) {
   const int nx = nx_, W = 4 * nx_;
-  double* v = jacobian_.valuePtr();
-  auto put = [&](int e, double value) { v[value_index_[e]] = value; };
+  double* v = entries_.data();
+  auto put = [v](int e, double value) { v[e] = value; };
   const double duration = T - grid_.t0();
   double J = 0.0;
   if (!EvaluateNode(
@@ -265,8 +277,8 @@ bool PmpResidual::EvaluateTrapezoid(
 bool PmpResidual::EvaluateEuler(
     ConstVecRef z, VecRef F, double T, bool with_jacobian, double* cost) {
   const int nx = nx_, W = 4 * nx_;
-  double* v = jacobian_.valuePtr();
-  auto put = [&](int e, double value) { v[value_index_[e]] = value; };
+  double* v = entries_.data();
+  auto put = [v](int e, double value) { v[e] = value; };
   const double duration = T - grid_.t0();
   double J = 0.0, dJdT = 0.0;
   Node& a = nodes_[0];
@@ -331,12 +343,22 @@ bool PmpResidual::EvaluateEuler(
   return true;
 }
 
+const Eigen::SparseMatrix<double>& PmpResidual::jacobian() const {
+  if (jacobian_stale_) {
+    double* v = jacobian_.valuePtr();
+    for (size_t e = 0; e < entries_.size(); ++e) v[value_index_[e]] = entries_[e];
+    jacobian_stale_ = false;
+  }
+  return jacobian_;
+}
+
 bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jacobian) {
   const int nx = nx_;
+  if (with_jacobian) jacobian_stale_ = true;
   failure_ = Failure::kNone;
   failure_node_ = -1;
-  double* v = jacobian_.valuePtr();
-  auto put = [&](int e, double value) { v[value_index_[e]] = value; };
+  double* v = entries_.data();
+  auto put = [v](int e, double value) { v[e] = value; };
 
   F.head(nx) = z.head(nx) - ocp_.x0();
   if (with_jacobian) {
@@ -427,6 +449,51 @@ bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jaco
   }
   failure_node_ = -1;
   return true;
+}
+
+Eigen::Map<const PmpResidual::RowMajorMat> PmpResidual::IntervalBlock(int k) const {
+  return Eigen::Map<const RowMajorMat>(
+      entries_.data() + nx_ + k * interval_entries_, 2 * nx_, 4 * nx_);
+}
+
+void PmpResidual::TerminalBlock(MatRef block) const {
+  const int nx = nx_;
+  const double* v = entries_.data();
+  block.setZero();
+  const int T = terminal_offset_;
+  for (int i = 0; i < nx; ++i) {
+    for (int j = 0; j < 2 * nx; ++j) block(i, j) = v[T + i * 2 * nx + j];
+  }
+  const int Tnu = T + 2 * nx * nx;
+  for (int i = 0; i < nx; ++i) {
+    for (int j = 0; j < nnu_; ++j) block(i, 2 * nx + j) = v[Tnu + i * nnu_ + j];
+  }
+  const int Tpsi = Tnu + nx * nnu_;
+  for (int i = 0; i < nnu_; ++i) {
+    for (int j = 0; j < nx; ++j) block(nx + i, j) = v[Tpsi + i * nx + j];
+  }
+}
+
+void PmpResidual::TimeColumn(VecRef column) const {
+  const double* v = entries_.data();
+  column.setZero();
+  for (int k = 0; k < N_; ++k) {
+    for (int r = 0; r < 2 * nx_; ++r) {
+      column[Row(k) + r] = v[time_offset_ + 2 * nx_ * k + r];
+    }
+  }
+}
+
+void PmpResidual::TimeRow(VecRef row) const {
+  const double* v = entries_.data();
+  row.setZero();
+  const int e = time_offset_ + 2 * nx_ * N_;
+  const int first = scheme_ == Scheme::kEuler ? 0 : N_;
+  for (int k = first; k <= N_; ++k) {
+    for (int c = 0; c < 2 * nx_; ++c) {
+      row[Col(k) + c] = v[e + 2 * nx_ * (k - first) + c];
+    }
+  }
 }
 
 std::string PmpResidual::FailureMessage() const {

@@ -142,13 +142,37 @@ class PmpResidual {
 
   /// The Jacobian of the last Evaluate(..., with_jacobian = true): column-major, compressed, with
   /// the fixed structure described above.
-  const Eigen::SparseMatrix<double>& jacobian() const { return jacobian_; }
+  /// (The values are assembled in the structure's own order, entries_, and copied into the
+  /// sparse matrix when it is asked for: structured solvers that read the blocks never pay for
+  /// the scatter.)
+  const Eigen::SparseMatrix<double>& jacobian() const;
   /// The trapezoid's u*(t_k, x_k, p_k) at every node of GridOf(z) (nu x N+1); Euler's
   /// u*(t_k, x_k, p_{k+1}) on every interval (nu x N).
   Mat Controls(ConstVecRef z) const;
   /// The control function the scheme means: piecewise linear through the trapezoid's node values,
   /// piecewise constant on Euler's intervals, on GridOf(z).
   ControlTrajectory ControlFunction(ConstVecRef z) const;
+
+  /// Blocks of the last evaluated Jacobian for structured solvers (BvpRiccatiSolver):
+  ///  - IntervalBlock(k) (a view, valid until the next Evaluate): interval k's 2 nx rows (state
+  ///  rows, then costate rows) over the columns
+  ///    of nodes k and k+1, (x_k, p_k, x_{k+1}, p_{k+1}): 2 nx x 4 nx;
+  ///  - TerminalBlock() (copied, as the two below): the nx terminal-costate rows, then the
+  ///  num_multipliers() rows of psi,
+  ///    over the columns (x_N, p_N, nu): (nx + nnu) x (2 nx + nnu), zeros off the structure;
+  ///  - TimeColumn() (free final time): the T column's entries in every row but the last
+  ///    (size() - 1; zeros off the structure); TimeRow(): the last row's entries in every column
+  ///    but T's (size() - 1). The (T, T) entry is structurally zero.
+  /// The initial rows are the identity on x_0 (no accessor).
+  using RowMajorMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  Eigen::Map<const RowMajorMat> IntervalBlock(int k) const;
+  void TerminalBlock(MatRef block) const;
+  void TimeColumn(VecRef column) const;
+  void TimeRow(VecRef row) const;
+  /// Intervals N of the grid, and the first row of interval k / column of node k in z.
+  int intervals() const { return N_; }
+  int IntervalRow(int k) const { return Row(k); }
+  int NodeColumn(int k) const { return Col(k); }
 
   Failure failure() const { return failure_; }
   int failure_node() const { return failure_node_; }
@@ -180,7 +204,9 @@ class PmpResidual {
   std::vector<double> s_;  // free final time: the nodes' relative positions on [0, 1]
   MinimizerDerivative derivative_;
   Node nodes_[2];  // nodes k and k+1 of the interval being assembled (by parity)
-  Eigen::SparseMatrix<double> jacobian_;
+  mutable Eigen::SparseMatrix<double> jacobian_;  // values copied from entries_ on demand
+  mutable bool jacobian_stale_ = false;
+  std::vector<double> entries_;  // the Jacobian's values in BuildStructure's order
   // value_index_[e] is the position in jacobian_.valuePtr() of structural entry e, in the order
   // BuildStructure() generates them.
   std::vector<int> value_index_;

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/named_registry.h"
+#include "solvers/baseline_solver.h"
 #include "solvers/hamiltonian_descent.h"
 #include "solvers/hamiltonian_family.h"
 #include "solvers/indirect_newton.h"
@@ -98,6 +99,16 @@ std::vector<SolverInfo> BuildSolvers() {
     s.accuracy_note =
         "stops when a step changes f by less than ftol_rel |f| (or x by xtol_rel); OCPBench "
         "then checks stationarity against stationarity_tol, which bounds the accuracy";
+    list.push_back(std::move(s));
+  }
+  {
+    SolverInfo s;
+    s.name = "baseline";
+    s.description =
+        "the problem's own unoptimized plan (comm problems: constant speed along S-D or the given "
+        "path, constant rate sending c bits by tf), evaluated like any method's answer";
+    s.make = [] { return std::make_unique<BaselineSolver>(); };
+    s.options = BaselineSolver::Schema();
     list.push_back(std::move(s));
   }
   return list;

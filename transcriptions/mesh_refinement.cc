@@ -5,45 +5,41 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/invalid.h"
 #include "transcriptions/radau_nodes.h"
 
 namespace ocpb {
-namespace {
-
-bool Fail(std::string* error, const std::string& why) {
-  if (error) *error = why;
-  return false;
-}
-
-}  // namespace
 
 bool MeshRefinementOptions::IsValid(std::string* error) const {
   if (!(tolerance >= 0.0) || !std::isfinite(tolerance)) {
-    return Fail(error,
-                "mesh_tolerance: must be >= 0 and finite (0: no refinement), got " +
-                    std::to_string(tolerance));
+    return Invalid(error,
+                   "mesh_tolerance: must be >= 0 and finite (0: no refinement), got " +
+                       std::to_string(tolerance));
   }
   if (max_iterations < 1) {
-    return Fail(error, "mesh_max_iterations: must be >= 1, got " + std::to_string(max_iterations));
+    return Invalid(error,
+                   "mesh_max_iterations: must be >= 1, got " + std::to_string(max_iterations));
   }
   if (max_nodes < 2) {
-    return Fail(error, "mesh_max_nodes: must be >= 2, got " + std::to_string(max_nodes));
+    return Invalid(error, "mesh_max_nodes: must be >= 2, got " + std::to_string(max_nodes));
   }
   if (max_new_points < 1) {
-    return Fail(error, "mesh_max_new_points: must be >= 1, got " + std::to_string(max_new_points));
+    return Invalid(error,
+                   "mesh_max_new_points: must be >= 1, got " + std::to_string(max_new_points));
   }
   // The LGR estimate uses K + 1 points, so degrees stay below kMaxRadauPoints.
   constexpr int kMaxMeshDegree = kMaxRadauPoints - 1;
   if (min_degree < 1 || min_degree > kMaxMeshDegree) {
-    return Fail(error,
-                "mesh_min_degree: must be in [1, " + std::to_string(kMaxMeshDegree) + "], got " +
-                    std::to_string(min_degree));
+    return Invalid(error,
+                   "mesh_min_degree: must be in [1, " + std::to_string(kMaxMeshDegree) + "], got " +
+                       std::to_string(min_degree));
   }
   if (max_degree < min_degree || max_degree > kMaxMeshDegree) {
-    return Fail(error,
-                "mesh_max_degree: must be in [mesh_min_degree, " + std::to_string(kMaxMeshDegree) +
-                    "] = [" + std::to_string(min_degree) + ", " + std::to_string(kMaxMeshDegree) +
-                    "], got " + std::to_string(max_degree));
+    return Invalid(error,
+                   "mesh_max_degree: must be in [mesh_min_degree, " +
+                       std::to_string(kMaxMeshDegree) + "] = [" + std::to_string(min_degree) +
+                       ", " + std::to_string(kMaxMeshDegree) + "], got " +
+                       std::to_string(max_degree));
   }
   return true;
 }

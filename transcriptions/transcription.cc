@@ -4,15 +4,11 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/invalid.h"
 #include "transcriptions/radau_nodes.h"
 
 namespace ocpb {
 namespace {
-
-bool Fail(std::string* error, const std::string& why) {
-  if (error) *error = why;
-  return false;
-}
 
 std::string Interval(double a, double b) {
   std::ostringstream os;
@@ -30,10 +26,10 @@ bool GuessCovers(const std::optional<ControlTrajectory>& guess,
   const TimeGrid& g = guess->grid();
   const double tol = 1e-12 * std::max({1.0, std::abs(grid.t0()), std::abs(end)});
   if (g.size() < 2 || g.t0() > grid.t0() + tol || g.tf() < end - tol) {
-    return Fail(error,
-                std::string("transcription: the initial ") + what + " is defined on " +
-                    (g.size() < 2 ? std::string("no interval") : Interval(g.t0(), g.tf())) +
-                    ", which does not cover the grid " + Interval(grid.t0(), end));
+    return Invalid(error,
+                   std::string("transcription: the initial ") + what + " is defined on " +
+                       (g.size() < 2 ? std::string("no interval") : Interval(g.t0(), g.tf())) +
+                       ", which does not cover the grid " + Interval(grid.t0(), end));
   }
   return true;
 }
@@ -41,36 +37,36 @@ bool GuessCovers(const std::optional<ControlTrajectory>& guess,
 }  // namespace
 
 bool TranscriptionOptions::IsValidOnItsOwn(std::string* error) const {
-  if (grid.size() < 2) return Fail(error, "transcription: the grid has no interval");
+  if (grid.size() < 2) return Invalid(error, "transcription: the grid has no interval");
   if (degree < 1 || degree > kMaxRadauPoints) {
-    return Fail(error,
-                "transcription: degree must be in [1, " + std::to_string(kMaxRadauPoints) +
-                    "], got " + std::to_string(degree));
+    return Invalid(error,
+                   "transcription: degree must be in [1, " + std::to_string(kMaxRadauPoints) +
+                       "], got " + std::to_string(degree));
   }
   if (!degrees.empty()) {
     if (static_cast<int>(degrees.size()) != grid.intervals()) {
-      return Fail(error,
-                  "transcription: degrees must have one entry per grid interval (" +
-                      std::to_string(grid.intervals()) + "), got " +
-                      std::to_string(degrees.size()));
+      return Invalid(error,
+                     "transcription: degrees must have one entry per grid interval (" +
+                         std::to_string(grid.intervals()) + "), got " +
+                         std::to_string(degrees.size()));
     }
     for (int d : degrees) {
       if (d < 1 || d > kMaxRadauPoints) {
-        return Fail(error,
-                    "transcription: every entry of degrees must be in [1, " +
-                        std::to_string(kMaxRadauPoints) + "], got " + std::to_string(d));
+        return Invalid(error,
+                       "transcription: every entry of degrees must be in [1, " +
+                           std::to_string(kMaxRadauPoints) + "], got " + std::to_string(d));
       }
     }
   }
   if (initial_guess && initial_guess->nu() < 1) {
-    return Fail(error, "transcription: the initial guess has no control components");
+    return Invalid(error, "transcription: the initial guess has no control components");
   }
   if (initial_states && initial_states->nu() < 1) {
-    return Fail(error, "transcription: the initial states have no components");
+    return Invalid(error, "transcription: the initial states have no components");
   }
   std::string why;
-  if (!scaling.IsValid(&why)) return Fail(error, "transcription: " + why);
-  if (!mesh.IsValid(&why)) return Fail(error, "transcription: " + why);
+  if (!scaling.IsValid(&why)) return Invalid(error, "transcription: " + why);
+  if (!mesh.IsValid(&why)) return Invalid(error, "transcription: " + why);
   return true;
 }
 
@@ -83,19 +79,19 @@ bool TranscriptionOptions::IsValidFor(const Ocp& ocp, std::string* error) const 
   if (!IsValidOnItsOwn(error)) return false;
   const double tol = 1e-12 * std::max({1.0, std::abs(ocp.t0()), std::abs(ocp.tf())});
   if (std::abs(grid.t0() - ocp.t0()) > tol || std::abs(grid.tf() - ocp.tf()) > tol) {
-    return Fail(error,
-                "transcription: the grid " + Interval(grid.t0(), grid.tf()) +
-                    " must span the horizon " + Interval(ocp.t0(), ocp.tf()));
+    return Invalid(error,
+                   "transcription: the grid " + Interval(grid.t0(), grid.tf()) +
+                       " must span the horizon " + Interval(ocp.t0(), ocp.tf()));
   }
   if (initial_guess && initial_guess->nu() != ocp.nu()) {
-    return Fail(error,
-                "transcription: the initial guess must have nu = " + std::to_string(ocp.nu()) +
-                    " components, got " + std::to_string(initial_guess->nu()));
+    return Invalid(error,
+                   "transcription: the initial guess must have nu = " + std::to_string(ocp.nu()) +
+                       " components, got " + std::to_string(initial_guess->nu()));
   }
   if (initial_states && initial_states->nu() != ocp.nx()) {
-    return Fail(error,
-                "transcription: the initial states must have nx = " + std::to_string(ocp.nx()) +
-                    " components, got " + std::to_string(initial_states->nu()));
+    return Invalid(error,
+                   "transcription: the initial states must have nx = " + std::to_string(ocp.nx()) +
+                       " components, got " + std::to_string(initial_states->nu()));
   }
   // Each guess covers the horizon the start is read on: [t0, tf], or [t0, T] at the guess's
   // own final time T for a free final time.
@@ -105,7 +101,7 @@ bool TranscriptionOptions::IsValidFor(const Ocp& ocp, std::string* error) const 
     return false;
   }
   std::string why;
-  if (!scaling.IsValidFor(ocp.nx(), ocp.nu(), &why)) return Fail(error, "transcription: " + why);
+  if (!scaling.IsValidFor(ocp.nx(), ocp.nu(), &why)) return Invalid(error, "transcription: " + why);
   return true;
 }
 

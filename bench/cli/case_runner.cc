@@ -130,6 +130,27 @@ SolveResult SolveRepeatedly(const CaseSpec& spec,
   return result;
 }
 
+// The problem's judgement on its true data (ProblemInfo::judge_on_truth): the controls as the
+// Euler evaluator reads them on the judged grid (each interval's left value), executed from the
+// problem's initial state.
+void RecordTruthFields(const CaseSpec& spec,
+                       const PreparedCase& p,
+                       const TimeGrid& grid,
+                       const SolveResult& result,
+                       Record* rec) {
+  const ProblemInfo& pinfo = FindProblem(spec.problem);
+  if (!pinfo.judge_on_truth) return;
+  const std::optional<TruthJudgement> t = pinfo.judge_on_truth(
+      p.params, spec.seed, *p.ocp, grid, result.controls.SampleIntervals(grid));
+  if (!t) return;
+  rec->truth = RecordTruth{t->truth,
+                           t->energy_true,
+                           t->transmit_energy_true,
+                           t->J_true,
+                           t->max_distance_from_segment,
+                           t->min_distance_to_base};
+}
+
 // The common evaluator's fields, by the one public judge (JudgeResult): the controls
 // re-simulated on the method's grid (the case's integrator) and with RK4 on a 10x finer grid, on
 // the horizon the solution ends at, and the warnings its status does not carry.
@@ -167,6 +188,7 @@ void Judge(const CaseSpec& spec, const PreparedCase& p, const SolveResult& resul
     rec->status = ToString(SolveStatus::kNumericalFailure);
     rec->message = result.message + " (evaluator: trajectory or cost not finite)";
   }
+  RecordTruthFields(spec, p, judged.grid, result, rec);
   if (spec.keep_trajectory) {
     RecordTrajectory traj;
     traj.t = judged.grid.points();

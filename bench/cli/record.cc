@@ -381,6 +381,14 @@ json Record::ToJson() const {
     r["reference"] = ref;
   }
   if (online) OnlineToJson(*online, &r);
+  if (truth && !online) {
+    r["truth_model"] = truth->model;
+    r["energy_true"] = JsonNumber(truth->energy_true);
+    r["transmit_energy_true"] = JsonNumber(truth->transmit_energy_true);
+    r["J_true"] = JsonNumber(truth->J_true);
+    r["max_distance_from_segment"] = JsonNumber(truth->max_distance_from_segment);
+    r["min_distance_to_base"] = JsonNumber(truth->min_distance_to_base);
+  }
   r["versions"] = json{{"ocpbench", versions.ocpbench},
                        {"commit", versions.commit},
                        {"compiler", versions.compiler},
@@ -560,7 +568,18 @@ Record Record::Read(const json& j, json* movable) {
     ref.Integer("N", &out.N);
     rec.reference = out;
   }
-  if (rec.kind == "online") rec.online = OnlineFrom(r);
+  if (rec.kind == "online") {
+    rec.online = OnlineFrom(r);
+  } else if (r.Has("truth_model") || r.Has("energy_true")) {
+    RecordTruth t;
+    r.Text("truth_model", &t.model);
+    r.Number("energy_true", &t.energy_true);
+    r.Number("transmit_energy_true", &t.transmit_energy_true);
+    r.Number("J_true", &t.J_true);
+    r.Number("max_distance_from_segment", &t.max_distance_from_segment);
+    r.Number("min_distance_to_base", &t.min_distance_to_base);
+    rec.truth = t;
+  }
   if (r.Has("versions")) {
     if (!j["versions"].is_object()) r.Fail("versions", "an object");
     const Reader v(j["versions"], "versions.");

@@ -89,6 +89,17 @@ struct RecordReference {
   int N = 0;  ///< the grid of a discrete reference (0 when continuous)
 };
 
+/// A solve judged on the problem's true data (ProblemInfo::judge_on_truth; the comm problems:
+/// the simulated channel realization the planner only knows through its prediction): the
+/// method's controls executed with forward Euler on the record's grid, their energy there, and
+/// the executed path's geometry. Online records carry their own energy_true etc. (OnlineOutcome).
+struct RecordTruth {
+  std::string model;  ///< what the truth is ("true channel seed=3 cells=0.1m")
+  double energy_true = NAN, transmit_energy_true = NAN, J_true = NAN;
+  double max_distance_from_segment = NAN;  ///< m, the executed path from the segment S-D
+  double min_distance_to_base = NAN;       ///< m, its closest approach to the base station
+};
+
 /// What built the record.
 struct RecordVersions {
   std::string ocpbench, commit, compiler, ipopt, nlopt;
@@ -174,6 +185,7 @@ struct Record {
   nlohmann::json s_map;  ///< null, or the channel map for figures
   std::optional<RecordReference> reference;
   std::optional<OnlineOutcome> online;
+  std::optional<RecordTruth> truth;  ///< solve records of problems with judge_on_truth
   RecordVersions versions;
 
   /// The JSON object (schema results/record.schema.json). Fields that do not apply (online

@@ -52,6 +52,17 @@ void PrintReport(const Record& r) {
   if (!r.final_state.empty()) {
     std::cout << "  final state = " << nlohmann::json(r.final_state).dump() << "\n";
   }
+  if (r.truth) {
+    std::cout << fmt::format(
+        "  on the {}: energy = {} (transmission {})   J = {}\n"
+        "  path: max distance from S-D = {} m   closest to the base = {} m\n",
+        r.truth->model,
+        Fmt(r.truth->energy_true),
+        Fmt(r.truth->transmit_energy_true),
+        Fmt(r.truth->J_true),
+        Fmt(r.truth->max_distance_from_segment),
+        Fmt(r.truth->min_distance_to_base));
+  }
   if (!r.message.empty()) std::cout << "  message: " << r.message << "\n";
   if (r.continuation) {
     std::cout << fmt::format("  continuation: the {} form first: status {} ({}), {} iterations\n",

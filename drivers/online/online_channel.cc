@@ -27,8 +27,11 @@ OnlineChannel::OnlineChannel(std::uint64_t seed, const OnlineChannelOptions& opt
     : options_(options) {
   std::string error;
   if (!options_.IsValid(&error)) throw std::invalid_argument("online channel: " + error);
-  truth_ = SimulateChannel(options_.truth, options_.simulation, seed);
-  const GridSpec& g = truth_.grid;
+  auto truth = std::make_shared<const SimulatedChannel>(
+      SimulateChannel(options_.truth, options_.simulation, seed));
+  true_quality_ = std::make_shared<const TrueChannelQuality>(truth, options_.predictor.units);
+  truth_ = std::move(truth);
+  const GridSpec& g = truth_->grid;
   map_grid_ = GridSpec::Workspace(
       g.nx * g.resolution, g.ny * g.resolution, options_.map_resolution, g.x_min, g.y_min);
   current_grid_ = map_grid_;
@@ -37,13 +40,13 @@ OnlineChannel::OnlineChannel(std::uint64_t seed, const OnlineChannelOptions& opt
 
 long OnlineChannel::CellIndex(const Eigen::Vector2d& q) const {
   int i = 0, j = 0;
-  truth_.grid.NearestCell(q, &i, &j);
-  return static_cast<long>(j) * truth_.grid.nx + i;
+  truth_->grid.NearestCell(q, &i, &j);
+  return static_cast<long>(j) * truth_->grid.nx + i;
 }
 
 MeasurementSet OnlineChannel::DrawRandom(int m, std::uint64_t seed, std::uint64_t stream) const {
-  const GridSpec& g = truth_.grid;
-  const ChannelParameters& p = truth_.parameters;
+  const GridSpec& g = truth_->grid;
+  const ChannelParameters& p = truth_->parameters;
   auto eligible = [&](int i, int j) {
     return (g.Point(i, j) - p.base_station).norm() >= p.distance_floor;
   };
@@ -66,7 +69,7 @@ MeasurementSet OnlineChannel::DrawRandom(int m, std::uint64_t seed, std::uint64_
     const int i = static_cast<int>(k % g.nx), j = static_cast<int>(k / g.nx);
     if (!eligible(i, j) || measured_cells_.count(k) || !taken.insert(k).second) continue;
     out.positions.push_back(g.Point(i, j));
-    out.values_db.push_back(truth_.gain_db(i, j));
+    out.values_db.push_back(truth_->gain_db(i, j));
   }
   return out;
 }
@@ -158,18 +161,14 @@ ChannelUpdateTimings OnlineChannel::Update(const MeasurementSet& more,
   return t;
 }
 
-double OnlineChannel::TrueQuality(const Eigen::Vector2d& q) const {
-  const QualityUnits& u = options_.predictor.units;
-  // 1/CNR = 10^(-(Gamma_dB - N0)/10) in mW per mW of reference, times the unit scale.
-  return u.power_unit_scale * std::exp(-kDbToNeper * (truth_.GainAt(q) - u.noise_dbm));
-}
+double OnlineChannel::TrueQuality(const Eigen::Vector2d& q) const { return true_quality_->At(q); }
 
 void OnlineChannel::SampleLog10(double h,
                                 std::vector<double>* x,
                                 std::vector<double>* y,
                                 Eigen::MatrixXd* predicted,
                                 Eigen::MatrixXd* truth) const {
-  const GridSpec& g = truth_.grid;
+  const GridSpec& g = truth_->grid;
   const int nx = std::max(2, static_cast<int>(std::floor(g.nx * g.resolution / h)));
   const int ny = std::max(2, static_cast<int>(std::floor(g.ny * g.resolution / h)));
   x->resize(nx);

@@ -16,6 +16,7 @@
 #include "problems/channel/grid_predictor.h"
 #include "problems/channel/measurement_file.h"
 #include "problems/channel/parameter_estimator.h"
+#include "problems/channel/true_channel.h"
 
 namespace ocpb {
 
@@ -84,7 +85,7 @@ struct ChannelUpdateTimings {
 /// TrueQuality() is what the robot really pays: s_true(q) = scale 10^(-(Gamma_dB(cell(q)) -
 /// N0)/10), the inverse CNR of the cell containing q (no expectation: the realization is
 /// known to the simulator), in the predictor's units, so that the transmit power for rate R at q
-/// is (2^R - 1)/K s_true(q).
+/// is (2^R - 1)/K s_true(q) (TrueChannelQuality, shared with the offline records' judge).
 class OnlineChannel {
  public:
   /// Simulates realization `seed`. Throws std::invalid_argument on invalid options.
@@ -122,7 +123,10 @@ class OnlineChannel {
                    Eigen::MatrixXd* predicted,
                    Eigen::MatrixXd* truth) const;
 
-  const SimulatedChannel& truth() const { return truth_; }
+  const SimulatedChannel& truth() const { return *truth_; }
+  /// The true channel as a ChannelQuality (TrueQuality's numbers), for judging plans on it
+  /// (ExecuteCommPlan, problems/comm_true_energy.h).
+  const std::shared_ptr<const TrueChannelQuality>& true_quality() const { return true_quality_; }
   const MeasurementSet& measurements() const { return measurements_; }
   const ChannelParameters& estimated() const { return estimated_; }
   const OnlineChannelOptions& options() const { return options_; }
@@ -132,7 +136,8 @@ class OnlineChannel {
   long CellIndex(const Eigen::Vector2d& q) const;
 
   OnlineChannelOptions options_;
-  SimulatedChannel truth_;
+  std::shared_ptr<const SimulatedChannel> truth_;
+  std::shared_ptr<const TrueChannelQuality> true_quality_;
   GridSpec map_grid_;      // the whole workspace at map_resolution
   GridSpec current_grid_;  // the grid of map_
   MeasurementSet measurements_;

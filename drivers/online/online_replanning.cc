@@ -10,6 +10,7 @@
 #include "core/evaluator.h"
 #include "core/timer.h"
 #include "problems/channel/measurement_sampling.h"
+#include "problems/comm_true_energy.h"
 #include "solvers/registry.h"
 
 namespace ocpb {
@@ -51,30 +52,6 @@ bool OnlineReplanningOptions::IsValid(std::string* error) const {
 }
 
 namespace {
-
-struct StepCost {
-  double true_energy = 0.0;
-  double true_transmit = 0.0;  // the transmission part of true_energy
-  double predicted_energy = 0.0;
-};
-
-// One executed step from x with u on the problem's Euler model; costs on the true channel and on
-// the problem's (predicted) channel.
-StepCost Step(
-    const CommPath2d& ocp, const OnlineChannel& channel, double t, double h, const Vec& u, Vec* x) {
-  const CommPowerModel& power = ocp.options().power;
-  const double acc2 = u[0] * u[0] + u[1] * u[1];
-  const double speed2 = (*x)[2] * (*x)[2] + (*x)[3] * (*x)[3];
-  const double s_true = channel.TrueQuality(Eigen::Vector2d((*x)[0], (*x)[1]));
-  StepCost c;
-  c.true_transmit = h * power.Transmission(u[2], s_true, 1.0 / power.K());
-  c.true_energy = h * power.Motion(acc2, speed2) + c.true_transmit;
-  c.predicted_energy = h * ocp.RunningCost(t, *x, u);
-  Vec f(5);
-  ocp.Dynamics(t, *x, u, f);
-  *x += h * f;
-  return c;
-}
 
 Vec TerminalResidual(const CommPath2d::Options& o, const Vec& x) {
   Vec psi(5);
@@ -243,44 +220,42 @@ Mat Replan(Replanning& run, const CommPath2d& ocp, int cycle, int n, OnlineCycle
   return plan;
 }
 
-// The offline plan (cycle 0's) executed to tf on the same realization.
+// The offline plan (cycle 0's) executed to tf on the same realization (ExecuteCommPlan: the
+// one mechanism that prices plans on the true channel, offline records' judge included).
 void ExecuteOffline(Replanning& run, const CommPath2d& ocp, const Mat& plan, double solve_seconds) {
   OnlineResult& r = run.r;
-  const int N = run.options.intervals;
-  const double h = run.problem.tf / N;
+  const CommExecution e = ExecuteCommPlan(ocp, *run.channel.true_quality(), r.grid, plan, run.x);
   r.offline_U = plan;
-  r.offline_X = Mat::Zero(5, N + 1);
-  Vec xo = run.x;
-  r.offline_X.col(0) = xo;
-  for (int k = 0; k < N; ++k) {
-    const StepCost sc = Step(ocp, run.channel, r.grid.t(k), h, plan.col(k), &xo);
-    r.offline_energy_true += sc.true_energy;
-    r.offline_transmit_energy_true += sc.true_transmit;
-    r.offline_energy_predicted += sc.predicted_energy;
-    r.offline_X.col(k + 1) = xo;
-  }
-  r.offline_terminal_residual = TerminalResidual(run.problem, xo);
-  r.offline_terminal_violation = r.offline_terminal_residual.cwiseAbs().maxCoeff();
-  r.offline_J_true = r.offline_energy_true + Penalty(run.problem, r.offline_terminal_residual);
+  r.offline_X = e.X;
+  r.offline_energy_true = e.energy_true;
+  r.offline_transmit_energy_true = e.transmit_energy_true;
+  r.offline_energy_predicted = e.energy_planned;
+  r.offline_terminal_residual = e.terminal_residual;
+  r.offline_terminal_violation = e.terminal_violation;
+  r.offline_J_true = e.J_true;
   r.offline_solve_seconds = solve_seconds;
 }
 
-// Step 3: drives `steps` steps of the plan from global step k0.
+// Step 3: drives `steps` steps of the plan from global step k0 (ExecuteCommPlan on the grid's
+// steps k0 .. k0 + steps).
 void Execute(
     Replanning& run, const CommPath2d& ocp, const Mat& plan, int k0, int steps, OnlineCycle* c) {
   OnlineResult& r = run.r;
-  const double h = run.problem.tf / run.options.intervals;
+  const std::vector<double>& t = r.grid.points();
+  const TimeGrid segment =
+      TimeGrid::FromPoints(std::vector<double>(t.begin() + k0, t.begin() + k0 + steps + 1));
+  const CommExecution e =
+      ExecuteCommPlan(ocp, *run.channel.true_quality(), segment, plan.leftCols(steps), run.x);
   for (int j = 0; j < steps; ++j) {
-    const int k = k0 + j;
-    const StepCost sc = Step(ocp, run.channel, r.grid.t(k), h, plan.col(j), &run.x);
-    r.U.col(k) = plan.col(j);
-    r.X.col(k + 1) = run.x;
-    r.step_energy_true.push_back(sc.true_energy);
-    r.transmit_energy_true += sc.true_transmit;
-    r.step_energy_predicted.push_back(sc.predicted_energy);
-    c->segment_energy_true += sc.true_energy;
-    c->segment_energy_predicted += sc.predicted_energy;
+    r.U.col(k0 + j) = plan.col(j);
+    r.X.col(k0 + j + 1) = e.X.col(j + 1);
+    r.step_energy_true.push_back(e.step_energy_true[j]);
+    r.step_energy_predicted.push_back(e.step_energy_planned[j]);
+    c->segment_energy_true += e.step_energy_true[j];
+    c->segment_energy_predicted += e.step_energy_planned[j];
   }
+  r.transmit_energy_true += e.transmit_energy_true;
+  run.x = e.X.col(steps);
   c->steps_executed = steps;
 }
 

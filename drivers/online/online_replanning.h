@@ -117,7 +117,8 @@ struct OnlineResult {
 ///   h [gamma (motion power of u_k, x2_k) + (2^R_k - 1)/K s_true(x1_k)],
 /// the transmit power the real channel needs for the planned rate (OnlineChannel::TrueQuality),
 /// next to what the planner predicted for the same steps. Both runs (online, offline) are judged
-/// this way on the same realization. `seed` chooses the measurement draws: RandomStream(seed,
+/// this way on the same realization, by ExecuteCommPlan (problems/comm_true_energy.h): the one
+/// mechanism that also judges offline records on the true channel (ProblemInfo::judge_on_truth). `seed` chooses the measurement draws: RandomStream(seed,
 /// 100 + cycle index). The channel must be fresh (no measurements yet).
 ///
 /// Throws std::invalid_argument on invalid options (including an update period that is not a

@@ -4,15 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/invalid.h"
+
 namespace ocpb {
-namespace {
-
-bool Fail(std::string* error, const std::string& message) {
-  if (error != nullptr) *error = message;
-  return false;
-}
-
-}  // namespace
 
 double ChannelParameters::FlooredDistance(const Eigen::Vector2d& q) const {
   return std::max((q - base_station).norm(), distance_floor);
@@ -46,14 +40,14 @@ double ChannelParameters::PathLossDb(const Eigen::Vector2d& q,
 }
 
 bool ChannelParameters::IsValid(std::string* error) const {
-  if (!std::isfinite(k_pl)) return Fail(error, "K_PL must be finite");
-  if (!std::isfinite(n_pl)) return Fail(error, "n_PL must be finite");
-  if (!(xi > 0.0) || !std::isfinite(xi)) return Fail(error, "xi must be finite and > 0 (dB)");
-  if (!(eta > 0.0) || !std::isfinite(eta)) return Fail(error, "eta must be finite and > 0 (m)");
-  if (!(rho > 0.0) || !std::isfinite(rho)) return Fail(error, "rho must be finite and > 0 (dB)");
-  if (!base_station.allFinite()) return Fail(error, "base station position must be finite");
+  if (!std::isfinite(k_pl)) return Invalid(error, "K_PL must be finite");
+  if (!std::isfinite(n_pl)) return Invalid(error, "n_PL must be finite");
+  if (!(xi > 0.0) || !std::isfinite(xi)) return Invalid(error, "xi must be finite and > 0 (dB)");
+  if (!(eta > 0.0) || !std::isfinite(eta)) return Invalid(error, "eta must be finite and > 0 (m)");
+  if (!(rho > 0.0) || !std::isfinite(rho)) return Invalid(error, "rho must be finite and > 0 (dB)");
+  if (!base_station.allFinite()) return Invalid(error, "base station position must be finite");
   if (!(distance_floor > 0.0) || !std::isfinite(distance_floor)) {
-    return Fail(error, "distance floor must be finite and > 0 (m)");
+    return Invalid(error, "distance floor must be finite and > 0 (m)");
   }
   return true;
 }
@@ -91,12 +85,12 @@ void GridSpec::NearestCell(const Eigen::Vector2d& q, int* i, int* j) const {
 
 bool GridSpec::IsValid(std::string* error) const {
   if (!std::isfinite(x_min) || !std::isfinite(y_min)) {
-    return Fail(error, "grid origin must be finite");
+    return Invalid(error, "grid origin must be finite");
   }
   if (!(resolution > 0.0) || !std::isfinite(resolution)) {
-    return Fail(error, "grid resolution must be finite and > 0 m");
+    return Invalid(error, "grid resolution must be finite and > 0 m");
   }
-  if (nx < 4 || ny < 4) return Fail(error, "grid needs at least 4 points per side");
+  if (nx < 4 || ny < 4) return Invalid(error, "grid needs at least 4 points per side");
   return true;
 }
 

@@ -5,15 +5,23 @@
 
 DIR (default results/regime-online) holds the run's records.jsonl. Writes to DIR:
 
-  regime.md                 per (measurements per update, gamma): cases, the median and the 10 %
-                            and 90 % quantiles over channel seeds of the online gain on the true
-                            channel, 1 - energy_true / offline_energy_true, of the same gain on
-                            the transmission part alone, of the transmission share of the
-                            offline plan's energy, and the median CPU seconds of a case
-  fig_online_gain.png       both gains against gamma, median with a 10-90 % band per budget
+  regime.md                 per (re-planner, placement, measurements per update, gamma): cases,
+                            the median and the 10 % and 90 % quantiles over channel seeds of the
+                            online gain on the true channel, 1 - energy_true /
+                            offline_energy_true, of the same gain on the transmission part
+                            alone, of the transmission share of the offline plan's energy, the
+                            statuses (a record's is its cycles' worst) and the median CPU
+                            seconds of a case (every cycle's prediction and solve)
+  fig_online_gain.png       the gains against gamma, median with a 10-90 % band, in three
+                            panels: how many new measurements (50, 500; Ipopt's and the
+                            polish's re-plans), where they are taken (random, path, plan), and
+                            the transmission part alone; each with the control (re-planning
+                            without new information)
 
 A gain > 0 means the re-planned execution spent less energy on the true simulated channel than
-executing the offline plan (made from the 100 measurements known at t0 = 0). Needs numpy and
+executing the offline plan (made from the 100 measurements known at t0 = 0). Seeds whose plan at
+t0 = 0 did not succeed are left out of the gains (and counted): re-planning would be credited
+with repairing a failed solve. Needs numpy and
 matplotlib only.
 """
 
@@ -23,6 +31,9 @@ import os
 import sys
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from figure_io import save_figure  # noqa: E402
 
 
 def load(path):
@@ -43,6 +54,7 @@ def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else "results/regime-online"
     records = load(os.path.join(folder, "records.jsonl"))
     cells = {}
+    failed_offline = {}
     skipped = 0
     for r in records:
         ok = all(isinstance(r.get(k), (int, float)) and math.isfinite(r[k]) and r[k] > 0
@@ -51,7 +63,16 @@ def main():
         if not ok:
             skipped += 1
             continue
-        key = (int(r["online"]["measurements_per_update"]), float(r["parameters"]["gamma"]))
+        placement = r["online"]["placement"]
+        if int(r["online"].get("refresh", 1)) == 0:
+            placement += ", never refreshed"  # the control: re-planning without new information
+        key = (r["solver"], placement, int(r["online"]["measurements_per_update"]),
+               float(r["parameters"]["gamma"]))
+        # A failed plan at t0 = 0 leaves nothing to compare with: re-planning would then be
+        # credited with repairing a solve, not with the channel knowledge (counted apart).
+        if r["cycles"][0]["status"] not in ("converged", "acceptable"):
+            failed_offline[key] = failed_offline.get(key, 0) + 1
+            continue
         cells.setdefault(key, []).append(r)
 
     lines = [
@@ -62,25 +83,36 @@ def main():
         "E_offline on the true simulated channel (E: motion + transmission energy of the "
         "executed trajectory, J); transmission gain: the same on the transmission energy alone; "
         "share: the transmission part of the offline plan's energy. Median [10 %%, 90 %%] over "
-        "channel seeds. Records without finite energies: %d." % skipped,
+        "channel seeds whose plan at t0 = 0 succeeded (converged or acceptable); \"offline "
+        "failed\": seeds whose plan at t0 = 0 did not, left out. Statuses: each record's worst "
+        "cycle. Records without finite energies: %d." % skipped,
         "",
-        "| new measurements per update | gamma | cases | gain | transmission gain | "
-        "transmission share | E offline (median) | CPU s (median) |",
-        "|---|---|---|---|---|---|---|---|",
+        "| re-planner | placement | new measurements per update | gamma | cases | offline failed "
+        "| gain | transmission gain | transmission share | E offline (median) | statuses | "
+        "CPU s (median) |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     curves = {}
-    for (budget, gamma) in sorted(cells, key=lambda k: (k[0], -k[1])):
-        rs = cells[(budget, gamma)]
+    for key in sorted(cells, key=lambda k: (k[0] != "hamiltonian-polish", k[1], k[2], -k[3])):
+        solver, placement, budget, gamma = key
+        rs = cells[key]
         gain = [1 - r["energy_true"] / r["offline_energy_true"] for r in rs]
         tgain = [1 - r["transmit_energy_true"] / r["offline_transmit_energy_true"] for r in rs]
         share = [r["offline_transmit_energy_true"] / r["offline_energy_true"] for r in rs]
         energy = [r["offline_energy_true"] for r in rs]
         cpu = [r["cpu_seconds"] for r in rs]
-        g, t, s = quantiles(gain), quantiles(tgain), quantiles(share)
-        lines.append("| %d | %g | %d | %.3g [%.3g, %.3g] | %.3g [%.3g, %.3g] | %.3g [%.3g, %.3g] "
-                     "| %.4g | %.3g |" % (budget, gamma, len(rs), *g, *t, *s,
-                                          np.median(energy), np.median(cpu)))
-        curves.setdefault(budget, []).append((gamma, g, t))
+        statuses = {}
+        for r in rs:
+            statuses[r["status"]] = statuses.get(r["status"], 0) + 1
+        g, t, sh = quantiles(gain), quantiles(tgain), quantiles(share)
+        lines.append("| %s | %s | %d | %g | %d | %d | %.3g [%.3g, %.3g] | %.3g [%.3g, %.3g] | "
+                     "%.3g [%.3g, %.3g] | %.4g | %s | %.3g |" % (
+                         solver, placement, budget, gamma, len(rs), failed_offline.get(key, 0),
+                         *g, *t, *sh,
+                         np.median(energy),
+                         ", ".join("%s %d" % kv for kv in sorted(statuses.items())),
+                         np.median(cpu)))
+        curves.setdefault((solver, placement, budget), []).append((gamma, g, t))
     with open(os.path.join(folder, "regime.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
@@ -91,26 +123,45 @@ def main():
     except ImportError:
         print("matplotlib missing: wrote %s/regime.md only" % folder)
         return
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for budget, pts in sorted(curves.items()):
-        pts.sort()
-        gam = [p[0] for p in pts]
-        for ax, idx in ((axes[0], 1), (axes[1], 2)):
+    polish, control = "hamiltonian-polish", "random, never refreshed"
+    panels = [
+        ("how many new measurements (total energy)", 1,
+         [(polish, "random", 50), (polish, "random", 500), ("ipopt", "random", 50),
+          (polish, control, 500)]),
+        ("where they are taken, 500 per update (total energy)", 1,
+         [(polish, "random", 500), (polish, "path", 500), (polish, "plan", 500),
+          (polish, control, 500)]),
+        ("transmission energy alone, 500 per update", 2,
+         [(polish, "random", 500), (polish, "plan", 500), (polish, control, 500)]),
+    ]
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+    for ax, (title, idx, keys) in zip(axes, panels):
+        for key in keys:
+            if key not in curves:
+                continue
+            pts = sorted(curves[key])
+            gam = [p[0] for p in pts]
             med = [100 * p[idx][0] for p in pts]
             lo = [100 * p[idx][1] for p in pts]
             hi = [100 * p[idx][2] for p in pts]
-            ax.plot(gam, med, marker="o", label="%d new measurements / update" % budget)
-            ax.fill_between(gam, lo, hi, alpha=0.2)
-    for ax, title in ((axes[0], "total energy"), (axes[1], "transmission energy")):
+            style = "--" if key[0] != polish or key[1] == control else "-"
+            line, = ax.plot(gam, med, style, marker="o", ms=3,
+                            label="%s, %s, %d / update" % key)
+            ax.fill_between(gam, lo, hi, alpha=0.12, color=line.get_color())
         ax.set_xscale("log")
+        ax.set_yscale("symlog", linthresh=1e-3 if idx == 1 else 1.0)
         ax.axhline(0.0, color="k", lw=0.5)
         ax.set_xlabel("gamma (weight of motion)")
         ax.set_ylabel("online gain on the true channel (%)")
-        ax.set_title("online vs offline plan: " + title)
+        ax.set_title(title, fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=7)
+    fig.suptitle("median and 10-90 %% band over channel seeds (%d records; %d whose plan at "
+                 "t0 = 0 failed left out)" % (len(records) - skipped,
+                                              sum(failed_offline.values())), fontsize=9)
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "fig_online_gain.png"), dpi=120)
+    save_figure(fig, os.path.join(folder, "fig_online_gain.png"), dpi=120)
+    plt.close(fig)
     print("wrote %s/regime.md and fig_online_gain.png (%d records, %d skipped)"
           % (folder, len(records) - skipped, skipped))
 

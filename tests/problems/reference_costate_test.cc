@@ -110,7 +110,7 @@ double FittedOrder(const std::vector<int>& Ns, const std::vector<double>& errors
 //     interval-start costates converge faster (2K - 1, tests/transcriptions/
 //     collocation_orders_test.cc). lqr at K = 2 is still pre-asymptotic at N = 10 (1.73 over
 //     N = 10-80), hence its finer grids.
-struct OrderCase {
+struct CostateOrderCase {
   std::string problem, transcription;
   int degree;
   std::vector<int> Ns;
@@ -118,7 +118,7 @@ struct OrderCase {
 };
 
 TEST(ReferenceCostate, MultiplierEstimatesConvergeAtTheirOrders) {
-  const std::vector<OrderCase> cases = {
+  const std::vector<CostateOrderCase> cases = {
       {"hager", "hermite-simpson", 0, {4, 8, 16, 32}, 4.0},
       {"lqr", "hermite-simpson", 0, {10, 20, 40, 80}, 4.0},
       {"hager", "lgr", 2, {4, 8, 16, 32}, 2.0},
@@ -126,7 +126,7 @@ TEST(ReferenceCostate, MultiplierEstimatesConvergeAtTheirOrders) {
       {"hager", "lgr", 3, {4, 8, 16, 32}, 3.0},
       {"lqr", "lgr", 3, {10, 20, 40, 80}, 3.0},
   };
-  for (const OrderCase& c : cases) {
+  for (const CostateOrderCase& c : cases) {
     std::vector<double> errors;
     for (int N : c.Ns) errors.push_back(CostateErrorAt(c.problem, c.transcription, c.degree, N));
     const double order = FittedOrder(c.Ns, errors);

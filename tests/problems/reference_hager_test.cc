@@ -111,15 +111,15 @@ double Order(double coarse, double fine) { return std::log2(coarse / fine); }
 // points, K = 3 for u and p. Single shooting (Ipopt with its limited-memory Hessian: the NLP has
 // none) solves the Euler discretization, so it shows Euler's order 1 everywhere (measured: the
 // same orders as the Euler transcription to six digits).
-struct OrderCase {
+struct HagerOrderCase {
   const char* transcription;
   double x, x_mesh, u_interior, u_ends, J, p;  // expected orders
 };
 
-class HagerOrder : public ::testing::TestWithParam<OrderCase> {};
+class HagerOrder : public ::testing::TestWithParam<HagerOrderCase> {};
 
 TEST_P(HagerOrder, ObservedOrdersMatchTheScheme) {
-  const OrderCase c = GetParam();
+  const HagerOrderCase c = GetParam();
   const std::vector<Errors> e = {
       Measure(c.transcription, 10), Measure(c.transcription, 20), Measure(c.transcription, 40)};
   for (int i = 0; i + 1 < 3; ++i) {
@@ -136,11 +136,11 @@ TEST_P(HagerOrder, ObservedOrdersMatchTheScheme) {
 
 INSTANTIATE_TEST_SUITE_P(Transcriptions,
                          HagerOrder,
-                         ::testing::Values(OrderCase{"euler", 1, 1, 1, 1, 1, 1},
-                                           OrderCase{"trapezoid", 2, 2, 2, 1, 2, 2},
-                                           OrderCase{"hermite-simpson", 4, 4, 2, 2, 4, 4},
-                                           OrderCase{"lgr", 4, 5, 3, 3, 5, 3},
-                                           OrderCase{"single-shooting", 1, 1, 1, 1, 1, 1}),
+                         ::testing::Values(HagerOrderCase{"euler", 1, 1, 1, 1, 1, 1},
+                                           HagerOrderCase{"trapezoid", 2, 2, 2, 1, 2, 2},
+                                           HagerOrderCase{"hermite-simpson", 4, 4, 2, 2, 4, 4},
+                                           HagerOrderCase{"lgr", 4, 5, 3, 3, 5, 3},
+                                           HagerOrderCase{"single-shooting", 1, 1, 1, 1, 1, 1}),
                          [](const auto& info) {
                            std::string n = info.param.transcription;
                            for (char& ch : n) ch = ch == '-' ? '_' : ch;

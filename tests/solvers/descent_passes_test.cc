@@ -14,16 +14,12 @@
 #include "problems/registry.h"
 #include "solvers/forwarding_ocp.h"
 #include "solvers/hamiltonian_descent.h"
+#include "tests/solvers/descent_request.h"
 
 namespace ocpb {
 namespace {
 
-SolveRequest Request(const Ocp& ocp, int N, std::map<std::string, std::string> options = {}) {
-  SolveRequest r;
-  r.grid = TimeGrid::Uniform(ocp.t0(), ocp.tf(), N);
-  r.options = std::move(options);
-  return r;
-}
+using testing::DescentRequest;
 
 // A recorded iterate: J(U_i) and theta(U_i).
 struct Recorded {
@@ -109,7 +105,7 @@ constexpr bool kFusedMultiplyAdd = false;
 TEST(DescentPasses, PaperSolveOnThePathLossChannelReproducesTheRecordedIteratesExactly) {
   if (kFusedMultiplyAdd) GTEST_SKIP() << "an FMA build rounds differently";
   const auto ocp = MakeProblem("comm-path2d", {"channel=0"}, 1);
-  const SolveResult r = HamiltonianDescent().Solve(*ocp, Request(*ocp, 400));
+  const SolveResult r = HamiltonianDescent().Solve(*ocp, DescentRequest(*ocp, 400));
   EXPECT_EQ(r.solver_status, "max_iterations");
   ExpectExponents(r, Exponents(kExponentsPathLoss));
   for (const Recorded& rec : kPathLoss) {
@@ -126,7 +122,7 @@ TEST(DescentPasses, PaperSolveOnThePathLossChannelReproducesTheRecordedIteratesE
 // exactly, J to 1e-9.
 TEST(DescentPasses, ThePapersSolveKeepsItsRecordedExponentsAndCosts) {
   const auto ocp = MakeProblem("comm-path2d", {}, 1);
-  const SolveResult r = HamiltonianDescent().Solve(*ocp, Request(*ocp, 400));
+  const SolveResult r = HamiltonianDescent().Solve(*ocp, DescentRequest(*ocp, 400));
   EXPECT_EQ(r.solver_status, "max_iterations");
   ExpectExponents(r, Exponents(kExponentsPaper));
   for (const Recorded& rec : kPaper) {
@@ -145,7 +141,7 @@ void ExpectFastPathIsTheGenericPath(const std::vector<std::string>& set,
   const ForwardingOcp generic(*ocp);
   const Ocp& generic_ocp = generic;
   ASSERT_EQ(dynamic_cast<const EulerStageModel*>(&generic_ocp), nullptr);
-  const auto request = Request(*ocp, 200, {{"max_iterations", std::to_string(iterations)}});
+  const auto request = DescentRequest(*ocp, 200, {{"max_iterations", std::to_string(iterations)}});
   const SolveResult fast = HamiltonianDescent().Solve(*ocp, request);
   const SolveResult slow = HamiltonianDescent().Solve(generic, request);
   ASSERT_EQ(fast.history.size(), slow.history.size());
@@ -185,7 +181,7 @@ TEST(DescentPasses, FastPathIsBitwiseTheGenericPathOnAPaperChannelMap) {
 // iteration on the recorded solve).
 TEST(DescentPasses, BoundsLeaveAboutOneCostEvaluationPerPointAndIteration) {
   const auto ocp = MakeProblem("comm-path2d", {"channel=0"}, 1);
-  const SolveResult r = HamiltonianDescent().Solve(*ocp, Request(*ocp, 400));
+  const SolveResult r = HamiltonianDescent().Solve(*ocp, DescentRequest(*ocp, 400));
   const double per_iteration = r.solver_stats.at("cost_point_evaluations") / (400.0 * r.iterations);
   EXPECT_GE(per_iteration, 1.0);  // the accepted trial is evaluated in full
   EXPECT_LT(per_iteration, 1.5) << per_iteration;

@@ -13,16 +13,12 @@
 #include "problems/comm_path2d.h"
 #include "problems/registry.h"
 #include "solvers/registry.h"
+#include "tests/solvers/descent_request.h"
 
 namespace ocpb {
 namespace {
 
-SolveRequest Request(const Ocp& ocp, int N, std::map<std::string, std::string> options = {}) {
-  SolveRequest r;
-  r.grid = TimeGrid::Uniform(ocp.t0(), ocp.tf(), N);
-  r.options = std::move(options);
-  return r;
-}
+using testing::DescentRequest;
 
 std::unique_ptr<Ocp> PaperProblem(std::vector<std::string> set = {}) {
   set.insert(set.begin(), "channel=0");  // deterministic path-loss channel
@@ -232,7 +228,7 @@ TEST(HamiltonianDescent, ConvergesToTheDiscreteOptimumOfAQuadratic) {
   const double J_opt = docp.Simulate(u_opt.transpose(), nullptr);
 
   const HamiltonianDescent solver;
-  const SolveResult r = solver.Solve(*ocp, Request(*ocp, N, {{"max_iterations", "300"}}));
+  const SolveResult r = solver.Solve(*ocp, DescentRequest(*ocp, N, {{"max_iterations", "300"}}));
   ExpectArmijoHistory(r);
   EXPECT_NEAR(r.objective, J_opt, 1e-6 * J_opt);
   EXPECT_LT((r.controls.values().row(0).transpose() - u_opt).cwiseAbs().maxCoeff(), 1e-2);
@@ -242,7 +238,7 @@ TEST(HamiltonianDescent, ResultDescribesTheFinalControls) {
   const auto ocp = MakeProblem("double-integrator-bounded", {"C=10", "umax=1"}, 0);
   const int N = 30;
   const SolveResult r =
-      HamiltonianDescent().Solve(*ocp, Request(*ocp, N, {{"max_iterations", "20"}}));
+      HamiltonianDescent().Solve(*ocp, DescentRequest(*ocp, N, {{"max_iterations", "20"}}));
   EXPECT_EQ(r.solver, "hamiltonian");
   EXPECT_EQ(r.status, SolveStatus::kMaxIterations);
   EXPECT_EQ(r.solver_status, "max_iterations");
@@ -271,9 +267,9 @@ TEST(HamiltonianDescent, ResultDescribesTheFinalControls) {
 TEST(HamiltonianDescent, WarmStartContinuesTheSameSequence) {
   const auto ocp = PaperProblem();
   const HamiltonianDescent solver;
-  const SolveResult ten = solver.Solve(*ocp, Request(*ocp, 100, {{"max_iterations", "10"}}));
-  const SolveResult five = solver.Solve(*ocp, Request(*ocp, 100, {{"max_iterations", "5"}}));
-  SolveRequest more = Request(*ocp, 100, {{"max_iterations", "5"}});
+  const SolveResult ten = solver.Solve(*ocp, DescentRequest(*ocp, 100, {{"max_iterations", "10"}}));
+  const SolveResult five = solver.Solve(*ocp, DescentRequest(*ocp, 100, {{"max_iterations", "5"}}));
+  SolveRequest more = DescentRequest(*ocp, 100, {{"max_iterations", "5"}});
   more.initial_guess = five.controls;
   const SolveResult next = solver.Solve(*ocp, more);
   EXPECT_EQ(next.history.front().J, five.objective);
@@ -282,7 +278,7 @@ TEST(HamiltonianDescent, WarmStartContinuesTheSameSequence) {
 
 TEST(HamiltonianDescent, InitialGuessIsSampledAndProjectedOntoU) {
   const auto ocp = MakeProblem("double-integrator-bounded", {"umax=1"}, 0);
-  SolveRequest req = Request(*ocp, 20, {{"max_iterations", "0"}});
+  SolveRequest req = DescentRequest(*ocp, 20, {{"max_iterations", "0"}});
   const TimeGrid coarse = TimeGrid::Uniform(0.0, 1.0, 4);
   Mat values(1, 4);
   values << 5.0, -0.5, 0.25, -7.0;
@@ -302,7 +298,7 @@ TEST(HamiltonianDescent, InitialGuessIsSampledAndProjectedOntoU) {
 TEST(HamiltonianDescent, PaperScenarioStartsAt238720AndDescends) {
   const auto ocp = PaperProblem();
   const SolveResult r =
-      HamiltonianDescent().Solve(*ocp, Request(*ocp, 400, {{"max_iterations", "60"}}));
+      HamiltonianDescent().Solve(*ocp, DescentRequest(*ocp, 400, {{"max_iterations", "60"}}));
   ExpectArmijoHistory(r);
   ASSERT_GE(r.history.size(), 21u);
   EXPECT_NEAR(r.history[0].J, 238720.0, 1.0);
@@ -316,7 +312,7 @@ TEST(HamiltonianDescent, PaperScenarioStartsAt238720AndDescends) {
 
 TEST(HamiltonianDescent, Rk4IntegratorIsGuardedByArmijo) {
   const auto ocp = PaperProblem();
-  SolveRequest req = Request(*ocp, 100, {{"max_iterations", "15"}});
+  SolveRequest req = DescentRequest(*ocp, 100, {{"max_iterations", "15"}});
   req.integrator = Integrator::kRk4;
   const SolveResult r = HamiltonianDescent().Solve(*ocp, req);
   ExpectArmijoHistory(r);
@@ -332,9 +328,9 @@ TEST(HamiltonianDescent, ArmijoPrefilterChangesNothingButTheWork) {
   const auto ocp = PaperProblem();
   ASSERT_TRUE(ocp->RunningCostLowerBound().has_value());
   const SolveResult with =
-      HamiltonianDescent().Solve(*ocp, Request(*ocp, 200, {{"max_iterations", "40"}}));
+      HamiltonianDescent().Solve(*ocp, DescentRequest(*ocp, 200, {{"max_iterations", "40"}}));
   const SolveResult without = HamiltonianDescent().Solve(
-      *ocp, Request(*ocp, 200, {{"max_iterations", "40"}, {"armijo_prefilter", "0"}}));
+      *ocp, DescentRequest(*ocp, 200, {{"max_iterations", "40"}, {"armijo_prefilter", "0"}}));
   ASSERT_EQ(with.history.size(), without.history.size());
   for (size_t i = 0; i < with.history.size(); ++i) {
     EXPECT_EQ(with.history[i].J, without.history[i].J) << i;
@@ -355,9 +351,9 @@ TEST(HamiltonianDescent, ArmijoPrefilterWithoutTheAffineShortcut) {
   ASSERT_TRUE(ocp->RunningCostLowerBound().has_value());
   ASSERT_FALSE(ocp->HasAffineDynamics());
   const SolveResult with =
-      HamiltonianDescent().Solve(*ocp, Request(*ocp, 100, {{"max_iterations", "30"}}));
+      HamiltonianDescent().Solve(*ocp, DescentRequest(*ocp, 100, {{"max_iterations", "30"}}));
   const SolveResult without = HamiltonianDescent().Solve(
-      *ocp, Request(*ocp, 100, {{"max_iterations", "30"}, {"armijo_prefilter", "0"}}));
+      *ocp, DescentRequest(*ocp, 100, {{"max_iterations", "30"}, {"armijo_prefilter", "0"}}));
   ASSERT_EQ(with.history.size(), without.history.size());
   for (size_t i = 0; i < with.history.size(); ++i) {
     EXPECT_EQ(with.history[i].J, without.history[i].J) << i;
@@ -371,13 +367,13 @@ TEST(HamiltonianDescent, ArmijoPrefilterWithoutTheAffineShortcut) {
 TEST(HamiltonianDescentStops, ThetaBelowTolerance) {
   const auto ocp = MakeProblem("double-integrator", {"C=10"}, 0);
   const SolveResult r =
-      HamiltonianDescent().Solve(*ocp, Request(*ocp, 20, {{"theta_tolerance", "1e6"}}));
+      HamiltonianDescent().Solve(*ocp, DescentRequest(*ocp, 20, {{"theta_tolerance", "1e6"}}));
   EXPECT_EQ(r.status, SolveStatus::kConverged);
   EXPECT_EQ(r.solver_status, "theta_below_tolerance");
   EXPECT_EQ(r.iterations, 0);
   // A tolerance reached after some iterations.
   const SolveResult r2 =
-      HamiltonianDescent().Solve(*ocp, Request(*ocp, 20, {{"theta_tolerance", "1e-6"}}));
+      HamiltonianDescent().Solve(*ocp, DescentRequest(*ocp, 20, {{"theta_tolerance", "1e-6"}}));
   EXPECT_EQ(r2.solver_status, "theta_below_tolerance");
   EXPECT_GT(r2.iterations, 0);
   EXPECT_LE(std::abs(r2.history.back().theta), 1e-6);
@@ -388,7 +384,7 @@ TEST(HamiltonianDescentStops, ArmijoExponentExceeded) {
   // With C = 1000 the full step to u* = -p2 overshoots by far; allowing only j = 0 must fail.
   const auto ocp = MakeProblem("double-integrator", {"C=1000"}, 0);
   const SolveResult r =
-      HamiltonianDescent().Solve(*ocp, Request(*ocp, 20, {{"max_armijo_exponent", "0"}}));
+      HamiltonianDescent().Solve(*ocp, DescentRequest(*ocp, 20, {{"max_armijo_exponent", "0"}}));
   EXPECT_EQ(r.status, SolveStatus::kStepTooSmall);
   EXPECT_EQ(r.solver_status, "armijo_exponent_exceeded");
   EXPECT_EQ(r.iterations, 0);
@@ -399,7 +395,7 @@ TEST(HamiltonianDescentStops, ArmijoExponentExceeded) {
 TEST(HamiltonianDescentStops, MaxCpuSeconds) {
   const auto ocp = PaperProblem();
   const SolveResult r =
-      HamiltonianDescent().Solve(*ocp, Request(*ocp, 400, {{"max_cpu_seconds", "1e-9"}}));
+      HamiltonianDescent().Solve(*ocp, DescentRequest(*ocp, 400, {{"max_cpu_seconds", "1e-9"}}));
   EXPECT_EQ(r.status, SolveStatus::kMaxTime);
   EXPECT_EQ(r.solver_status, "max_cpu_seconds");
   EXPECT_EQ(r.iterations, 0);
@@ -440,20 +436,20 @@ class ScalarOcp final : public AutoDiffOcp<ScalarOcp<kWrongMinimizer, kNanCost, 
 
 TEST(HamiltonianDescentStops, NonfiniteCost) {
   const ScalarOcp<false, true, 0> ocp;
-  const SolveResult r = HamiltonianDescent().Solve(ocp, Request(ocp, 10));
+  const SolveResult r = HamiltonianDescent().Solve(ocp, DescentRequest(ocp, 10));
   EXPECT_EQ(r.status, SolveStatus::kNumericalFailure);
   EXPECT_EQ(r.solver_status, "nonfinite_cost");
 }
 
 TEST(HamiltonianDescentStops, ThetaPositiveWhenTheMinimizerIsWrong) {
   const ScalarOcp<true, false, 0> ocp;
-  const SolveResult r = HamiltonianDescent().Solve(ocp, Request(ocp, 10));
+  const SolveResult r = HamiltonianDescent().Solve(ocp, DescentRequest(ocp, 10));
   EXPECT_EQ(r.status, SolveStatus::kError);
   EXPECT_EQ(r.solver_status, "theta_positive");
   // The correct minimizer on the same problem converges (theta -> 0 on a quadratic).
   const ScalarOcp<false, false, 0> good;
   const SolveResult ok =
-      HamiltonianDescent().Solve(good, Request(good, 10, {{"theta_tolerance", "1e-12"}}));
+      HamiltonianDescent().Solve(good, DescentRequest(good, 10, {{"theta_tolerance", "1e-12"}}));
   EXPECT_EQ(ok.status, SolveStatus::kConverged);
 }
 
@@ -464,7 +460,7 @@ TEST(HamiltonianDescentStops, ThetaAtRoundoffIsConvergenceNotAnError) {
   for (const char* name : {"lqr", "hager"}) {
     const std::unique_ptr<Ocp> ocp = MakeProblem(name, {}, 1);
     const SolveResult r =
-        HamiltonianDescent().Solve(*ocp, Request(*ocp, 100, {{"max_iterations", "20000"}}));
+        HamiltonianDescent().Solve(*ocp, DescentRequest(*ocp, 100, {{"max_iterations", "20000"}}));
     // Both reach a stationary point well within the iteration limit (39 and 16 iterations when
     // this test was written); theta then ends at rounding level, whatever its sign.
     EXPECT_EQ(r.status, SolveStatus::kConverged) << name << ": " << r.message;
@@ -477,7 +473,7 @@ TEST(HamiltonianDescentStops, ThetaAtRoundoffIsConvergenceNotAnError) {
 
 TEST(HamiltonianDescentNotApplicable, HardTerminalConstraints) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
-  SolveRequest req = Request(*ocp, 10);
+  SolveRequest req = DescentRequest(*ocp, 10);
   req.terminal = TerminalMode::kHard;
   const SolveResult r = HamiltonianDescent().Solve(*ocp, req);
   EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
@@ -487,7 +483,7 @@ TEST(HamiltonianDescentNotApplicable, HardTerminalConstraints) {
 
 TEST(HamiltonianDescentNotApplicable, PathConstraints) {
   const ScalarOcp<false, false, 1> ocp;
-  const SolveResult r = HamiltonianDescent().Solve(ocp, Request(ocp, 10));
+  const SolveResult r = HamiltonianDescent().Solve(ocp, DescentRequest(ocp, 10));
   EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
   EXPECT_NE(r.message.find("path constraints"), std::string::npos);
 }
@@ -531,14 +527,14 @@ TEST(HamiltonianDescent, SolvesTheProblemsReformulationWhenItOffersOne) {
   HamiltonianReformulationOptions seen;
   const ReformulatingOcp ocp(&seen);
   const SolveResult r = HamiltonianDescent().Solve(
-      ocp, Request(ocp, 10, {{"path_penalty", "250"}, {"theta_tolerance", "1e-12"}}));
+      ocp, DescentRequest(ocp, 10, {{"path_penalty", "250"}, {"theta_tolerance", "1e-12"}}));
   EXPECT_EQ(r.status, SolveStatus::kConverged) << r.message;
   EXPECT_NE(r.message.find("reformulation 'scalar'"), std::string::npos) << r.message;
   EXPECT_EQ(r.solver_stats.at("reformulated"), 1.0);
   ASSERT_TRUE(seen.path_penalty.has_value());
   EXPECT_EQ(*seen.path_penalty, 250.0);
   EXPECT_FALSE(seen.regularization.has_value());
-  EXPECT_THROW(HamiltonianDescent().Solve(ocp, Request(ocp, 10, {{"path_penalty", "-1"}})),
+  EXPECT_THROW(HamiltonianDescent().Solve(ocp, DescentRequest(ocp, 10, {{"path_penalty", "-1"}})),
                std::invalid_argument);
 }
 
@@ -558,20 +554,20 @@ class NoMinimizerOcp final : public AutoDiffOcp<NoMinimizerOcp, 1, 1> {
 
 TEST(HamiltonianDescentNotApplicable, NoHamiltonianMinimizer) {
   const NoMinimizerOcp ocp;
-  const SolveResult r = HamiltonianDescent().Solve(ocp, Request(ocp, 10));
+  const SolveResult r = HamiltonianDescent().Solve(ocp, DescentRequest(ocp, 10));
   EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
   EXPECT_NE(r.message.find("Hamiltonian minimizer"), std::string::npos);
 }
 
 TEST(HamiltonianDescentInvalid, RequestsThatThrow) {
   const auto ocp = MakeProblem("double-integrator", {}, 0);
-  SolveRequest req = Request(*ocp, 10);
+  SolveRequest req = DescentRequest(*ocp, 10);
   req.grid = TimeGrid::Uniform(0.0, 2.0, 10);
   EXPECT_THROW(HamiltonianDescent().Solve(*ocp, req), std::invalid_argument);
-  req = Request(*ocp, 10);
+  req = DescentRequest(*ocp, 10);
   req.initial_guess = ControlTrajectory::Constant(req.grid, Vec::Zero(2));
   EXPECT_THROW(HamiltonianDescent().Solve(*ocp, req), std::invalid_argument);
-  req = Request(*ocp, 10, {{"gamma", "1"}});
+  req = DescentRequest(*ocp, 10, {{"gamma", "1"}});
   EXPECT_THROW(HamiltonianDescent().Solve(*ocp, req), std::invalid_argument);
 }
 
