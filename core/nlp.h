@@ -37,7 +37,9 @@ class Nlp {
   virtual bool HasHessian() const { return false; }
   const std::vector<int>& hessian_rows() const { return hess_rows_; }
   const std::vector<int>& hessian_cols() const { return hess_cols_; }
-  virtual bool HessianValues(ConstVecRef /*z*/, double /*sigma*/, ConstVecRef /*lambda*/,
+  virtual bool HessianValues(ConstVecRef /*z*/,
+                             double /*sigma*/,
+                             ConstVecRef /*lambda*/,
                              VecRef /*values*/) const {
     return false;
   }
@@ -45,6 +47,24 @@ class Nlp {
  protected:
   std::vector<int> jac_rows_, jac_cols_;
   std::vector<int> hess_rows_, hess_cols_;
+};
+
+/// A starting point for the multipliers of an Nlp, in the sign convention of Ipopt (and of
+/// Nlp::HessianValues): at a KKT point sigma grad f + J^T lambda - z_lower + z_upper = 0, with
+/// z_lower, z_upper >= 0 the multipliers of the variable bounds z >= z_l and z <= z_u (entries of
+/// unbounded sides are ignored). All three empty: no starting multipliers (a cold start).
+struct NlpMultipliers {
+  Vec lambda;   ///< m entries, one per constraint row
+  Vec z_lower;  ///< n entries
+  Vec z_upper;  ///< n entries
+
+  bool empty() const { return lambda.size() == 0 && z_lower.size() == 0 && z_upper.size() == 0; }
+  /// True when the sizes fit an Nlp with n variables and m constraints and every entry is
+  /// finite.
+  bool Fits(int n, int m) const {
+    return lambda.size() == m && z_lower.size() == n && z_upper.size() == n && lambda.allFinite() &&
+           z_lower.allFinite() && z_upper.allFinite();
+  }
 };
 
 }  // namespace ocpb

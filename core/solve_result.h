@@ -56,6 +56,9 @@ struct MeshIterationRecord {
   double cpu_seconds = NAN;  ///< this mesh's CPU: transcription, solve and estimate
   SolveStatus status = SolveStatus::kError;
   std::string solver_status;  ///< the backend's own status on this mesh, verbatim
+  /// ph-refinement (LGR): the collocation points of each interval of this mesh; empty for
+  /// h-refinement (trapezoid, Hermite-Simpson).
+  std::vector<int> degrees;
 };
 
 /// Everything a user needs from a solve. Numbers start at -1 ("not computed").

@@ -77,6 +77,12 @@ std::vector<IpoptOptionSpec> BuildTable() {
       {"constr_mult_init_max", N, {}},
       {"least_square_init_primal", S, yes_no},
       {"least_square_init_duals", S, yes_no},
+      // warm start (applied only when SolveNlpWithIpopt is given multipliers; the bound push,
+      // the multipliers' push and mu_init are IpoptOptions fields)
+      {"warm_start_bound_frac", N, {}},
+      {"warm_start_slack_bound_push", N, {}},
+      {"warm_start_slack_bound_frac", N, {}},
+      {"warm_start_mult_init_max", N, {}},
       // line search
       {"line_search_method", S, {"filter", "cg-penalty", "penalty"}},
       {"max_soc", I, {}},
@@ -165,9 +171,10 @@ std::vector<IpoptOptionSpec> BuildTable() {
 // Invalid_Number_Detected).
 class NlpTnlp final : public Ipopt::TNLP {
  public:
-  NlpTnlp(const Nlp& nlp, const Vec& z0, bool exact_hessian)
+  NlpTnlp(const Nlp& nlp, const Vec& z0, const NlpMultipliers& y0, bool exact_hessian)
       : nlp_(nlp),
         z0_(z0),
+        y0_(y0),
         exact_hessian_(exact_hessian),
         n_(nlp.num_variables()),
         m_(nlp.num_constraints()),
@@ -210,20 +217,27 @@ class NlpTnlp final : public Ipopt::TNLP {
     return true;
   }
 
+  // Ipopt asks for multipliers (init_z, init_lambda) only with warm_start_init_point=yes, which
+  // SolveNlpWithIpopt sets exactly when it was given them.
   bool get_starting_point(Index n,
                           bool init_x,
                           Number* x,
                           bool init_z,
-                          Number* /*z_L*/,
-                          Number* /*z_U*/,
-                          Index /*m*/,
+                          Number* z_L,
+                          Number* z_U,
+                          Index m,
                           bool init_lambda,
-                          Number* /*lambda*/) override {
-    if (init_z || init_lambda) {
-      Note("Ipopt asked for starting multipliers (warm start), which OCPBench does not provide");
+                          Number* lambda) override {
+    if ((init_z || init_lambda) && y0_.empty()) {
+      Note("Ipopt asked for starting multipliers, but none were given");
       return false;
     }
     if (init_x) Eigen::Map<Vec>(x, n) = z0_;
+    if (init_z) {
+      Eigen::Map<Vec>(z_L, n) = y0_.z_lower;
+      Eigen::Map<Vec>(z_U, n) = y0_.z_upper;
+    }
+    if (init_lambda) Eigen::Map<Vec>(lambda, m) = y0_.lambda;
     return true;
   }
 
@@ -306,8 +320,8 @@ class NlpTnlp final : public Ipopt::TNLP {
   void finalize_solution(Ipopt::SolverReturn /*status*/,
                          Index n,
                          const Number* x,
-                         const Number* /*z_L*/,
-                         const Number* /*z_U*/,
+                         const Number* z_L,
+                         const Number* z_U,
                          Index m,
                          const Number* /*g*/,
                          const Number* lambda,
@@ -318,6 +332,8 @@ class NlpTnlp final : public Ipopt::TNLP {
     z_ = Eigen::Map<const Vec>(x, n);
     lambda_ = m > 0 && lambda != nullptr ? Vec(Eigen::Map<const Vec>(lambda, m)) : Vec(m);
     if (m > 0 && lambda == nullptr) lambda_.setConstant(NAN);
+    z_lower_ = z_L != nullptr ? Vec(Eigen::Map<const Vec>(z_L, n)) : Vec::Constant(n, NAN);
+    z_upper_ = z_U != nullptr ? Vec(Eigen::Map<const Vec>(z_U, n)) : Vec::Constant(n, NAN);
     objective_ = obj_value;
   }
 
@@ -348,6 +364,8 @@ class NlpTnlp final : public Ipopt::TNLP {
   bool finalized() const { return finalized_; }
   const Vec& z() const { return z_; }
   const Vec& lambda() const { return lambda_; }
+  const Vec& z_lower() const { return z_lower_; }
+  const Vec& z_upper() const { return z_upper_; }
   double objective() const { return objective_; }
   std::vector<IterationRecord>& history() { return history_; }
   const std::string& notes() const { return notes_; }
@@ -381,11 +399,12 @@ class NlpTnlp final : public Ipopt::TNLP {
 
   const Nlp& nlp_;
   const Vec z0_;
+  const NlpMultipliers y0_;
   const bool exact_hessian_;
   const Index n_, m_;
   Stopwatch watch_;
   bool finalized_ = false;
-  Vec z_, lambda_;
+  Vec z_, lambda_, z_lower_, z_upper_;
   double objective_ = NAN;
   std::vector<IterationRecord> history_;
   std::string notes_;
@@ -599,13 +618,23 @@ std::vector<int> AllIpoptStatusCodes() {
 
 // ---- solve ---------------------------------------------------------------------------------
 
-NlpSolution SolveNlpWithIpopt(const Nlp& nlp, const Vec& z0, const IpoptOptions& options) {
+NlpSolution SolveNlpWithIpopt(const Nlp& nlp,
+                              const Vec& z0,
+                              const IpoptOptions& options,
+                              const NlpMultipliers& y0) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument("ipopt options: " + error);
   if (z0.size() != nlp.num_variables()) {
     throw std::invalid_argument("SolveNlpWithIpopt: starting point has size " +
                                 std::to_string(z0.size()) + ", the NLP has " +
                                 std::to_string(nlp.num_variables()) + " variables");
+  }
+  const bool warm = !y0.empty();
+  if (warm && !y0.Fits(nlp.num_variables(), nlp.num_constraints())) {
+    throw std::invalid_argument(
+        "SolveNlpWithIpopt: starting multipliers must be finite, with lambda of size " +
+        std::to_string(nlp.num_constraints()) + " and z_lower, z_upper of size " +
+        std::to_string(nlp.num_variables()));
   }
 
   NlpSolution out;
@@ -640,7 +669,21 @@ NlpSolution SolveNlpWithIpopt(const Nlp& nlp, const Vec& z0, const IpoptOptions&
       NumberOption("nlp_scaling_max_gradient", options.nlp_scaling_max_gradient),
       IntegerOption("print_level", options.print_level),
   };
+  if (warm) {
+    // Ipopt reads the given multipliers (TNLP::get_starting_point with init_z, init_lambda)
+    // and moves the point only by these pushes into the bounds' interior.
+    const double push = options.warm_start_bound_push;
+    settings.push_back(TextOption("warm_start_init_point", "yes"));
+    settings.push_back(NumberOption("warm_start_bound_push", push));
+    settings.push_back(NumberOption("warm_start_bound_frac", std::min(push, 0.5)));
+    settings.push_back(NumberOption("warm_start_slack_bound_push", push));
+    settings.push_back(NumberOption("warm_start_slack_bound_frac", std::min(push, 0.5)));
+    settings.push_back(
+        NumberOption("warm_start_mult_bound_push", options.warm_start_mult_bound_push));
+  }
   settings.insert(settings.end(), options.extra.begin(), options.extra.end());
+  // A warm start's barrier parameter wins over a pass-through mu_init (meant for cold starts).
+  if (warm) settings.push_back(NumberOption("mu_init", options.warm_start_mu_init));
   // Forced last: an extra "hessian_approximation=exact" cannot ask for a Hessian that is absent.
   settings.push_back(TextOption("hessian_approximation", exact ? "exact" : "limited-memory"));
   for (const IpoptOptionValue& v : settings) {
@@ -654,7 +697,7 @@ NlpSolution SolveNlpWithIpopt(const Nlp& nlp, const Vec& z0, const IpoptOptions&
 
   // Initialize("") reads no ipopt.opt file, so results never depend on the working directory.
   Ipopt::ApplicationReturnStatus status = app->Initialize("");
-  Ipopt::SmartPtr<NlpTnlp> tnlp = new NlpTnlp(nlp, z0, exact);
+  Ipopt::SmartPtr<NlpTnlp> tnlp = new NlpTnlp(nlp, z0, y0, exact);
   if (status == Ipopt::Solve_Succeeded) {
     try {
       status = app->OptimizeTNLP(Ipopt::GetRawPtr(tnlp));
@@ -673,6 +716,8 @@ NlpSolution SolveNlpWithIpopt(const Nlp& nlp, const Vec& z0, const IpoptOptions&
   if (tnlp->finalized()) {
     out.z = tnlp->z();
     out.lambda = tnlp->lambda();
+    out.z_lower = tnlp->z_lower();
+    out.z_upper = tnlp->z_upper();
     out.objective = tnlp->objective();
     out.has_iterate = out.z.allFinite();
     if (!out.has_iterate) out.z = z0;
@@ -696,6 +741,7 @@ NlpSolution SolveNlpWithIpopt(const Nlp& nlp, const Vec& z0, const IpoptOptions&
     out.iterations = out.history.back().iteration;
   }
   out.stats["ipopt_restoration_iterations"] = tnlp->restoration_iterations();
+  out.stats["ipopt_warm_start"] = warm ? 1.0 : 0.0;
   if (!tnlp->notes().empty()) message += tnlp->notes() + ". ";
   out.message = message + "Ipopt: " + out.solver_status;
   return out;

@@ -92,6 +92,27 @@ struct IpoptOptions {
   double obj_scaling_factor = 1.0;
   /// Largest gradient max-norm gradient-based scaling leaves alone. Ipopt default.
   double nlp_scaling_max_gradient = 100.0;
+  // ---- warm start: only for a solve given starting multipliers (SolveNlpWithIpopt's y0,
+  // mesh refinement's 2nd.. meshes with mesh_warm_multipliers); Ipopt's
+  // warm_start_init_point=yes. Defaults chosen on mesh refinement of results/mesh's problems
+  // (results/mesh/warm-multipliers.md, README "Adaptive mesh refinement"). -----------------
+  /// Ipopt's warm_start_bound_push, also used for warm_start_bound_frac (at most 0.5),
+  /// warm_start_slack_bound_push and warm_start_slack_bound_frac: how far a starting variable
+  /// (slack) at or outside a bound is pushed into the interior, absolutely and relative to the
+  /// bounds' distance. 1e-6: on results/mesh/warm-multipliers.md's cases as many or fewer
+  /// Ipopt iterations than 1e-9 on each (fewer on bryson-denham and goddard); Ipopt's default
+  /// 1e-3 took 3.5x as many on goddard with Hermite-Simpson. > 0.
+  double warm_start_bound_push = 1e-6;
+  /// Ipopt's warm_start_mult_bound_push: the given bound multipliers (and the slacks' of
+  /// inequality rows) are raised to at least this. 1e-9: 1e-6 and Ipopt's default 1e-3 took
+  /// as many or more iterations on each case (1e-3: 3.7x on robot-arm with LGR). > 0.
+  double warm_start_mult_bound_push = 1e-9;
+  /// The barrier parameter a warm-started solve begins with (Ipopt's mu_init, for that solve
+  /// only; a pass-through mu_init applies to cold starts). Ipopt's default 0.1 would first
+  /// solve a barrier problem far from the given point's complementarity. 1e-12: as many or
+  /// fewer iterations than 1e-6, 1e-8 and 1e-10 on each case; 1e-14 took 4x more on goddard with
+  /// Hermite-Simpson. > 0.
+  double warm_start_mu_init = 1e-12;
   // ---- output -------------------------------------------------------------------
   /// 0 = silent (OCPBench's default), 5 = Ipopt's usual iteration log, up to 12.
   int print_level = 0;
@@ -129,16 +150,23 @@ SolveStatus MapIpoptStatus(int application_return_status);
 /// Every ApplicationReturnStatus value Ipopt 3.11 defines.
 std::vector<int> AllIpoptStatusCodes();
 
-/// Runs Ipopt on `nlp` from `z0` (size num_variables()). Never throws for anything Ipopt or the
-/// Nlp does: failures come back as the solution's status. Fills z, lambda (Ipopt's constraint
-/// multipliers), the objective, Ipopt's iteration count, a history row per iteration from
-/// Ipopt's intermediate callback (objective, primal and dual infeasibility as in Ipopt's
-/// iteration log, CPU seconds since the call started), and stats: ipopt_cpu_seconds,
-/// ipopt_wall_seconds (Ipopt's SolveStatistics), ipopt_dual_inf, ipopt_constr_viol,
-/// ipopt_complementarity, ipopt_kkt_error (unscaled), ipopt_objective_evaluations,
-/// ipopt_hessian_evaluations, ipopt_exact_hessian (1 or 0).
-/// Throws std::invalid_argument only when `options` is not valid (IsValid) or z0 has the wrong
-/// size.
-NlpSolution SolveNlpWithIpopt(const Nlp& nlp, const Vec& z0, const IpoptOptions& options);
+/// Runs Ipopt on `nlp` from `z0` (size num_variables()) and, when `y0` is not empty, from the
+/// multipliers y0 too (Ipopt's warm_start_init_point=yes with the options' warm_start_* fields
+/// and warm_start_mu_init; Ipopt clips them to its own rules: bound multipliers raised to
+/// warm_start_mult_bound_push, those of inequality rows' slacks likewise). Never throws for
+/// anything Ipopt or the Nlp does: failures come back as the solution's status. Fills z, lambda
+/// (Ipopt's constraint multipliers), z_lower, z_upper (its bound multipliers), the objective,
+/// Ipopt's iteration count, a history row per iteration from Ipopt's intermediate callback
+/// (objective, primal and dual infeasibility as in Ipopt's iteration log, CPU seconds since the
+/// call started), and stats: ipopt_cpu_seconds, ipopt_wall_seconds (Ipopt's SolveStatistics),
+/// ipopt_dual_inf, ipopt_constr_viol, ipopt_complementarity, ipopt_kkt_error (unscaled),
+/// ipopt_objective_evaluations, ipopt_hessian_evaluations, ipopt_exact_hessian (1 or 0),
+/// ipopt_warm_start (1 when y0 was used, else 0). Throws std::invalid_argument only when `options`
+/// is not valid (IsValid), z0 has the wrong size, or y0 is not empty and does not fit the NLP
+/// (NlpMultipliers::Fits).
+NlpSolution SolveNlpWithIpopt(const Nlp& nlp,
+                              const Vec& z0,
+                              const IpoptOptions& options,
+                              const NlpMultipliers& y0 = NlpMultipliers());
 
 }  // namespace ocpb

@@ -106,6 +106,20 @@ const OptionBinding<IpoptOptions>& IpoptBinding() {
              &O::nlp_scaling_max_gradient,
              "largest gradient max-norm gradient-based scaling leaves alone",
              OptionBounds::Above(0));
+    t.Number("warm_start_bound_push",
+             &O::warm_start_bound_push,
+             "warm-started solves: push of a starting variable or slack into its bounds' "
+             "interior (also warm_start_bound_frac, the slacks' push and frac)",
+             OptionBounds::Above(0));
+    t.Number("warm_start_mult_bound_push",
+             &O::warm_start_mult_bound_push,
+             "warm-started solves: least starting bound multiplier",
+             OptionBounds::Above(0));
+    t.Number("warm_start_mu_init",
+             &O::warm_start_mu_init,
+             "warm-started solves: the barrier parameter they begin with (OCPBench's name; "
+             "Ipopt's mu_init for that solve)",
+             OptionBounds::Above(0));
     t.Integer("print_level",
               &O::print_level,
               "Ipopt's log: 0 silent, 5 its iteration log",

@@ -19,9 +19,12 @@ IpoptSolver::Options IpoptSolver::ApplyOptions(const OptionMap& options, const O
 
 SolveResult IpoptSolver::Solve(const Ocp& ocp, const SolveRequest& request) const {
   const Options options = ApplyOptions(request.options, options_);
-  return SolveTranscribed(name(), ocp, request, [&](const TranscribedNlp& nlp) {
-    return SolveNlpWithIpopt(nlp, nlp.StartingPoint(), options);
-  });
+  return SolveTranscribed(name(),
+                          ocp,
+                          request,
+                          [&](const TranscribedNlp& nlp, const Vec& z0, const NlpMultipliers& y0) {
+                            return SolveNlpWithIpopt(nlp, z0, options, y0);
+                          });
 }
 
 }  // namespace ocpb

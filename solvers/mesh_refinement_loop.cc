@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -40,6 +41,7 @@ MeshIterationRecord Row(const TranscriptionOptions& options,
   row.cpu_seconds = cpu_seconds;
   row.status = m.result.status;
   row.solver_status = m.result.solver_status;
+  row.degrees = m.degrees;
   return row;
 }
 
@@ -52,9 +54,13 @@ SolveResult SolveOnRefinedMeshes(
   std::vector<MeshIterationRecord> rows;
   std::vector<IterationRecord> history;
   int iterations = 0;
-  double cpu_before = 0.0;  // CPU of the meshes before the current one
+  int multiplier_starts = 0;  // solves offered mapped multipliers
+  double cpu_before = 0.0;    // CPU of the meshes before the current one
   MeshSolve last;
   MeshStopReason reason = MeshStopReason::kMaxIterations;
+  std::optional<PhMesh> previous;  // ph: the mesh before the last one, and its estimates
+  Vec previous_errors;
+  std::vector<PhMesh> seen;  // ph: every mesh solved
   double max_error = NAN;
   for (int it = 1;; ++it) {
     const Stopwatch watch;
@@ -71,6 +77,7 @@ SolveResult SolveOnRefinedMeshes(
       history.push_back(rec);
     }
     iterations += std::max(0, last.result.iterations);
+    if (last.multipliers_offered) ++multiplier_starts;
     cpu_before += cpu;
 
     if (!IsSuccess(last.result.status)) {
@@ -89,15 +96,44 @@ SolveResult SolveOnRefinedMeshes(
       reason = MeshStopReason::kMaxIterations;
       break;
     }
-    TimeGrid next =
-        RefineMesh(options.grid, last.errors, mesh.tolerance, last.order, mesh.max_new_points);
-    if (next.size() > mesh.max_nodes) {
-      reason = MeshStopReason::kMaxNodes;
-      break;
+    if (!last.degrees.empty()) {  // ph: LGR's degrees change with the mesh
+      PhMesh current{options.grid, last.degrees};
+      seen.push_back(current);
+      PhMesh next = PhRefineMesh(current,
+                                 last.errors,
+                                 mesh.tolerance,
+                                 mesh,
+                                 previous ? &*previous : nullptr,
+                                 previous ? &previous_errors : nullptr);
+      if (mesh.reduce && std::any_of(seen.begin(), seen.end(), [&](const PhMesh& m) {
+            return m.degrees == next.degrees && m.grid.points() == next.grid.points();
+          })) {
+        // Reduction led back to a mesh already solved (a cycle, measured on goddard): refine
+        // without it this time, which only raises and splits.
+        MeshRefinementOptions no_reduction = mesh;
+        no_reduction.reduce = false;
+        next = PhRefineMesh(current, last.errors, mesh.tolerance, no_reduction);
+      }
+      previous = std::move(current);
+      previous_errors = last.errors;
+      if (next.nodes() > mesh.max_nodes) {
+        reason = MeshStopReason::kMaxNodes;
+        break;
+      }
+      options.grid = std::move(next.grid);
+      options.degrees = std::move(next.degrees);
+    } else {
+      TimeGrid next =
+          RefineMesh(options.grid, last.errors, mesh.tolerance, last.order, mesh.max_new_points);
+      if (next.size() > mesh.max_nodes) {
+        reason = MeshStopReason::kMaxNodes;
+        break;
+      }
+      options.grid = std::move(next);
     }
-    options.grid = std::move(next);
     options.initial_guess = last.result.controls;
     if (last.states.nu() > 0) options.initial_states = last.states;
+    options.initial_multipliers = std::move(last.multipliers);
   }
 
   SolveResult result = std::move(last.result);
@@ -108,6 +144,7 @@ SolveResult SolveOnRefinedMeshes(
   result.history = std::move(history);
   result.solver_stats["mesh_iterations"] = static_cast<double>(result.mesh_history.size());
   result.solver_stats["mesh_max_error"] = max_error;
+  result.solver_stats["mesh_multiplier_starts"] = multiplier_starts;
   if (reason != MeshStopReason::kToleranceMet) {
     std::string why = "mesh refinement stopped (" + std::string(ToString(reason)) + ") after " +
                       std::to_string(result.mesh_history.size()) + " meshes";

@@ -19,9 +19,11 @@ NloptSolver::Options NloptSolver::ApplyOptions(const OptionMap& options, const O
 
 SolveResult NloptSolver::Solve(const Ocp& ocp, const SolveRequest& request) const {
   const Options options = ApplyOptions(request.options, options_);
-  return SolveTranscribed(name(), ocp, request, [&](const TranscribedNlp& nlp) {
-    return SolveNlpWithNlopt(nlp, nlp.StartingPoint(), options);
-  });
+  // NLopt's algorithms take no starting multipliers: a mesh refinement's mapped ones are unused.
+  return SolveTranscribed(
+      name(), ocp, request, [&](const TranscribedNlp& nlp, const Vec& z0, const NlpMultipliers&) {
+        return SolveNlpWithNlopt(nlp, z0, options);
+      });
 }
 
 }  // namespace ocpb

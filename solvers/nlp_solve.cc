@@ -59,10 +59,14 @@ MeshSolve SolveOnMesh(const std::string& solver_name,
                       const TranscriptionInfo& info,
                       const Ocp& ocp,
                       const TranscriptionOptions& options,
-                      const std::function<NlpSolution(const TranscribedNlp& nlp)>& backend) {
+                      const NlpBackend& backend) {
   const NlpScaling& scaling = options.scaling;
   const std::unique_ptr<TranscribedNlp> nlp = info.make()->Transcribe(ocp, options);
-  NlpSolution sol = backend(*nlp);
+  const Vec z0 = nlp->StartingPoint();
+  const NlpMultipliers y0 = options.initial_multipliers
+                                ? nlp->StartingMultipliers(z0, *options.initial_multipliers)
+                                : NlpMultipliers();
+  NlpSolution sol = backend(*nlp, z0, y0);
 
   MeshSolve out;
   SolveResult& result = out.result;
@@ -96,6 +100,12 @@ MeshSolve SolveOnMesh(const std::string& solver_name,
     out.errors = nlp->IntervalErrors(sol.z);
     out.order = nlp->IntervalErrorOrder();
     out.states = nlp->StateTrajectory(sol.z);
+    out.degrees = nlp->IntervalDegrees();
+    out.multipliers_offered = !y0.empty();
+    if (options.mesh.warm_multipliers && sol.has_iterate) {
+      NlpMultipliers y{sol.lambda, sol.z_lower, sol.z_upper};
+      out.multipliers = nlp->MultiplierTrajectoriesAt(sol.z, y);
+    }
   }
   return out;
 }
@@ -105,7 +115,7 @@ MeshSolve SolveOnMesh(const std::string& solver_name,
 SolveResult SolveTranscribed(const std::string& solver_name,
                              const Ocp& ocp,
                              const SolveRequest& request,
-                             const std::function<NlpSolution(const TranscribedNlp& nlp)>& backend) {
+                             const NlpBackend& backend) {
   const TranscriptionInfo& info = RequestTranscription(request);
   if (!info.takes_free_final_time) {
     if (auto refused = FreeFinalTimeNotApplicable(ocp, solver_name + " + " + info.name)) {

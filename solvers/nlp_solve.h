@@ -31,6 +31,9 @@ struct NlpSolution {
   /// Constraint multipliers at z, in the convention of core/nlp.h (Lagrangian
   /// sigma f + lambda^T g); empty when the backend offers none.
   Vec lambda;
+  /// Multipliers of the variable bounds at z (z_lower, z_upper >= 0, the convention of
+  /// NlpMultipliers); empty when the backend offers none.
+  Vec z_lower, z_upper;
   /// The objective at z as the backend reports it (NaN when it reports none).
   double objective = NAN;
   /// The backend's iteration count (NLopt: objective evaluations).
@@ -52,6 +55,12 @@ TranscriptionOptions TranscriptionOptionsFor(const SolveRequest& request);
 /// when the transcription rejects the request.
 std::unique_ptr<TranscribedNlp> TranscribeRequest(const Ocp& ocp, const SolveRequest& request);
 
+/// How an NLP solver runs on a transcribed NLP from a primal starting point z0
+/// (nlp.StartingPoint()) and starting multipliers y0 (empty unless a refined mesh maps the
+/// previous one's: mesh_warm_multipliers; a backend that takes none ignores them).
+using NlpBackend =
+    std::function<NlpSolution(const TranscribedNlp& nlp, const Vec& z0, const NlpMultipliers& y0)>;
+
 /// The shared driver of the NLP solvers: times the whole solve (transcription included), runs
 /// `backend` on the transcribed NLP from its starting point, and fills a SolveResult:
 /// controls = nlp.Controls(z) (what the evaluator judges), states and costates (from the
@@ -60,14 +69,16 @@ std::unique_ptr<TranscribedNlp> TranscribeRequest(const Ocp& ocp, const SolveReq
 /// history and statistics verbatim. `objective` and the history's J are in the problem's units
 /// (divided by the transcription's objective scale). With the transcription's mesh refinement
 /// on (option mesh_tolerance > 0) these steps run once per mesh inside SolveOnRefinedMeshes
-/// (solvers/mesh_refinement_loop.h), each mesh transcribed anew; result.mesh is the final mesh,
+/// (solvers/mesh_refinement_loop.h), each mesh transcribed anew and, from the second on, started
+/// from the previous solution (controls, states and, with mesh_warm_multipliers, its
+/// multipliers mapped by TranscribedNlp::StartingMultipliers); result.mesh is the final mesh,
 /// the one the evaluator judges. A free final time on a transcription that does not take one
 /// (TranscriptionInfo::takes_free_final_time) is kNotApplicable. std::invalid_argument from the
 /// transcription propagates (an invalid request).
 SolveResult SolveTranscribed(const std::string& solver_name,
                              const Ocp& ocp,
                              const SolveRequest& request,
-                             const std::function<NlpSolution(const TranscribedNlp& nlp)>& backend);
+                             const NlpBackend& backend);
 
 /// max over constraints and bounds of the distance-like violation at z:
 /// max_i max(g_l,i - g_i, g_i - g_u,i, 0) and the same for z against its bounds. NaN when g(z)

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/evaluator.h"
+#include "transcriptions/simulation_mesh_error.h"
 #include "transcriptions/sparse_builder.h"
 
 namespace ocpb {
@@ -70,6 +71,7 @@ CollocationNlp::CollocationNlp(const Ocp& ocp,
     : ocp_(ocp),
       grid_(options.grid),
       mode_(options.terminal),
+      mesh_estimate_(options.mesh.estimate),
       initial_guess_(options.initial_guess),
       initial_states_(options.initial_states),
       start_final_time_(options.GuessFinalTime(ocp)),
@@ -376,6 +378,14 @@ Mat CollocationNlp::NodeStates(ConstVecRef zhat) const {
 }
 
 Vec CollocationNlp::IntervalErrors(ConstVecRef zhat) const {
+  if (mesh_estimate_ == MeshErrorEstimate::kSimulation) {
+    return IntervalSimulationErrors(
+        ocp_, SolutionMesh(zhat), StateGrid(zhat), States(zhat), Controls(zhat));
+  }
+  return SchemeIntervalErrors(zhat);
+}
+
+Vec CollocationNlp::SchemeIntervalErrors(ConstVecRef zhat) const {
   const std::optional<CollocationInterpolant> scheme = mesh_interpolant();
   if (!scheme) return Vec();
   return IntervalDefectErrors(ocp_, *scheme, SolutionMesh(zhat), NodeStates(zhat), Controls(zhat));

@@ -148,11 +148,29 @@ class CollocationNlp : public TranscribedNlp {
   /// p (nx x state_grid().size()) from the NLP's multipliers `lambda` at z (as a solver returns
   /// them, scaled NLP); empty when lambda.size() != num_constraints().
   Mat Costates(ConstVecRef z, ConstVecRef lambda) const override;
-  /// IntervalDefectErrors on the mesh (stretched to T for a free final time) with the node
-  /// states (the interval-start blocks) and Controls(z); empty without mesh_interpolant().
+  /// With TranscriptionOptions::mesh.estimate == kSimulation IntervalSimulationErrors on the
+  /// mesh (stretched to T for a free final time) with every state block and Controls(z), else
+  /// SchemeIntervalErrors(z).
   Vec IntervalErrors(ConstVecRef z) const override;
   int IntervalErrorOrder() const override;
   ControlTrajectory StateTrajectory(ConstVecRef z) const override;
+  /// Costates(z, y.lambda) on the state points, interpolated per mesh interval; path, ball and
+  /// control-bound multipliers divided by their point's weight r w_e (r: the final-time ratio);
+  /// terminal and final-time multipliers as they are (MultiplierTrajectories). Physical units.
+  std::optional<MultiplierTrajectories> MultiplierTrajectoriesAt(
+      ConstVecRef z, const NlpMultipliers& y) const override;
+  /// The inverse of MultiplierTrajectoriesAt on this layout, at the starting point z0 (times
+  /// stretched by its final-time ratio): p read at every state point, path, ball and
+  /// control-bound multipliers r w_e times the densities at their points, terminal and
+  /// final-time multipliers carried; then the defect multipliers that make Costates(z0, lambda)
+  /// equal those p: for a point inside an interval its costate_defect's multiplier from
+  /// (p_j - sum_c c p_c) / costate_scale, then per interval the one remaining defect from its
+  /// start block's costate relation (an nx x nx solve at z0). Exact (to rounding) on the
+  /// mesh the trajectories came from at their own z. Empty when an interval has other than one
+  /// defect without an interior block, a solve is singular, or the trajectories' sizes do not
+  /// fit.
+  NlpMultipliers StartingMultipliers(ConstVecRef z0,
+                                     const MultiplierTrajectories& from) const override;
 
   // ---- for tests and tools ----
   const CollocationLayout& layout() const { return layout_; }
@@ -178,7 +196,12 @@ class CollocationNlp : public TranscribedNlp {
   /// The state interpolant of the scheme between mesh nodes, for the mesh error estimate;
   /// nullopt (default): no estimate.
   virtual std::optional<CollocationInterpolant> mesh_interpolant() const { return std::nullopt; }
+  /// The scheme's own estimate (MeshErrorEstimate::kScheme): IntervalDefectErrors with the node
+  /// states (the interval-start blocks) and Controls(z); empty without mesh_interpolant().
+  virtual Vec SchemeIntervalErrors(ConstVecRef zhat) const;
   const TimeGrid& grid() const { return grid_; }
+  // The mesh on the solution's horizon (stretched to T for a free final time).
+  TimeGrid SolutionMesh(ConstVecRef zhat) const;
 
  private:
   struct PointUse {  // point e appears in defect d with coefficient -b
@@ -195,8 +218,7 @@ class CollocationNlp : public TranscribedNlp {
   };
 
   void BuildStructure();
-  // The mesh on the solution's horizon and the node states x(t_k) (nx x N+1) at z.
-  TimeGrid SolutionMesh(ConstVecRef zhat) const;
+  // The node states x(t_k) (nx x N+1) at z.
   Mat NodeStates(ConstVecRef zhat) const;
   // r = (T - t0) / (tf - t0) at physical z (1 without a free final time).
   double Ratio(const Vec& z) const;
@@ -215,6 +237,7 @@ class CollocationNlp : public TranscribedNlp {
   const Ocp& ocp_;
   TimeGrid grid_;
   TerminalMode mode_;
+  MeshErrorEstimate mesh_estimate_;
   std::optional<ControlTrajectory> initial_guess_;
   std::optional<ControlTrajectory> initial_states_;
   double start_final_time_;  // T of the starting point (TranscriptionOptions::GuessFinalTime)

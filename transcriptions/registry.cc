@@ -24,7 +24,7 @@ OptionBinding<TranscriptionOptions> ScalingOnly(const std::string& owner) {
 // The h-refinement schemes: scaling and mesh refinement options.
 OptionBinding<TranscriptionOptions> ScalingAndMesh(const std::string& owner) {
   OptionBinding<TranscriptionOptions> b = ScalingOnly(owner);
-  BindMeshOptions(&b);
+  BindMeshOptions(&b, MeshRefinementKind::kH);
   return b;
 }
 
@@ -80,6 +80,7 @@ std::vector<TranscriptionInfo> BuildTranscriptions() {
               "collocation points per interval K (order 2K - 1)",
               OptionBounds::Closed(1, kMaxRadauPoints));
     BindScalingOptions(&b);
+    BindMeshOptions(&b, MeshRefinementKind::kPh);
     list.push_back(MakeTranscriptionInfo(
         "lgr",
         "Legendre-Gauss-Radau collocation, --degree points per interval (order 2K-1)",
@@ -161,13 +162,16 @@ void BindScalingOptions(OptionBinding<TranscriptionOptions>* binding) {
   }
 }
 
-void BindMeshOptions(OptionBinding<TranscriptionOptions>* binding) {
+void BindMeshOptions(OptionBinding<TranscriptionOptions>* binding, MeshRefinementKind kind) {
+  const bool h = kind == MeshRefinementKind::kH;
   BindMeshField(binding,
                 "mesh_tolerance",
                 &MeshRefinementOptions::tolerance,
-                "adaptive h-refinement until every interval's error estimate (Betts' scaled "
-                "integral of the collocation interpolant's defect) is <= this; 0: off, one "
-                "solve on the given grid",
+                h ? "adaptive h-refinement until every interval's error estimate (mesh_estimate) "
+                    "is <= this; 0: off, one solve on the given grid"
+                  : "adaptive ph-refinement (raise an interval's degree, or split it) until "
+                    "every interval's error estimate (mesh_estimate) is <= this; 0: off, one "
+                    "solve on the given grid",
                 OptionBounds::AtLeast(0));
   BindMeshField(binding,
                 "mesh_max_iterations",
@@ -177,14 +181,83 @@ void BindMeshOptions(OptionBinding<TranscriptionOptions>* binding) {
   BindMeshField(binding,
                 "mesh_max_nodes",
                 &MeshRefinementOptions::max_nodes,
-                "a refined mesh with more nodes (N + 1) than this is not solved; refinement "
-                "stops on the last mesh",
+                h ? "a refined mesh with more nodes (N + 1) than this is not solved; refinement "
+                    "stops on the last mesh"
+                  : "a refined mesh with more collocation points + 1 (the sum of the interval "
+                    "degrees + 1) than this is not solved; refinement stops on the last mesh",
                 OptionBounds::AtLeast(2));
+  const std::string own = h ? "defect" : "interpolation";
+  {
+    OptionSpec s;
+    s.name = "mesh_estimate";
+    s.type = OptionType::kEnum;
+    s.choices = {own, "simulation"};
+    s.default_value = own;
+    s.doc = h ? "the local error estimate: defect (Betts' scaled integral of the state "
+                "interpolant's defect) or simulation (RK4 from each interval's start state with "
+                "the interpolated control, against the collocated states)"
+              : "the local error estimate: interpolation (Patterson-Hager-Rao: the state "
+                "polynomial against the quadrature of f at K + 1 points) or simulation (RK4 from "
+                "each interval's start state with the interpolated control, against the "
+                "collocated states)";
+    binding->Custom(
+        std::move(s),
+        [](TranscriptionOptions* o, const OptionValue& v) {
+          o->mesh.estimate = v.text() == "simulation" ? MeshErrorEstimate::kSimulation
+                                                      : MeshErrorEstimate::kScheme;
+        },
+        [own](const TranscriptionOptions& o) {
+          return OptionValue(o.mesh.estimate == MeshErrorEstimate::kSimulation ? "simulation"
+                                                                               : own);
+        });
+  }
+  binding->Custom(
+      [] {
+        OptionSpec s;
+        s.name = "mesh_warm_multipliers";
+        s.type = OptionType::kBool;
+        s.doc =
+            "start each refined mesh from the previous solution's multipliers too (costates "
+            "interpolated and mapped to the new defects; Ipopt's warm start; NLopt takes none); "
+            "false: controls and states only";
+        s.default_value = MeshRefinementOptions{}.warm_multipliers;
+        return s;
+      }(),
+      [](TranscriptionOptions* o, const OptionValue& v) { o->mesh.warm_multipliers = v.boolean(); },
+      [](const TranscriptionOptions& o) { return OptionValue(o.mesh.warm_multipliers); });
+  if (h) {
+    BindMeshField(binding,
+                  "mesh_max_new_points",
+                  &MeshRefinementOptions::max_new_points,
+                  "at most this many nodes added to one interval per refinement",
+                  OptionBounds::AtLeast(1));
+    return;
+  }
   BindMeshField(binding,
-                "mesh_max_new_points",
-                &MeshRefinementOptions::max_new_points,
-                "at most this many nodes added to one interval per refinement",
-                OptionBounds::AtLeast(1));
+                "mesh_min_degree",
+                &MeshRefinementOptions::min_degree,
+                "ph: the degree of the pieces of a split interval, and the least degree "
+                "lowering goes down to",
+                OptionBounds::Closed(1, kMaxRadauPoints - 1));
+  BindMeshField(binding,
+                "mesh_max_degree",
+                &MeshRefinementOptions::max_degree,
+                "ph: an interval whose predicted degree exceeds this is split instead of raised "
+                "(>= mesh_min_degree)",
+                OptionBounds::Closed(1, kMaxRadauPoints - 1));
+  binding->Custom(
+      [] {
+        OptionSpec s;
+        s.name = "mesh_reduce";
+        s.type = OptionType::kBool;
+        s.doc =
+            "ph: merge adjacent intervals and lower degrees where the tolerance is met with room "
+            "to spare";
+        s.default_value = MeshRefinementOptions{}.reduce;
+        return s;
+      }(),
+      [](TranscriptionOptions* o, const OptionValue& v) { o->mesh.reduce = v.boolean(); },
+      [](const TranscriptionOptions& o) { return OptionValue(o.mesh.reduce); });
 }
 
 TranscriptionInfo MakeTranscriptionInfo(
@@ -198,9 +271,12 @@ TranscriptionInfo MakeTranscriptionInfo(
   info.description = std::move(description);
   info.make = std::move(make);
   info.options = binding.schema();
-  info.configure = [binding = std::move(binding)](const OptionMap& given,
-                                                  TranscriptionOptions* out) {
+  info.configure = [binding = std::move(binding), owner = info.name](const OptionMap& given,
+                                                                     TranscriptionOptions* out) {
     *out = binding.Apply(given, *out);
+    // The rules between options (mesh_min_degree <= mesh_max_degree).
+    std::string why;
+    if (!out->mesh.IsValid(&why)) throw std::invalid_argument(owner + ": " + why);
   };
   info.points_per_interval = std::move(points_per_interval);
   return info;

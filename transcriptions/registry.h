@@ -51,11 +51,18 @@ void RegisterTranscription(TranscriptionInfo info);
 /// component; empty: all ones). For a transcription written outside OCPBench that honours
 /// TranscriptionOptions::scaling too.
 void BindScalingOptions(OptionBinding<TranscriptionOptions>* binding);
+/// Which mesh refinement a scheme does: h (fixed order: split intervals) or ph (LGR: raise the
+/// degree or split).
+enum class MeshRefinementKind { kH, kPh };
 /// Declares on `binding` the adaptive mesh refinement options (TranscriptionOptions::mesh):
 /// mesh_tolerance (number >= 0, default 0 = off), mesh_max_iterations (integer >= 1, default
-/// 10), mesh_max_nodes (integer >= 2, default 2000), mesh_max_new_points (integer >= 1, default
-/// 5). For schemes whose TranscribedNlp has IntervalErrors (trapezoid, hermite-simpson).
-void BindMeshOptions(OptionBinding<TranscriptionOptions>* binding);
+/// 10), mesh_max_nodes (integer >= 2, default 2000), mesh_estimate (the scheme's own estimate,
+/// "defect" for h and "interpolation" for ph, or "simulation"), mesh_warm_multipliers (bool,
+/// default true); for h also mesh_max_new_points
+/// (integer >= 1, default 5), for ph mesh_min_degree (default 3), mesh_max_degree (default 10;
+/// both in [1, 59], min <= max) and mesh_reduce (default true). For schemes whose
+/// TranscribedNlp has IntervalErrors (trapezoid, hermite-simpson: h; lgr: ph).
+void BindMeshOptions(OptionBinding<TranscriptionOptions>* binding, MeshRefinementKind kind);
 /// A TranscriptionInfo whose `options` and `configure` come from `binding`.
 TranscriptionInfo MakeTranscriptionInfo(
     std::string name,

@@ -43,6 +43,21 @@ bool TranscriptionOptions::IsValidOnItsOwn(std::string* error) const {
                    "transcription: degree must be in [1, " + std::to_string(kMaxRadauPoints) +
                        "], got " + std::to_string(degree));
   }
+  if (!degrees.empty()) {
+    if (static_cast<int>(degrees.size()) != grid.intervals()) {
+      return Invalid(error,
+                     "transcription: degrees must have one entry per grid interval (" +
+                         std::to_string(grid.intervals()) + "), got " +
+                         std::to_string(degrees.size()));
+    }
+    for (int d : degrees) {
+      if (d < 1 || d > kMaxRadauPoints) {
+        return Invalid(error,
+                       "transcription: every entry of degrees must be in [1, " +
+                           std::to_string(kMaxRadauPoints) + "], got " + std::to_string(d));
+      }
+    }
+  }
   if (initial_guess && initial_guess->nu() < 1) {
     return Invalid(error, "transcription: the initial guess has no control components");
   }

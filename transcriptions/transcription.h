@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/control_trajectory.h"
 #include "core/integrator.h"
@@ -11,6 +12,7 @@
 #include "core/ocp.h"
 #include "core/time_grid.h"
 #include "transcriptions/mesh_refinement.h"
+#include "transcriptions/multiplier_trajectories.h"
 #include "transcriptions/nlp_scaling.h"
 
 namespace ocpb {
@@ -36,16 +38,37 @@ class TranscribedNlp : public Nlp {
   /// in the convention H = p^T f + L; empty when the transcription has none.
   virtual Mat Costates(ConstVecRef /*z*/, ConstVecRef /*lambda*/) const { return Mat(); }
 
-  // ---- adaptive mesh refinement (transcriptions/mesh_error.h) ----
-  /// The local error estimate of each mesh interval at z (IntervalDefectErrors: Betts' scaled
-  /// integral of the interpolant's defect); empty when the scheme has no estimate.
+  // ---- adaptive mesh refinement (transcriptions/mesh_refinement.h) ----
+  /// The local error estimate of each mesh interval at z, as TranscriptionOptions::mesh.estimate
+  /// asks: the scheme's own (IntervalDefectErrors: Betts' scaled integral of the interpolant's
+  /// defect; LGR: LgrIntervalErrors) or IntervalSimulationErrors; empty when the scheme has
+  /// none.
   virtual Vec IntervalErrors(ConstVecRef /*z*/) const { return Vec(); }
-  /// The exponent q of h with which IntervalErrors decrease (DefectEstimateOrder); 0 without.
+  /// The exponent q of h with which IntervalErrors decrease at a fixed degree
+  /// (DefectEstimateOrder); 0 without.
   virtual int IntervalErrorOrder() const { return 0; }
+  /// The collocation points of each mesh interval when the scheme refines by degree too (LGR:
+  /// ph-refinement, PhRefineMesh); empty for the fixed-order schemes (h-refinement).
+  virtual std::vector<int> IntervalDegrees() const { return {}; }
   /// The states at z as a function of time on [t0, FinalTime(z)], to start a solve on another
   /// mesh from: the scheme's state interpolant where it has IntervalErrors, else piecewise
   /// linear through States(z) on StateGrid(z); empty (nu() == 0) without states.
   virtual ControlTrajectory StateTrajectory(ConstVecRef z) const;
+
+  // ---- multiplier warm starts across meshes (transcriptions/multiplier_trajectories.h) ----
+  /// The multipliers `y` of a solution z as functions of time; nullopt when the transcription
+  /// has no such map, or y does not fit (NlpMultipliers::Fits) or gives no finite costates.
+  virtual std::optional<MultiplierTrajectories> MultiplierTrajectoriesAt(
+      ConstVecRef /*z*/, const NlpMultipliers& /*y*/) const {
+    return std::nullopt;
+  }
+  /// Multipliers to start this NLP with at its primal starting point z0, read from another
+  /// mesh's MultiplierTrajectoriesAt; empty when the transcription has no such map or the
+  /// trajectories do not fit the problem.
+  virtual NlpMultipliers StartingMultipliers(ConstVecRef /*z0*/,
+                                             const MultiplierTrajectories& /*from*/) const {
+    return NlpMultipliers();
+  }
 };
 
 /// What a transcription needs besides the problem.
@@ -57,10 +80,17 @@ struct TranscriptionOptions {
   /// States to start from (nx components, on the horizon of initial_guess), for the schemes
   /// with state variables; default: simulated from the controls. Single shooting ignores them.
   std::optional<ControlTrajectory> initial_states;
-  int degree = 3;      ///< LGR: collocation points per interval, 1..kMaxRadauPoints (60)
+  /// Multipliers to start from (a previous mesh's MultiplierTrajectoriesAt), read by the NLP
+  /// solvers' driver (StartingMultipliers at the starting point, handed to the backend); a
+  /// single Transcribe() ignores them. Set by mesh refinement with mesh.warm_multipliers.
+  std::optional<MultiplierTrajectories> initial_multipliers;
+  int degree = 3;  ///< LGR: collocation points per interval, 1..kMaxRadauPoints (60)
+  /// LGR: collocation points of each grid interval (grid.intervals() entries, each
+  /// 1..kMaxRadauPoints), as ph mesh refinement sets them; empty: `degree` on every interval.
+  std::vector<int> degrees;
   NlpScaling scaling;  ///< default: none (see nlp_scaling.h)
-  /// Adaptive mesh refinement (trapezoid, hermite-simpson); default off. Read by the NLP
-  /// solvers' driver (solvers/mesh_refinement_loop.h), which re-transcribes on refined grids;
+  /// Adaptive mesh refinement (trapezoid, hermite-simpson: h; lgr: ph); default off. Read by the
+  /// NLP solvers' driver (solvers/mesh_refinement_loop.h), which re-transcribes on refined grids;
   /// a single Transcribe() ignores it.
   MeshRefinementOptions mesh;
   /// Schemes whose objective is a simulation (single shooting): forward Euler (the

@@ -63,6 +63,18 @@ class Reader {
     out->clear();
     for (const json& x : j_[key]) out->push_back(NumberAt(x, key));
   }
+  void Integers(const char* key, int min, std::vector<int>* out) const {
+    if (!Has(key)) return;
+    if (!j_[key].is_array()) Fail(key, "an array of integers");
+    out->clear();
+    for (const json& x : j_[key]) {
+      if (!x.is_number_integer() || x.get<long long>() < min ||
+          x.get<long long>() > std::numeric_limits<int>::max()) {
+        Fail(key, min == 1 ? "an array of integers >= 1" : "an array of integers");
+      }
+      out->push_back(static_cast<int>(x.get<long long>()));
+    }
+  }
   void Object(const char* key, json* out) const {
     if (!Has(key)) return;
     if (!j_[key].is_object()) Fail(key, "an object");
@@ -152,6 +164,7 @@ json MeshJson(const RecordMesh& m) {
                         {"cpu_seconds", JsonNumber(row.cpu_seconds)},
                         {"status", ToString(row.status)},
                         {"solver_status", row.solver_status}});
+    if (!row.degrees.empty()) rows.back()["degrees"] = row.degrees;
   }
   return json{{"stop_reason", m.stop_reason}, {"nodes", m.nodes}, {"history", rows}};
 }
@@ -185,6 +198,7 @@ RecordMesh MeshFrom(const Reader& r) {
       rec.status = *parsed;
     }
     row.Text("solver_status", &rec.solver_status);
+    row.Integers("degrees", 1, &rec.degrees);
     out.history.push_back(rec);
   }
   return out;

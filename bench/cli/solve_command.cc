@@ -1,4 +1,5 @@
 // `ocpbench solve`: one problem, one method, one JSON record.
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -83,6 +84,13 @@ void PrintReport(const Record& r) {
           m.iterations,
           Fmt(m.cpu_seconds),
           m.solver_status);
+      if (!m.degrees.empty()) {
+        const auto [lo, hi] = std::minmax_element(m.degrees.begin(), m.degrees.end());
+        int points = 0;
+        for (int d : m.degrees) points += d;
+        std::cout << fmt::format(
+            "              degrees {}..{}, {} collocation points\n", *lo, *hi, points);
+      }
     }
   }
   for (const RecordWarning& w : r.warnings) {

@@ -7,7 +7,8 @@ RECORD.json is an `ocpbench solve --json` record with a `mesh` field (transcript
 mesh_tolerance > 0) and its trajectory. Top: the controls as the evaluator samples them (each
 interval's left end) with the mesh nodes as vertical lines; middle: the method's own states;
 bottom: the final mesh's interval lengths h_k against t, with the first (uniform) mesh's h for
-comparison. Written atomically (figure_io).
+comparison, and for LGR's ph-refinement each interval's degree (collocation points) on a second
+axis. Written atomically (figure_io).
 """
 import json
 import os
@@ -52,8 +53,16 @@ def main(record_path, figure_path):
                     label="first mesh (uniform, %d intervals)" % first)
     axes[2].set_ylabel("interval length h_k")
     axes[2].set_xlabel("t")
-    axes[2].legend(loc="best")
     last = r["mesh"]["history"][-1]
+    degrees = last.get("degrees")
+    if degrees:
+        right = axes[2].twinx()
+        right.step(nodes, degrees + degrees[-1:], where="post", color="tab:red",
+                   label="degree (points per interval)")
+        right.set_ylabel("degree", color="tab:red")
+        right.set_ylim(0, max(degrees) + 1)
+        right.legend(loc="lower right")
+    axes[2].legend(loc="upper left")
     fig.suptitle("%s, %s + %s:\n%d meshes (%s), largest estimate %.2g"
                  % (r["problem"], r["solver"], r["transcription"], len(r["mesh"]["history"]),
                     r["mesh"]["stop_reason"], last["max_error"]), fontsize=10)

@@ -420,6 +420,50 @@ TEST(SolveCli, MeshRefinementIsRecordedAndJudgedOnTheFinalMesh) {
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }
 
+// LGR's ph-refinement end to end: each history row carries the mesh's degrees (one per
+// interval, summing to the collocation points the NLP size implies), the record reads back
+// unchanged, and crossed degree limits are refused in one line.
+TEST(SolveCli, PhRefinementRecordsTheDegrees) {
+  const std::string dir = testing::FreshDirectory("solve-ph-refinement");
+  const std::vector<std::string> head = {"solve",
+                                         "--problem",
+                                         "double-integrator-bounded",
+                                         "--solver",
+                                         "ipopt",
+                                         "--transcription",
+                                         "lgr",
+                                         "--terminal",
+                                         "hard",
+                                         "--N",
+                                         "4"};
+  const ProgramRun run = RunOcpbenchProgram(
+      Args(head, {"--option", "mesh_tolerance=1e-6", "--json", "out.json"}), dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json r = json::parse(testing::ReadText(dir + "/out.json"));
+  ASSERT_TRUE(r.contains("mesh"));
+  const json& mesh = r["mesh"];
+  EXPECT_EQ(mesh["stop_reason"], "tolerance_met");
+  ASSERT_GE(mesh["history"].size(), 2u);
+  for (const json& row : mesh["history"]) {
+    ASSERT_TRUE(row.contains("degrees")) << row.dump();
+    EXPECT_EQ(row["degrees"].size(), row["intervals"].get<size_t>());
+    int points = 0;
+    for (const json& d : row["degrees"]) points += d.get<int>();
+    EXPECT_EQ(row["nlp_variables"].get<int>(), points * 3 + 2);  // (nx + nu) per point + x(tf)
+  }
+  EXPECT_EQ(mesh["history"].back()["intervals"].get<size_t>() + 1, mesh["nodes"].size());
+  EXPECT_NE(run.out.find("collocation points"), std::string::npos) << run.out;
+  EXPECT_EQ(Record::FromJson(r).ToJson(), r);
+
+  const ProgramRun bad = RunOcpbenchProgram(
+      Args(head,
+           {"--option", "mesh_min_degree=7", "--option", "mesh_max_degree=5", "--json", "b.json"}),
+      dir);
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("mesh_max_degree"), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+}
+
 // The reader itself: piecewise constant when the record says so (the record's controls
 // exactly), piecewise linear through the samples otherwise.
 TEST(InitialGuess, KeepsTheRecordsInterpolationRule) {

@@ -178,6 +178,58 @@ TEST(IpoptAdapter, RejectsAStartingPointOfTheWrongSize) {
   EXPECT_THROW(SolveNlpWithIpopt(Hs071(), Vec::Zero(3), IpoptOptions()), std::invalid_argument);
 }
 
+// A re-solve from the solution's own primal-dual point (Ipopt's warm start with the given
+// multipliers) ends within two iterations. The multipliers are what does it: from the same
+// point with zero multipliers (the same warm-start options), or from the primal point alone
+// (a cold start: mu = 0.1, least-squares multipliers), Ipopt takes more.
+TEST(IpoptAdapter, WarmStartFromItsOwnOptimumTakesFewIterations) {
+  const Hs071 nlp;
+  IpoptOptions options;
+  options.tol = 1e-10;
+  const NlpSolution cold = SolveNlpWithIpopt(nlp, nlp.StartingPoint(), options);
+  ASSERT_EQ(cold.status, SolveStatus::kConverged) << cold.message;
+  ASSERT_EQ(cold.z_lower.size(), 4);
+  ASSERT_EQ(cold.z_upper.size(), 4);
+  // x1 = 1 sits on its lower bound with a positive multiplier; the others are interior.
+  EXPECT_GT(cold.z_lower[0], 0.1);
+  EXPECT_LT(cold.z_lower.tail(3).maxCoeff(), 1e-6);
+  EXPECT_EQ(cold.stats.at("ipopt_warm_start"), 0.0);
+
+  const NlpSolution warm =
+      SolveNlpWithIpopt(nlp, cold.z, options, {cold.lambda, cold.z_lower, cold.z_upper});
+  ASSERT_EQ(warm.status, SolveStatus::kConverged) << warm.message;
+  EXPECT_EQ(warm.stats.at("ipopt_warm_start"), 1.0);
+  EXPECT_LE(warm.iterations, 2);
+  EXPECT_NEAR(warm.objective, cold.objective, 1e-9);
+  EXPECT_LT((warm.lambda - cold.lambda).cwiseAbs().maxCoeff(), 1e-7);
+
+  const NlpSolution zero_multipliers =
+      SolveNlpWithIpopt(nlp, cold.z, options, {Vec::Zero(2), Vec::Zero(4), Vec::Zero(4)});
+  ASSERT_EQ(zero_multipliers.status, SolveStatus::kConverged) << zero_multipliers.message;
+  EXPECT_GT(zero_multipliers.iterations, warm.iterations + 2);
+  const NlpSolution primal_only = SolveNlpWithIpopt(nlp, cold.z, options);
+  ASSERT_EQ(primal_only.status, SolveStatus::kConverged) << primal_only.message;
+  EXPECT_GT(primal_only.iterations, warm.iterations + 2);
+  RecordProperty("cold_iterations", cold.iterations);
+  RecordProperty("warm_iterations", warm.iterations);
+  RecordProperty("zero_multiplier_iterations", zero_multipliers.iterations);
+  RecordProperty("primal_only_iterations", primal_only.iterations);
+}
+
+TEST(IpoptAdapter, RejectsStartingMultipliersThatDoNotFit) {
+  const Hs071 nlp;
+  const Vec z0 = nlp.StartingPoint();
+  EXPECT_THROW(
+      SolveNlpWithIpopt(nlp, z0, IpoptOptions(), {Vec::Zero(1), Vec::Zero(4), Vec::Zero(4)}),
+      std::invalid_argument);
+  EXPECT_THROW(
+      SolveNlpWithIpopt(nlp, z0, IpoptOptions(), {Vec::Zero(2), Vec::Zero(3), Vec::Zero(4)}),
+      std::invalid_argument);
+  EXPECT_THROW(SolveNlpWithIpopt(
+                   nlp, z0, IpoptOptions(), {Vec::Constant(2, NAN), Vec::Zero(4), Vec::Zero(4)}),
+               std::invalid_argument);
+}
+
 TEST(IpoptStatus, EveryReturnStatusHasItsIpoptNameAndAGroup) {
   std::set<std::string> names;
   for (int code : AllIpoptStatusCodes()) {
@@ -208,6 +260,32 @@ TEST(IpoptOptions, DefaultsAreValidAndTheTableMatchesIpopt) {
   EXPECT_TRUE(IpoptOptions().IsValid(&error)) << error;
   EXPECT_TRUE(IpoptOptionTableMatchesIpopt(&error)) << error;
   EXPECT_EQ(IpoptOptions().print_level, 0);
+}
+
+// The warm-start fields: set by name, each > 0, refused in one line naming it.
+TEST(IpoptOptions, WarmStartFieldsAreSetByNameAndChecked) {
+  const IpoptOptions o = IpoptOptions::Apply({{"warm_start_mu_init", "1e-5"},
+                                              {"warm_start_bound_push", "1e-4"},
+                                              {"warm_start_mult_bound_push", "1e-7"},
+                                              {"warm_start_slack_bound_frac", "0.1"}},
+                                             IpoptOptions());
+  EXPECT_EQ(o.warm_start_mu_init, 1e-5);
+  EXPECT_EQ(o.warm_start_bound_push, 1e-4);
+  EXPECT_EQ(o.warm_start_mult_bound_push, 1e-7);
+  ASSERT_EQ(o.extra.size(), 1u);  // the pass-through one
+  EXPECT_EQ(o.extra[0].name, "warm_start_slack_bound_frac");
+  for (const char* key :
+       {"warm_start_mu_init", "warm_start_bound_push", "warm_start_mult_bound_push"}) {
+    try {
+      IpoptOptions::Apply({{key, "0"}}, IpoptOptions());
+      ADD_FAILURE() << key << " = 0 accepted";
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(key), std::string::npos) << what;
+      EXPECT_NE(what.find("> 0"), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
 }
 
 TEST(IpoptOptions, ParsesEachTypeAndRejectsBadInput) {

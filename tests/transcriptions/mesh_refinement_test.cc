@@ -94,10 +94,11 @@ TEST(MeshRefinement, OptionsAreValidatedByTheSchema) {
   std::string why;
   EXPECT_FALSE(code.IsValid(&why));
   EXPECT_NE(why.find("mesh_max_nodes"), std::string::npos) << why;
-  // Schemes without an estimate do not take the options.
-  OptionMap lgr;
-  lgr.Set("mesh_tolerance", 1e-6);
-  EXPECT_THROW(FindTranscription("lgr").Configure(lgr), std::invalid_argument);
+  // Schemes without an estimate do not take the options (lgr's ph-refinement: its own test).
+  OptionMap on;
+  on.Set("mesh_tolerance", 1e-6);
+  EXPECT_THROW(FindTranscription("euler").Configure(on), std::invalid_argument);
+  EXPECT_THROW(FindTranscription("single-shooting").Configure(on), std::invalid_argument);
 }
 
 SolveRequest MeshRequest(const Ocp& ocp,
