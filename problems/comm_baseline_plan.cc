@@ -75,6 +75,7 @@ std::optional<ControlTrajectory> CommPath2d::BaselinePlan(const TimeGrid& grid,
   const double length = chord.norm();
   const std::optional<std::vector<double>> acc =
       BaselineAccelerations(length, grid.h(0), N, options_.umax, why_not);
+  if (!acc) return std::nullopt;  // (its reason kept: the rate's check would overwrite it)
   const std::optional<double> rate = BaselineRate(
       options_.bits, options_.bits_sent, options_.t0, options_.tf, options_.rmax, why_not);
   if (!acc || !rate) return std::nullopt;
@@ -93,6 +94,7 @@ std::optional<ControlTrajectory> CommFixedPath::BaselinePlan(const TimeGrid& gri
   const int N = grid.intervals();
   const std::optional<std::vector<double>> acc =
       BaselineAccelerations(path_->length(), grid.h(0), N, options_.umax, why_not);
+  if (!acc) return std::nullopt;  // (its reason kept: the rate's check would overwrite it)
   const std::optional<double> rate =
       BaselineRate(options_.bits, 0.0, 0.0, options_.tf, options_.rmax, why_not);
   if (!acc || !rate) return std::nullopt;

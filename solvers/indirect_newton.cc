@@ -313,7 +313,10 @@ class NewtonIteration {
       if (!Direction()) return;
       if (!LineSearch(residual)) return;
       stalled_steps_ = accepted_step_ <= IndirectNewtonOptions::kStallStep ? stalled_steps_ + 1 : 0;
-      if (o.stall_steps > 0 && stalled_steps_ >= o.stall_steps) {
+      // A short last step that lands within the tolerance is convergence (the loop's next
+      // turn reports it), not a stall.
+      if (o.stall_steps > 0 && stalled_steps_ >= o.stall_steps &&
+          F_.lpNorm<Eigen::Infinity>() > o.tolerance) {
         ++iterations_;
         rec.iteration = iterations_;
         rec.J = J_;
@@ -411,8 +414,9 @@ class NewtonIteration {
     if (!factored) {
       Stop(SolveStatus::kNumericalFailure,
            "singular_jacobian",
-           std::string(lu_name_) + " reports the Newton matrix singular at iterate " +
-               std::to_string(iterations_));
+           (riccati_ ? std::string("klu (the fallback where the Riccati sweep declined)")
+                     : std::string(lu_name_)) +
+               " reports the Newton matrix singular at iterate " + std::to_string(iterations_));
       return false;
     }
     t0 = CpuSeconds();

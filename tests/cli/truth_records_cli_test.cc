@@ -111,9 +111,10 @@ TEST(TruthRecords, AnOptimizedPlanAndAFixedPathCarryThemToo) {
     EXPECT_GT((*r)["energy_true"].get<double>(), (*r)["transmit_energy_true"].get<double>());
     EXPECT_GE((*r)["J_true"].get<double>(), (*r)["energy_true"].get<double>());
   }
-  // A path on the segment stays on it (to roundoff); the co-optimized one may leave it.
+  // A path on the segment stays on it (to roundoff); the co-optimized one leaves it (measured:
+  // 5.3e-3 m on this small channel), so the field measures the path, not the segment.
   EXPECT_LT(seg["max_distance_from_segment"].get<double>(), 1e-9);
-  EXPECT_GE(opt["max_distance_from_segment"].get<double>(), 0.0);
+  EXPECT_GT(opt["max_distance_from_segment"].get<double>(), 1e-4);
   // Problems without a truth have none of the fields.
   const json lqr = SolveTruthRecord(
       dir, "lqr.json", {"--problem", "lqr", "--solver", "ipopt", "--transcription", "euler"});
