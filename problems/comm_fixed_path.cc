@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/invalid.h"
+
 namespace ocpb {
 namespace {
 
@@ -107,17 +109,13 @@ void PlanarPath::Evaluate(double sigma,
 // ---- CommFixedPath ----------------------------------------------------------------------------
 
 bool CommFixedPath::Options::IsValid(std::string* error) const {
-  auto fail = [error](const std::string& why) {
-    if (error) *error = why;
-    return false;
-  };
-  if (!(bits >= 0.0) || !std::isfinite(bits)) return fail("c must be finite and >= 0");
-  if (!(tf > 0.0) || !std::isfinite(tf)) return fail("tf must be finite and > 0");
-  if (!(umax > 0.0) || !std::isfinite(umax)) return fail("umax must be finite and > 0");
-  if (!(rmax > 0.0) || !std::isfinite(rmax)) return fail("Rmax must be finite and > 0");
+  if (!(bits >= 0.0) || !std::isfinite(bits)) return Invalid(error, "c must be finite and >= 0");
+  if (!(tf > 0.0) || !std::isfinite(tf)) return Invalid(error, "tf must be finite and > 0");
+  if (!(umax > 0.0) || !std::isfinite(umax)) return Invalid(error, "umax must be finite and > 0");
+  if (!(rmax > 0.0) || !std::isfinite(rmax)) return Invalid(error, "Rmax must be finite and > 0");
   for (int i = 0; i < 3; ++i) {
     if (!(penalty[i] > 0.0) || !std::isfinite(penalty[i])) {
-      return fail(IndexedName("C", i + 1) + " must be finite and > 0");
+      return Invalid(error, IndexedName("C", i + 1) + " must be finite and > 0");
     }
   }
   return power.IsValid(error);

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/invalid.h"
 #include "problems/channel/channel_memory.h"
 #include "problems/channel/measurement_sampling.h"
 #include "problems/channel/paper_channel.h"
@@ -41,19 +42,17 @@ bool InSquare(const Eigen::Vector2d& q, double side) {
 double CommPowerModel::K() const { return -1.5 / std::log(5.0 * bit_error_rate); }
 
 bool CommPowerModel::IsValid(std::string* error) const {
-  auto fail = [error](const std::string& why) {
-    if (error) *error = why;
-    return false;
-  };
-  if (!(gamma > 0.0) || !std::isfinite(gamma)) return fail("gamma must be finite and > 0");
+  if (!(gamma > 0.0) || !std::isfinite(gamma)) {
+    return Invalid(error, "gamma must be finite and > 0");
+  }
   for (int i = 0; i < 6; ++i) {
     if (!(k[i] >= 0.0) || !std::isfinite(k[i])) {
-      return fail(Indexed("k", i + 1) + " must be finite and >= 0");
+      return Invalid(error, Indexed("k", i + 1) + " must be finite and >= 0");
     }
   }
-  if (!(eps > 0.0) || !std::isfinite(eps)) return fail("eps must be finite and > 0");
+  if (!(eps > 0.0) || !std::isfinite(eps)) return Invalid(error, "eps must be finite and > 0");
   if (!(bit_error_rate > 0.0 && bit_error_rate < 0.2)) {
-    return fail("pb (bit error rate) must lie in (0, 0.2) so that K > 0");
+    return Invalid(error, "pb (bit error rate) must lie in (0, 0.2) so that K > 0");
   }
   return true;
 }
@@ -168,29 +167,25 @@ std::string PathLossChannel::Describe() const {
 // ---- CommPath2d ---------------------------------------------------------------------------
 
 bool CommPath2d::Options::IsValid(std::string* error) const {
-  auto fail = [error](const std::string& why) {
-    if (error) *error = why;
-    return false;
-  };
-  if (!(workspace > 0.0)) return fail("workspace must be > 0");
+  if (!(workspace > 0.0)) return Invalid(error, "workspace must be > 0");
   if (!InSquare(start, workspace)) {
-    return fail("S must lie in the workspace [0, " + Str(workspace) + "]^2");
+    return Invalid(error, "S must lie in the workspace [0, " + Str(workspace) + "]^2");
   }
   if (!InSquare(destination, workspace)) {
-    return fail("D must lie in the workspace [0, " + Str(workspace) + "]^2");
+    return Invalid(error, "D must lie in the workspace [0, " + Str(workspace) + "]^2");
   }
-  if (!(bits >= 0.0) || !std::isfinite(bits)) return fail("c must be finite and >= 0");
-  if (!(tf > 0.0) || !std::isfinite(tf)) return fail("tf must be finite and > 0");
-  if (!(t0 >= 0.0) || !(t0 < tf)) return fail("t0 must satisfy 0 <= t0 < tf");
-  if (!v0.allFinite()) return fail("v0 must be finite");
+  if (!(bits >= 0.0) || !std::isfinite(bits)) return Invalid(error, "c must be finite and >= 0");
+  if (!(tf > 0.0) || !std::isfinite(tf)) return Invalid(error, "tf must be finite and > 0");
+  if (!(t0 >= 0.0) || !(t0 < tf)) return Invalid(error, "t0 must satisfy 0 <= t0 < tf");
+  if (!v0.allFinite()) return Invalid(error, "v0 must be finite");
   if (!(bits_sent >= 0.0) || !std::isfinite(bits_sent)) {
-    return fail("x3_0 (bits already sent) must be finite and >= 0");
+    return Invalid(error, "x3_0 (bits already sent) must be finite and >= 0");
   }
-  if (!(umax > 0.0) || !std::isfinite(umax)) return fail("umax must be finite and > 0");
-  if (!(rmax > 0.0) || !std::isfinite(rmax)) return fail("Rmax must be finite and > 0");
+  if (!(umax > 0.0) || !std::isfinite(umax)) return Invalid(error, "umax must be finite and > 0");
+  if (!(rmax > 0.0) || !std::isfinite(rmax)) return Invalid(error, "Rmax must be finite and > 0");
   for (int i = 0; i < 3; ++i) {
     if (!(penalty[i] > 0.0) || !std::isfinite(penalty[i])) {
-      return fail(Indexed("C", i + 1) + " must be finite and > 0");
+      return Invalid(error, Indexed("C", i + 1) + " must be finite and > 0");
     }
   }
   return power.IsValid(error);

@@ -1,4 +1,5 @@
 #include "solvers/augmented_lagrangian_loop.h"
+#include "core/invalid.h"
 #include "solvers/message_number.h"
 
 #include <algorithm>
@@ -17,27 +18,25 @@ double TerminalResidual(const Ocp& problem, ConstVecRef xN) {
 }  // namespace
 
 bool AugmentedLagrangianRule::IsValid(std::string* error) const {
-  auto fail = [error](const char* why) {
-    if (error) *error = why;
-    return false;
-  };
   if (!(initial_penalty > 0.0) || !std::isfinite(initial_penalty)) {
-    return fail("initial_penalty must be finite and > 0");
+    return Invalid(error, "initial_penalty must be finite and > 0");
   }
   if (!(penalty_growth > 1.0) || !std::isfinite(penalty_growth)) {
-    return fail("penalty_growth must be finite and > 1");
+    return Invalid(error, "penalty_growth must be finite and > 1");
   }
   if (!(max_penalty >= initial_penalty) || !std::isfinite(max_penalty)) {
-    return fail("max_penalty must be finite and >= initial_penalty");
+    return Invalid(error, "max_penalty must be finite and >= initial_penalty");
   }
-  if (!(initial_feasibility > 0.0)) return fail("initial_feasibility must be > 0");
-  if (!(feasibility_tolerance > 0.0)) return fail("feasibility_tolerance must be > 0");
-  if (!(initial_inner_tolerance > 0.0)) return fail("initial_inner_tolerance must be > 0");
+  if (!(initial_feasibility > 0.0)) return Invalid(error, "initial_feasibility must be > 0");
+  if (!(feasibility_tolerance > 0.0)) return Invalid(error, "feasibility_tolerance must be > 0");
+  if (!(initial_inner_tolerance > 0.0)) {
+    return Invalid(error, "initial_inner_tolerance must be > 0");
+  }
   if (!(final_inner_tolerance > 0.0 && final_inner_tolerance <= initial_inner_tolerance)) {
-    return fail("final_inner_tolerance must lie in (0, initial_inner_tolerance]");
+    return Invalid(error, "final_inner_tolerance must lie in (0, initial_inner_tolerance]");
   }
-  if (max_outer_iterations < 1) return fail("max_outer_iterations must be >= 1");
-  if (max_inner_iterations < 1) return fail("max_inner_iterations must be >= 1");
+  if (max_outer_iterations < 1) return Invalid(error, "max_outer_iterations must be >= 1");
+  if (max_inner_iterations < 1) return Invalid(error, "max_inner_iterations must be >= 1");
   return true;
 }
 

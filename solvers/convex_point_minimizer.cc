@@ -5,19 +5,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/invalid.h"
+
 namespace ocpb {
 
 bool ConvexPointMinimizerOptions::IsValid(std::string* error) const {
-  auto fail = [error](const char* why) {
-    if (error) *error = why;
-    return false;
-  };
-  if (max_iterations < 1) return fail("max_iterations must be >= 1");
+  if (max_iterations < 1) return Invalid(error, "max_iterations must be >= 1");
   if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
-    return fail("tolerance must be finite and > 0");
+    return Invalid(error, "tolerance must be finite and > 0");
   }
   if (!(sufficient_decrease > 0.0 && sufficient_decrease < 0.5)) {
-    return fail("sufficient_decrease must lie in (0, 0.5)");
+    return Invalid(error, "sufficient_decrease must lie in (0, 0.5)");
   }
   return true;
 }

@@ -1,4 +1,5 @@
 #include "solvers/descent_loop.h"
+#include "core/invalid.h"
 #include "solvers/message_number.h"
 
 #include <algorithm>
@@ -65,14 +66,14 @@ std::optional<DescentStop> StopTest(const DescentLoopOptions& opt,
 }  // namespace
 
 bool ProximalSchedule::IsValid(std::string* error) const {
-  auto fail = [error](const std::string& why) {
-    if (error) *error = why;
-    return false;
-  };
-  if (!(initial_eps > 0.0)) return fail("initial_eps must be > 0");
-  if (!(growth >= 1.0) || !std::isfinite(growth)) return fail("growth must be finite and >= 1");
-  if (!(min_eps > 0.0) || !std::isfinite(min_eps)) return fail("min_eps must be finite and > 0");
-  if (!(max_eps >= min_eps)) return fail("max_eps must be >= min_eps");
+  if (!(initial_eps > 0.0)) return Invalid(error, "initial_eps must be > 0");
+  if (!(growth >= 1.0) || !std::isfinite(growth)) {
+    return Invalid(error, "growth must be finite and >= 1");
+  }
+  if (!(min_eps > 0.0) || !std::isfinite(min_eps)) {
+    return Invalid(error, "min_eps must be finite and > 0");
+  }
+  if (!(max_eps >= min_eps)) return Invalid(error, "max_eps must be >= min_eps");
   return true;
 }
 

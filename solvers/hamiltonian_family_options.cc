@@ -6,6 +6,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "core/invalid.h"
 #include "core/option_binding.h"
 #include "solvers/hamiltonian_family.h"
 
@@ -309,12 +310,8 @@ bool HamiltonianFamilyOptions::IsValid(std::string* error) const {
            .Check(p, error)) {
     return false;
   }
-  auto fail = [error](const std::string& why) {
-    if (error) *error = why;
-    return false;
-  };
   std::string why;
-  if (!proximal.IsValid(&why)) return fail("proximal: " + why);
+  if (!proximal.IsValid(&why)) return Invalid(error, "proximal: " + why);
   if (!augmented_lagrangian.IsValid(&why)) {
     // The rule names its fields; the family's options are those names with "al_" before them.
     std::string named;
@@ -327,7 +324,7 @@ bool HamiltonianFamilyOptions::IsValid(std::string* error) const {
       }
       named += why[i];
     }
-    return fail("augmented-Lagrangian options: " + named);
+    return Invalid(error, "augmented-Lagrangian options: " + named);
   }
   return true;
 }

@@ -8,6 +8,7 @@
 
 #include "core/control_trajectory.h"
 #include "core/evaluator.h"
+#include "core/invalid.h"
 #include "core/timer.h"
 #include "problems/channel/measurement_sampling.h"
 #include "problems/comm_true_energy.h"
@@ -37,17 +38,13 @@ MeasurementPlacement MeasurementPlacementFromString(const std::string& name) {
 }
 
 bool OnlineReplanningOptions::IsValid(std::string* error) const {
-  auto fail = [error](const std::string& why) {
-    if (error) *error = why;
-    return false;
-  };
   if (!(update_period > 0.0) || !std::isfinite(update_period)) {
-    return fail("update_period: must be finite and > 0 (s)");
+    return Invalid(error, "update_period: must be finite and > 0 (s)");
   }
-  if (initial_measurements < 3) return fail("initial_measurements: must be >= 3");
-  if (measurements_per_update < 1) return fail("measurements_per_update: must be >= 1");
-  if (intervals < 1) return fail("N: must be >= 1");
-  if (solver.empty()) return fail("solver: required");
+  if (initial_measurements < 3) return Invalid(error, "initial_measurements: must be >= 3");
+  if (measurements_per_update < 1) return Invalid(error, "measurements_per_update: must be >= 1");
+  if (intervals < 1) return Invalid(error, "N: must be >= 1");
+  if (solver.empty()) return Invalid(error, "solver: required");
   return true;
 }
 

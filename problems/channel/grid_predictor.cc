@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/invalid.h"
 #include "core/timer.h"
 #include "problems/channel/fftw_planner.h"
 #include "problems/channel/shadowing_simulator.h"
@@ -28,17 +29,15 @@ const char* ToString(GridVarianceMethod method) {
 }
 
 bool GridPredictionOptions::IsValid(std::string* error) const {
-  auto fail = [error](const char* message) {
-    if (error != nullptr) *error = message;
-    return false;
-  };
   if (!(neighborhood_radius_in_eta > 0.0) || !std::isfinite(neighborhood_radius_in_eta)) {
-    return fail("neighborhood_radius_in_eta must be finite and > 0");
+    return Invalid(error, "neighborhood_radius_in_eta must be finite and > 0");
   }
-  if (tile_points < 2) return fail("tile_points must be >= 2");
-  if (far_field_order < 4) return fail("far_field_order must be >= 4");
-  if (num_threads < 0) return fail("num_threads must be >= 0");
-  if (min_fft_nx < 0 || min_fft_ny < 0) return fail("min_fft_nx and min_fft_ny must be >= 0");
+  if (tile_points < 2) return Invalid(error, "tile_points must be >= 2");
+  if (far_field_order < 4) return Invalid(error, "far_field_order must be >= 4");
+  if (num_threads < 0) return Invalid(error, "num_threads must be >= 0");
+  if (min_fft_nx < 0 || min_fft_ny < 0) {
+    return Invalid(error, "min_fft_nx and min_fft_ny must be >= 0");
+  }
   return true;
 }
 

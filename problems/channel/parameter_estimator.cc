@@ -5,23 +5,26 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/invalid.h"
 #include "problems/channel/likelihood_estimator.h"
 
 namespace ocpb {
 
 bool EstimationOptions::IsValid(std::string* error) const {
-  auto fail = [error](const char* message) {
-    if (error != nullptr) *error = message;
-    return false;
-  };
-  if (!(bin_width > 0.0) || !std::isfinite(bin_width)) return fail("bin_width must be > 0");
-  if (min_pairs < 1) return fail("min_pairs must be >= 1");
-  if (!(max_lag > bin_width) || !std::isfinite(max_lag)) return fail("max_lag must be > bin_width");
-  if (!(xi2_max > 0.0) || !std::isfinite(xi2_max)) return fail("xi2_max must be > 0");
-  if (!(eta_min > 0.0) || !(eta_max > eta_min) || !std::isfinite(eta_max)) {
-    return fail("need 0 < eta_min < eta_max");
+  if (!(bin_width > 0.0) || !std::isfinite(bin_width)) {
+    return Invalid(error, "bin_width must be > 0");
   }
-  if (!(rho2_floor > 0.0) || !std::isfinite(rho2_floor)) return fail("rho2_floor must be > 0");
+  if (min_pairs < 1) return Invalid(error, "min_pairs must be >= 1");
+  if (!(max_lag > bin_width) || !std::isfinite(max_lag)) {
+    return Invalid(error, "max_lag must be > bin_width");
+  }
+  if (!(xi2_max > 0.0) || !std::isfinite(xi2_max)) return Invalid(error, "xi2_max must be > 0");
+  if (!(eta_min > 0.0) || !(eta_max > eta_min) || !std::isfinite(eta_max)) {
+    return Invalid(error, "need 0 < eta_min < eta_max");
+  }
+  if (!(rho2_floor > 0.0) || !std::isfinite(rho2_floor)) {
+    return Invalid(error, "rho2_floor must be > 0");
+  }
   return true;
 }
 
