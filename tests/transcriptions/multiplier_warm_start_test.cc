@@ -182,7 +182,9 @@ TEST_P(MultiplierMapUnderRefinement, ApproachesTheRefinedMeshsOptimum) {
   for (int N = c.degree >= 5 ? 4 : 8; N <= (c.degree >= 5 ? 32 : 64); N *= 2) {
     errors.push_back(MappedDefectError(*ocp, c, N));
     ASSERT_TRUE(std::isfinite(errors.back()));
-    if (errors.size() > 1) EXPECT_LT(errors.back(), errors[errors.size() - 2]) << N;
+    if (errors.size() > 1) {
+      EXPECT_LT(errors.back(), errors[errors.size() - 2]) << N;
+    }
   }
   const double slope = std::log2(errors[errors.size() - 2] / errors.back());
   EXPECT_GT(slope, q - 0.2) << "errors " << errors[0] << " ... " << errors.back();
