@@ -10,8 +10,8 @@
 #include "core/solve_result.h"
 #include "core/time_grid.h"
 #include "core/types.h"
-#include "problems/comm_path2d.h"
 #include "drivers/online/online_channel.h"
+#include "problems/comm_path2d.h"
 
 namespace ocpb {
 
@@ -118,8 +118,9 @@ struct OnlineResult {
 /// the transmit power the real channel needs for the planned rate (OnlineChannel::TrueQuality),
 /// next to what the planner predicted for the same steps. Both runs (online, offline) are judged
 /// this way on the same realization, by ExecuteCommPlan (problems/comm_true_energy.h): the one
-/// mechanism that also judges offline records on the true channel (ProblemInfo::judge_on_truth). `seed` chooses the measurement draws: RandomStream(seed,
-/// 100 + cycle index). The channel must be fresh (no measurements yet).
+/// mechanism that also judges offline records on the true channel (ProblemInfo::judge_on_truth).
+/// `seed` chooses the measurement draws: RandomStream(seed, 100 + cycle index). The channel must be
+/// fresh (no measurements yet).
 ///
 /// Throws std::invalid_argument on invalid options (including an update period that is not a
 /// multiple of h, an unknown solver or invalid solver options); a solver failure ends nothing:
