@@ -28,7 +28,6 @@ the seeds on which it found that plan (predicted energy within 1e-5 relative: Ip
 leaves about 1e-6). Needs numpy and matplotlib only.
 """
 
-import json
 import math
 import os
 import sys
@@ -37,14 +36,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from figure_io import save_figure  # noqa: E402
-
-def load(path):
-    rows = []
-    with open(path) as f:
-        for line in f:
-            if line.strip():
-                rows.append(json.loads(line))
-    return rows
+from records_io import load_records  # noqa: E402
 
 
 def finite(x):
@@ -89,7 +81,7 @@ def choose(records):
 
 def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else "results/regime-offline"
-    records = load(os.path.join(folder, "records.jsonl"))
+    records = load_records(os.path.join(folder, "records.jsonl"))
     by_point = {}
     for r in records:
         plan = plan_of(r)

@@ -25,7 +25,6 @@ with repairing a failed solve. Needs numpy and
 matplotlib only.
 """
 
-import json
 import math
 import os
 import sys
@@ -34,15 +33,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from figure_io import save_figure  # noqa: E402
+from records_io import load_records  # noqa: E402
 
-
-def load(path):
-    rows = []
-    with open(path) as f:
-        for line in f:
-            if line.strip():
-                rows.append(json.loads(line))
-    return rows
 
 
 def quantiles(values):
@@ -52,7 +44,7 @@ def quantiles(values):
 
 def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else "results/regime-online"
-    records = load(os.path.join(folder, "records.jsonl"))
+    records = load_records(os.path.join(folder, "records.jsonl"))
     cells = {}
     failed_offline = {}
     skipped = 0
