@@ -126,6 +126,8 @@ void HamiltonianFamily::Polish(const Options& o,
   no.tolerance = o.newton_tolerance;
   no.linear_solver = o.newton_linear_solver;
   no.stall_steps = o.newton_stall_steps;
+  no.backtrack = o.newton_backtrack;
+  no.sufficient_decrease = o.newton_sufficient_decrease;
   no.path_penalty = o.path_penalty;  // SolveFrom resolves the same reformulation
   no.regularization = o.regularization;
   int descent_iterations = static_cast<int>(stats["descent_iterations"]);

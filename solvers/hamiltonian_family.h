@@ -73,6 +73,13 @@ struct HamiltonianFamilyOptions {
   /// steps in a row of length <= 1/256, and the descent continues (>= 0; 0: off). Key
   /// "newton_stall_steps".
   int newton_stall_steps = 0;
+  /// Newton's backtracking line search on 1/2 ||F||^2 (IndirectNewtonOptions::backtrack and
+  /// sufficient_decrease: steps 1, b, b^2, ... until the Armijo test with constant c holds). Keys
+  /// "newton_backtrack" (in (0, 1), default 0.5) and "newton_sufficient_decrease" (in (0, 1/2),
+  /// default 1e-4). Other values were measured on comm-path2d and not adopted: the semismooth
+  /// path is chaotic in them (solvers/README-family.md).
+  double newton_backtrack = 0.5;
+  double newton_sufficient_decrease = 1e-4;
   IndirectNewtonOptions::LinearSolver newton_linear_solver =
       IndirectNewtonOptions::LinearSolver::kRiccati;
   /// Newton attempts at most (>= 1). When Newton does not converge, the descent continues from

@@ -201,6 +201,14 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
             "polish: an attempt ends after this many Newton steps in a row of length <= 1/256 "
             "(0: off)",
             OptionBounds::AtLeast(0));
+  t.Number("newton_backtrack",
+           &O::newton_backtrack,
+           "polish: Newton's line search tries steps 1, b, b^2, ... (b this)",
+           OptionBounds::Open(0, 1));
+  t.Number("newton_sufficient_decrease",
+           &O::newton_sufficient_decrease,
+           "polish: Armijo constant c of Newton's merit 1/2 ||F||^2",
+           OptionBounds::Open(0, 0.5));
   t.template Enum<IndirectNewtonOptions::LinearSolver>(
       "newton_linear_solver",
       &O::newton_linear_solver,

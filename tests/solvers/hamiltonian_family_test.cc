@@ -7,6 +7,8 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -495,6 +497,47 @@ TEST(Polish, StalledNewtonAttemptHandsBackToTheDescent) {
   std::string error;
   EXPECT_FALSE(bad.IsValid(&error));
   EXPECT_NE(error.find("newton_stall_steps"), std::string::npos) << error;
+}
+
+// newton_backtrack reaches Newton's line search: with another backtracking factor the Newton
+// rows agree up to the first step that backtracked, and that step lands elsewhere (its J
+// differs). Out-of-range values of it and of newton_sufficient_decrease are rejected, naming
+// the key.
+TEST(Polish, LineSearchOptionsReachNewton) {
+  const auto ocp = MakeProblem("comm-path2d", {"channel=0", "gamma=1e-4"}, 1);
+  Options o = HamiltonianFamily::Polished();
+  const SolveRequest request = FamilyRequest(*ocp, 100, TerminalMode::kHard);
+  const SolveResult halving = HamiltonianFamily(o).Solve(*ocp, request);
+  o.newton_backtrack = 0.25;
+  const SolveResult quartering = HamiltonianFamily(o).Solve(*ocp, request);
+  const int first_newton = static_cast<int>(Stat(halving, "descent_iterations")) + 1;
+  int backtracked = -1;
+  for (int i = first_newton; i < static_cast<int>(halving.history.size()); ++i) {
+    if (halving.history[i].armijo_j > 0) {
+      backtracked = i;
+      break;
+    }
+  }
+  ASSERT_GT(backtracked, first_newton) << "no backtracked Newton step to compare";
+  ASSERT_GT(static_cast<int>(quartering.history.size()), backtracked);
+  for (int i = first_newton; i < backtracked; ++i) {
+    EXPECT_EQ(halving.history[i].J, quartering.history[i].J) << i;
+  }
+  EXPECT_NE(halving.history[backtracked].J, quartering.history[backtracked].J);
+
+  for (const auto& [key, value] :
+       std::vector<std::pair<std::string, double>>{{"newton_backtrack", 1.0},
+                                                   {"newton_backtrack", 0.0},
+                                                   {"newton_sufficient_decrease", 0.5}}) {
+    OptionMap bad;
+    bad.Set(key, value);
+    try {
+      HamiltonianFamily::ApplyOptions(HamiltonianFamily::Preset::kPolish, bad, o);
+      ADD_FAILURE() << key << " = " << value << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
 }
 
 // The polish reports both phases.
