@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/discrete_ocp.h"
+#include "solvers/constant_costate_start.h"
 #include "solvers/euler_costate_fit.h"
 #include "solvers/hamiltonian_target.h"
 #include "solvers/indirect_newton.h"
@@ -139,9 +140,15 @@ void HamiltonianFamily::Polish(const Options& o,
     SolveRequest newton_request;
     newton_request.grid = passes->grid();
     newton_request.terminal = request.terminal;
-    const Mat P =
-        FitEulerCostates(problem, passes->grid(), request.terminal, passes->U(), passes->X());
-    const SolveResult n = IndirectNewton(no).SolveFrom(original, newton_request, passes->X(), P);
+    Mat X = passes->X();
+    Mat P = FitEulerCostates(problem, passes->grid(), request.terminal, passes->U(), X);
+    if (o.polish_constant_costate_start) {
+      const ConstantCostateStartOutcome start =
+          ConstantCostateStart(problem, passes->grid(), request.terminal, passes->U(), &X, &P);
+      stats["start_constant_costates"] = start.solved;
+      stats["start_constant_costate_evaluations"] += start.evaluations;
+    }
+    const SolveResult n = IndirectNewton(no).SolveFrom(original, newton_request, X, P);
     newton_cpu += clock.cpu() - cpu0;
     newton_iterations += n.iterations;
     const int offset = static_cast<int>(r->history.size());

@@ -88,6 +88,18 @@ struct HamiltonianFamilyOptions {
   /// (comm-path2d, hard form, gamma = 1e-5: a start from 250 descent steps fails on some channel
   /// seeds and a later one converges; solvers/README-family.md). 6 attempts: up to 8000 steps.
   int polish_attempts = 6;
+  /// Before each Newton attempt, the costate of every integrator state (a state no dynamics and
+  /// no running cost depend on, such as comm-path2d's bits) is set to the constant that meets
+  /// that state's terminal condition with the other states and costates held, and the state's
+  /// row to its Euler trajectory under the resulting u* (ConstantCostateStart; on comm-path2d:
+  /// the bit budget's water-filling along the descent's path). Exact for the Euler maximum
+  /// principle (such a costate is constant there); skipped where no component qualifies or no
+  /// root is bracketed. solver_stats "start_constant_costates" (components set, last attempt)
+  /// and "start_constant_costate_evaluations" (scalar equation evaluations, all attempts). Key
+  /// "polish_constant_costate_start". Off by default: on comm-path2d's hard form it makes Newton
+  /// slower at every gamma <= 1e-3 (the descent's path is far from the optimum's, and the
+  /// budget's costate on that path is 30x the optimum's; solvers/README-family.md).
+  bool polish_constant_costate_start = false;
 
   bool IsValid(std::string* error) const;
 };
@@ -126,7 +138,8 @@ struct HamiltonianFamilyOptions {
 /// "terminal_residual", "path_violation", "penalty", "nu_<i>" (the final terminal multipliers,
 /// those of psi_i = 0 in the Lagrangian J + nu^T psi); free time: "final_time", "dJdT"; polish:
 /// "newton_iterations", "newton_cpu_seconds", "newton_residual_inf" and Newton's own stats prefixed
-/// "newton_".
+/// "newton_"; with polish_constant_costate_start "start_constant_costates" and
+/// "start_constant_costate_evaluations".
 ///
 /// Not applicable (kNotApplicable, reason in `message`): no Hamiltonian minimizer; path
 /// constraints left after the choice of `path`; a free final time with RK4; a polish with path

@@ -220,6 +220,10 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
             &O::polish_attempts,
             "polish: Newton attempts at most (the descent continues between them)",
             OptionBounds::AtLeast(1));
+  t.Bool("polish_constant_costate_start",
+         &O::polish_constant_costate_start,
+         "polish: start Newton with each integrator state's costate constant, solved from that "
+         "state's terminal condition");
   return t;
 }
 
