@@ -66,6 +66,21 @@ void BM_HardFormFamilyPolish(benchmark::State& state) {
   Report(state, ocp, r);
 }
 
+// The same with the constant-costate start (polish_constant_costate_start, off by default), so
+// that both starts compare in one run.
+void BM_HardFormFamilyPolishConstantCostate(benchmark::State& state) {
+  const Ocp& ocp = *Problem(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const HamiltonianFamily solver(HamiltonianFamily::Preset::kPolish);
+  SolveRequest request = HardRequest(ocp);
+  request.options = {{"polish_constant_costate_start", "true"}};
+  SolveResult r;
+  for (auto _ : state) {
+    r = solver.Solve(ocp, request);
+    benchmark::DoNotOptimize(r.history.data());
+  }
+  Report(state, ocp, r);
+}
+
 void BM_HardFormIpoptEuler(benchmark::State& state) {
   const Ocp& ocp = *Problem(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   SolveRequest request = HardRequest(ocp);
@@ -88,6 +103,7 @@ void Arguments(benchmark::internal::Benchmark* b) {
 }
 
 BENCHMARK(BM_HardFormFamilyPolish)->Apply(Arguments);
+BENCHMARK(BM_HardFormFamilyPolishConstantCostate)->Apply(Arguments);
 BENCHMARK(BM_HardFormIpoptEuler)->Apply(Arguments);
 
 }  // namespace
