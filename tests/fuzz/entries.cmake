@@ -15,4 +15,5 @@ foreach(target IN LISTS OCPB_FUZZ_TARGETS)
   # All of OCPBench (ocpb_cli and what it links): one link line for every entry.
   target_link_libraries(${target}_fuzz_entry PUBLIC ocpb_cli)
   ocpb_set_warnings(${target}_fuzz_entry)
+  ocpb_fuzz_coverage(${target}_fuzz_entry)
 endforeach()
