@@ -10,6 +10,7 @@
 #include "core/evaluator.h"
 #include "problems/comm_path2d.h"
 #include "problems/registry.h"
+#include "tests/online/small_online_problem.h"
 
 namespace ocpb {
 namespace {
@@ -17,16 +18,6 @@ namespace {
 // A small scenario (fast under ASan): a 25 m workspace simulated at 0.25 m, tf = 20 s, N = 100
 // (h = 0.2 s), updates every 5 s (4 cycles), 60 + 3 x 30 measurements (the paper's density of
 // 100 per 2500 m^2 would leave the estimator too few lag pairs here).
-CommPath2d::Options SmallProblem() {
-  CommPath2d::Options o;
-  o.start = Eigen::Vector2d(20.0, 20.0);
-  o.destination = Eigen::Vector2d(10.0, 5.0);
-  o.bits = 75.0;
-  o.tf = 20.0;
-  o.workspace = 25.0;
-  return o;
-}
-
 OnlineChannelOptions SmallChannel() {
   OnlineChannelOptions c;
   c.simulation.grid = GridSpec::Workspace(25.0, 25.0, 0.25);
@@ -58,7 +49,7 @@ OnlineResult RunSmall(const OnlineReplanningOptions& r,
   static thread_local std::unique_ptr<OnlineChannel> channel;
   channel = std::make_unique<OnlineChannel>(seed, c);
   if (keep) *keep = channel.get();
-  return RunOnlineReplanning(SmallProblem(), channel.get(), seed, r);
+  return RunOnlineReplanning(testing::SmallOnlineProblem(), channel.get(), seed, r);
 }
 
 TEST(OnlineReplanning, EnergyBookkeepingAndExecution) {

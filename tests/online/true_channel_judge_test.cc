@@ -11,6 +11,7 @@
 #include "problems/comm_path2d.h"
 #include "problems/comm_true_energy.h"
 #include "problems/registry.h"
+#include "tests/online/small_online_problem.h"
 
 namespace ocpb {
 namespace {
@@ -19,16 +20,6 @@ namespace {
 // comm-path2d parameters that describe the same problem and channel realization.
 const std::vector<std::string> kSmallSet = {
     "S=20,20", "D=10,5", "c=75", "tf=20", "workspace=25", "grid_step=0.25", "samples=100"};
-
-CommPath2d::Options JudgeSmallProblem() {
-  CommPath2d::Options o;
-  o.start = Eigen::Vector2d(20.0, 20.0);
-  o.destination = Eigen::Vector2d(10.0, 5.0);
-  o.bits = 75.0;
-  o.tf = 20.0;
-  o.workspace = 25.0;
-  return o;
-}
 
 TEST(TrueChannelJudge, TheCommProblemsTruthIsTheOnlineDriversRealization) {
   // The truth needs the parameters only (no prediction: 100 samples do not always estimate).
@@ -68,7 +59,7 @@ TEST(TrueChannelJudge, AnOfflinePlansTrueEnergyIsTheOnlineDriversOfflineEnergy) 
   r.solver = "hamiltonian";
   r.offline_options = {{"max_iterations", "100"}};
   r.replan_options = {{"max_iterations", "10"}};
-  const OnlineResult online = RunOnlineReplanning(JudgeSmallProblem(), &channel, seed, r);
+  const OnlineResult online = RunOnlineReplanning(testing::SmallOnlineProblem(), &channel, seed, r);
 
   // The offline plan judged as an offline record's controls are: by the problem's registry
   // entry, on the problem built for that seed (its own prediction differs; the truth does not).

@@ -59,7 +59,8 @@ TEST(HamiltonianDescentOptions, DefaultsAreThePapersAndValid) {
 }
 
 TEST(HamiltonianDescentOptions, IsValidRejectsEachBadField) {
-  auto invalid = [](auto mutate, const char* field) {
+  // One function for every case (a function pointer, not a template per lambda).
+  auto invalid = [](void (*mutate)(HamiltonianDescent::Options&), const char* field) {
     HamiltonianDescent::Options o;
     mutate(o);
     std::string error;
