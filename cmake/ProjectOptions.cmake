@@ -3,14 +3,23 @@ function(ocpb_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Werror)
 endfunction()
 
-# With OCPB_FUZZ, libFuzzer's coverage instrumentation (-fsanitize=fuzzer-no-link) on the code the
-# fuzz targets explore: the parsers of suites, records, initial guesses and measurement files, and
-# the option schemas they validate against (ocpb_core, ocpb_channel, ocpb_cli, the fuzz entries).
-# Not on the numerical libraries nor on the tests: the fuzzers' inputs do not reach that code,
-# and its comparison callbacks cost a tenth of those objects' compile time and slow every test.
+# With OCPB_FUZZ, libFuzzer's coverage instrumentation on the libraries the fuzz targets run.
+# ocpb_fuzz_coverage(target): all of it (-fsanitize=fuzzer-no-link: edge counters, indirect calls
+# and the comparison callbacks that guide mutations towards the values a parser tests), for the
+# parsers of suites, records, initial guesses and measurement files and the option schemas
+# (ocpb_core, ocpb_channel, ocpb_cli, the fuzz entries). ocpb_fuzz_edges(target): edge counters
+# only, for the problem, solver, transcription and online libraries, whose registries, option
+# checks and problem constructors the suite fuzzer also runs: with the comparison callbacks in
+# their numerical loops, tests that run them took 1.5-1.75x the CPU; the counters alone cost the
+# whole test run 2 % (ctest 163 -> 167 s). Not on the tests (the fuzzers do not run them).
 function(ocpb_fuzz_coverage target)
   if(OCPB_FUZZ)
     target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
+  endif()
+endfunction()
+function(ocpb_fuzz_edges target)
+  if(OCPB_FUZZ)
+    target_compile_options(${target} PRIVATE -fsanitize-coverage=inline-8bit-counters,pc-table)
   endif()
 endfunction()
 
@@ -28,7 +37,8 @@ endfunction()
 # registered with CTest, each test with the given CTest properties (for example an ENVIRONMENT or
 # a fixture). UNOPTIMIZED: in a Debug build (the sanitizer preset, -O1 elsewhere) the test files
 # are compiled at -O0. For binaries whose tests drive programs, parse and compare rather than
-# compute (the libraries they call stay at -O1): measured on cli_test, transcriptions_test,
+# compute (the libraries' own functions stay at -O1; an inline or template function both compile
+# may be linked as the test file's -O0 copy, which the measurement includes): measured on cli_test, transcriptions_test,
 # core_test and online_replanning_test together, about 145 s less compile CPU and the same test
 # time (60 s); solvers_test, problems_test and channel_test compute in their own files and ran
 # 1.3-3.2x longer at -O0, more than they save (README, Build times).
