@@ -21,7 +21,7 @@ using nlohmann::json;
 using testing::ProgramRun;
 using testing::RunOcpbenchProgram;
 
-std::vector<std::string> Small(std::vector<std::string> more = {}) {
+std::vector<std::string> ChannelArgs(std::vector<std::string> more = {}) {
   std::vector<std::string> args = {
       "channel", "predict", "--width", "12", "--height", "12", "--resolution", "0.25"};
   args.insert(args.end(), more.begin(), more.end());
@@ -60,7 +60,7 @@ TEST(ChannelCli, PredictJsonContractAndFiles) {
   const std::string dir = testing::FreshDirectory("channel_predict");
   const std::string path = dir + "/report.json";
   const ProgramRun run = RunOcpbenchProgram(
-      Small({"--samples", "150", "--seed", "3", "--json", path, "--out", dir + "/maps"}));
+      ChannelArgs({"--samples", "150", "--seed", "3", "--json", path, "--out", dir + "/maps"}));
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("channel predict: seed 3, 150 samples, 2304 points"), std::string::npos)
       << run.out;
@@ -111,8 +111,8 @@ TEST(ChannelCli, PredictJsonContractAndFiles) {
 
   // Maximum likelihood on the same samples: another estimate, recorded as such; the same grid.
   const std::string ml = dir + "/ml.json";
-  const ProgramRun b = RunOcpbenchProgram(
-      Small({"--samples", "150", "--seed", "3", "--estimator", "ml", "--no-files", "--json", ml}));
+  const ProgramRun b = RunOcpbenchProgram(ChannelArgs(
+      {"--samples", "150", "--seed", "3", "--estimator", "ml", "--no-files", "--json", ml}));
   ASSERT_EQ(b.exit_code, 0) << b.err;
   const json jb = json::parse(testing::ReadText(ml));
   EXPECT_EQ(jb["estimation"]["estimator"], "ml");
@@ -128,22 +128,23 @@ TEST(ChannelCli, BadInputsExitTwoWithOneLine) {
   const std::string few = dir + "/few.csv";
   testing::WriteText(few, "x_m,y_m,gain_db\n1,1,-70\n2,2,-72\n");
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
-      {Small({"--samples", "2"}), "--samples must be >= 3"},
-      {Small({"--samples", "5000"}), "--samples: 5000 measurements need 10000 grid points"},
+      {ChannelArgs({"--samples", "2"}), "--samples must be >= 3"},
+      {ChannelArgs({"--samples", "5000"}), "--samples: 5000 measurements need 10000 grid points"},
       // Coincident positions reach the predictor with the true parameters (--oracle) or with
       // maximum likelihood; the binned fit already fails on 4 measurements (too few pairs).
-      {Small({"--measurements", coincident, "--oracle"}), "coincides with"},
-      {Small({"--measurements", coincident, "--estimator", "ml"}), "coincides with"},
-      {Small({"--measurements", coincident}), "distance bins"},
-      {Small({"--measurements", few}), "at least 3"},
-      {Small({"--measurements", dir + "/missing.csv"}), "missing.csv"},
-      {Small({"--estimator", "median"}), "unknown estimator 'median' (valid: binned, ml, reml)"},
-      {Small({"--variance", "approximate"}), "--variance"},
-      {Small({"--map-quantity", "log"}), "map quantity"},
-      {Small({"--multipath", "rayleigh"}), "multipath"},
-      {Small({"--check-points", "-1"}), "--check-points"},
-      {Small({"--eta", "0"}), "eta"},
-      {Small({"--samples", "many"}), "--samples"},
+      {ChannelArgs({"--measurements", coincident, "--oracle"}), "coincides with"},
+      {ChannelArgs({"--measurements", coincident, "--estimator", "ml"}), "coincides with"},
+      {ChannelArgs({"--measurements", coincident}), "distance bins"},
+      {ChannelArgs({"--measurements", few}), "at least 3"},
+      {ChannelArgs({"--measurements", dir + "/missing.csv"}), "missing.csv"},
+      {ChannelArgs({"--estimator", "median"}),
+       "unknown estimator 'median' (valid: binned, ml, reml)"},
+      {ChannelArgs({"--variance", "approximate"}), "--variance"},
+      {ChannelArgs({"--map-quantity", "log"}), "map quantity"},
+      {ChannelArgs({"--multipath", "rayleigh"}), "multipath"},
+      {ChannelArgs({"--check-points", "-1"}), "--check-points"},
+      {ChannelArgs({"--eta", "0"}), "eta"},
+      {ChannelArgs({"--samples", "many"}), "--samples"},
       {{"channel", "predict", "--resolution", "0"}, "resolution"},
       {{"channel", "simulate", "--width", "12", "--height", "12", "--rician-k", "0"}, "Rician"},
       {{"channel"}, "A subcommand is required"},

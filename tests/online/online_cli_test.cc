@@ -15,7 +15,7 @@ using testing::ProgramRun;
 using testing::RunOcpbenchProgram;
 
 // The small scenario of online_replanning_test.cc, as flags.
-std::vector<std::string> Small(const std::string& solver) {
+std::vector<std::string> OnlineArgs(const std::string& solver) {
   // clang-format off
   return {"online", "--problem", "comm-path2d", "--solver", solver, "--seed", "4",
           "--workspace", "25", "--truth-resolution", "0.25",
@@ -29,9 +29,9 @@ std::vector<std::string> With(std::vector<std::string> args, const std::vector<s
   return args;
 }
 
-// Small(solver) with the value of `flag` replaced.
+// OnlineArgs(solver) with the value of `flag` replaced.
 std::vector<std::string> Changed(const std::string& flag, const std::string& value) {
-  std::vector<std::string> args = Small("hamiltonian");
+  std::vector<std::string> args = OnlineArgs("hamiltonian");
   const auto it = std::find(args.begin(), args.end(), flag);
   if (it == args.end()) return With(args, {flag, value});
   *(it + 1) = value;
@@ -47,7 +47,7 @@ TEST(OnlineCli, JsonRecordHasTheContractFields) {
   for (const std::string solver : {"hamiltonian", "ipopt"}) {
     const std::string path = dir + "/" + solver + ".json";
     const ProgramRun run = RunOcpbenchProgram(With(
-        Small(solver),
+        OnlineArgs(solver),
         {"--option", solver == "ipopt" ? "max_iter=200" : "max_iterations=100", "--json", path}));
     ASSERT_EQ(run.exit_code, 0) << run.err;
     EXPECT_NE(run.out.find("online / offline true energy"), std::string::npos) << run.out;
@@ -95,13 +95,13 @@ TEST(OnlineCli, BadInputsExitTwoWithOneLine) {
       {Changed("--period", "0.3"), "multiple of the step"},
       {Changed("--per-update", "0"), "measurements_per_update"},
       {Changed("--initial-measurements", "2"), "initial_measurements"},
-      {With(Small("hamiltonian"), {"--placement", "everywhere"}), "placement"},
-      {With(Small("hamiltonian"), {"--estimator", "median"}),
+      {With(OnlineArgs("hamiltonian"), {"--placement", "everywhere"}), "placement"},
+      {With(OnlineArgs("hamiltonian"), {"--estimator", "median"}),
        "online option 'estimator': must be one of: binned, ml, reml (got 'median')"},
-      {With(Small("hamiltonian"), {"--set", "samples=50"}), "samples"},
-      {With(Small("hamiltonian"), {"--set", "base=45,45"}),
+      {With(OnlineArgs("hamiltonian"), {"--set", "samples=50"}), "samples"},
+      {With(OnlineArgs("hamiltonian"), {"--set", "base=45,45"}),
        "base: (45, 45) lies outside the workspace [0, 25]^2"},
-      {With(Small("hamiltonian"), {"--replan-option", "bogus=1"}), "bogus"},
+      {With(OnlineArgs("hamiltonian"), {"--replan-option", "bogus=1"}), "bogus"},
       {Changed("--per-update", "5000"), "measurements in all"},
       {{"online", "--problem", "double-integrator", "--solver", "hamiltonian"}, "comm-path2d"},
   };
