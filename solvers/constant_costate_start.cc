@@ -24,7 +24,8 @@ std::vector<int> IntegratorComponents(const Ocp& ocp,
     ocp.DynamicsJacobian(grid.t(k), X.col(k), U.col(k), f, fx, fu);
     ocp.RunningCostGradient(grid.t(k), X.col(k), U.col(k), &L, Lx, Lu);
     for (int i = 0; i < nx; ++i) {
-      if (Lx[i] != 0.0 || fx.col(i).cwiseAbs().maxCoeff() != 0.0) zero[i] = false;
+      // Written so that a NaN entry counts as nonzero.
+      if (!(Lx[i] == 0.0) || (fx.col(i).array() != 0.0).any()) zero[i] = false;
     }
   }
   std::vector<int> components;
@@ -107,6 +108,7 @@ class TerminalEquation {
 struct Root {
   double c = NAN;
   Vec xi;
+  double residual = INFINITY;  ///< |g(c)|
 };
 
 // A bracket [a, b] with g(a) g(b) <= 0, searched outwards from c0 in both directions by steps
@@ -148,7 +150,7 @@ Root Refine(TerminalEquation& g, double a, double ga, double b, double gb, doubl
     if (!std::isfinite(c) || c <= std::min(a, b) || c >= std::max(a, b)) c = 0.5 * (a + b);
     const double gc = g(c, &xi);
     if (!std::isfinite(gc)) return best;
-    if (std::abs(gc) < g_best) g_best = std::abs(gc), best.c = c, best.xi = xi;
+    if (std::abs(gc) < g_best) g_best = std::abs(gc), best = {c, xi, g_best};
     if (std::abs(gc) <= tolerance) break;
     if ((gc <= 0.0) == (ga <= 0.0)) {
       a = c, ga = gc;
@@ -193,13 +195,16 @@ ConstantCostateStartOutcome ConstantCostateStart(
     const double tolerance = 1e-13 * scale;
     Root root;
     if (std::isfinite(g0) && std::abs(g0) <= tolerance) {
-      root = {c0, xi};
+      root = {c0, xi, std::abs(g0)};
     } else if (double a, ga, b, gb; std::isfinite(g0) && Bracket(g, c0, g0, &a, &ga, &b, &gb)) {
-      root = gb == 0.0 ? Root{b, Vec()} : Refine(g, a, ga, b, gb, tolerance);
+      root = gb == 0.0 ? Root{b, Vec(), 0.0} : Refine(g, a, ga, b, gb, tolerance);
       if (gb == 0.0) g(b, &root.xi);
     }
     outcome.evaluations += g.evaluations();
-    if (!std::isfinite(root.c)) continue;
+    // Applied only where the equation holds: a bracket can also close on a jump of g (a
+    // clipped or bang-bang control in f_i), whose best point solves nothing. 1e-9 of the scale
+    // leaves room for the last digits regula falsi cannot resolve.
+    if (!std::isfinite(root.c) || !(root.residual <= 1e-9 * scale)) continue;
     P->row(i).setConstant(root.c);
     X->row(i) = root.xi.transpose();
     ++outcome.solved;

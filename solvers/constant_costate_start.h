@@ -36,7 +36,9 @@ struct ConstantCostateStartOutcome {
 /// vanish (the other rows are left as given: u* and hence L_x may have changed). Components are
 /// solved one after the other, each with the previous ones' new rows. A component whose equation
 /// already holds at c0 (to 1e-13 of its scale) keeps c0 and gets its state row; one whose equation
-/// has no bracket (within 4^30 |c0|; e.g. f_i does not depend on u) is left unchanged. Throws
+/// has no bracket (within 4^29 |c0|, |c0| read as 1 when c0 = 0; e.g. f_i does not depend on u)
+/// or whose refined point does not solve it to 1e-9 of its scale (g jumps: a bracket closed on a
+/// discontinuity) is left unchanged. Throws
 /// std::invalid_argument on sizes that do not match (U nu x N, X and P nx x (N+1)).
 ConstantCostateStartOutcome ConstantCostateStart(
     const Ocp& ocp, const TimeGrid& grid, TerminalMode mode, const Mat& U, Mat* X, Mat* P);
