@@ -34,8 +34,8 @@ function(ocpb_library name)
 endfunction()
 
 # ocpb_test(name SOURCES ... DEPS ... [PROPERTIES ...] [UNOPTIMIZED]): a GoogleTest binary
-# registered with CTest, each test with the given CTest properties (for example an ENVIRONMENT or
-# a fixture). UNOPTIMIZED: in a Debug build (the sanitizer preset, -O1 elsewhere) the test files
+# registered with CTest one test per GoogleTest suite (ocpb_add_gtest_suites, GTestSuites.cmake),
+# each with the given CTest properties (for example an ENVIRONMENT or a fixture). UNOPTIMIZED: in a Debug build (the sanitizer preset, -O1 elsewhere) the test files
 # are compiled at -O0. For binaries whose tests drive programs, parse and compare rather than
 # compute (the libraries' own functions stay at -O1; an inline or template function both compile
 # may be linked as the test file's -O0 copy, which the measurement includes): measured on cli_test, transcriptions_test,
@@ -51,5 +51,5 @@ function(ocpb_test name)
     target_compile_options(${name} PRIVATE $<$<CONFIG:Debug>:-O0>)
   endif()
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/tests)
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600 ${ARG_PROPERTIES})
+  ocpb_add_gtest_suites(${name} PROPERTIES ${ARG_PROPERTIES})
 endfunction()
