@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Fuzzes one libFuzzer target for FUZZ_SECONDS from its seed corpus:
+#   FUZZ_SECONDS=45 bash tests/fuzz/run_fuzzer.sh BUILD_DIR SOURCE_DIR TARGET
+# The one way a fuzzer is run: by .ci/fuzz (every target, a few at a time) and by the CTest test
+# fuzz.<target> (tests/fuzz/CMakeLists.txt), which `bash .ci/test` runs among the other tests
+# with FUZZ_SECONDS=45; without FUZZ_SECONDS (or with 0) it exits 77, which CTest reports as
+# skipped, so a plain `ctest` does not fuzz.
+# The corpus grows in BUILD_DIR/fuzz/corpus/TARGET/. A crash fails the run (exit non-zero) and
+# leaves its input in BUILD_DIR/fuzz/crashes/TARGET/: copy it to tests/fuzz/regressions/TARGET/
+# (replayed by every test run, fuzz_replay.TARGET) and fix the bug. The whole log is
+# BUILD_DIR/fuzz/TARGET.log; its end (libFuzzer's final statistics) is printed.
+set -euo pipefail
+if [ $# -ne 3 ]; then
+  echo "usage: FUZZ_SECONDS=N bash run_fuzzer.sh BUILD_DIR SOURCE_DIR TARGET" >&2
+  exit 2
+fi
+build=$1 source=$2 target=$3
+seconds=${FUZZ_SECONDS:-0}
+if ! [[ "$seconds" =~ ^[0-9]+$ ]]; then
+  echo "run_fuzzer: FUZZ_SECONDS must be a whole number of seconds, not '$seconds'" >&2
+  exit 2
+fi
+if [ "$seconds" -eq 0 ]; then
+  echo "fuzz.${target}: FUZZ_SECONDS is not set; skipped (bash .ci/test sets it)"
+  exit 77
+fi
+work="${build}/fuzz/corpus/${target}"
+crashes="${build}/fuzz/crashes/${target}"
+log="${build}/fuzz/${target}.log"
+mkdir -p "$work" "$crashes"
+echo "fuzzing ${target} for ${seconds} s (log ${log})"
+rc=0
+"${build}/bin/${target}_fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  -artifact_prefix="${crashes}/" -print_final_stats=1 "$work" "${source}/tests/fuzz/corpus/${target}" \
+  >"$log" 2>&1 || rc=$?
+echo "--- ${target}_fuzzer: exit ${rc}"
+tail -n 12 "$log"
+exit "$rc"
