@@ -30,6 +30,21 @@ void Ocp::MinimizeAndCompareHamiltonian(double t,
   *h_now = p.dot(f) + RunningCost(t, x, u);
 }
 
+void Ocp::MinimizeHamiltonianWithGradients(double t,
+                                           ConstVecRef x,
+                                           ConstVecRef p,
+                                           VecRef u,
+                                           VecRef f,
+                                           MatRef fx,
+                                           MatRef fu,
+                                           double* L,
+                                           VecRef Lx,
+                                           VecRef Lu) const {
+  MinimizeHamiltonian(t, x, p, u);
+  DynamicsJacobian(t, x, u, f, fx, fu);
+  RunningCostGradient(t, x, u, L, Lx, Lu);
+}
+
 double Ocp::TerminalPenalty(ConstVecRef x) const {
   if (npsi_ == 0) return 0.0;
   Vec psi(npsi_);

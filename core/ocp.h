@@ -144,6 +144,23 @@ class Ocp {
                                              double* h_star,
                                              double* h_now,
                                              VecRef f) const;
+  /// The indirect method's work at one node: u* = MinimizeHamiltonian(t, x, p) written to u,
+  /// then DynamicsJacobian (f, f_x, f_u) and RunningCostGradient (L, L_x, L_u) at (t, x, u*).
+  /// The default makes those three calls; a problem whose calls share expensive work
+  /// (comm-path2d evaluates its channel at x once, not twice) overrides it, and must return the
+  /// default's numbers bitwise (its tests check this): Newton's iterates must not depend on it.
+  /// Not forwarded by wrappers (ForwardingOcp): a wrapper that changes one of the three gets the
+  /// default, which composes its own versions.
+  virtual void MinimizeHamiltonianWithGradients(double t,
+                                                ConstVecRef x,
+                                                ConstVecRef p,
+                                                VecRef u,
+                                                VecRef f,
+                                                MatRef fx,
+                                                MatRef fu,
+                                                double* L,
+                                                VecRef Lx,
+                                                VecRef Lu) const;
   /// A number m with L(t, x, u) >= m for every t, every x and every u in U, when the problem
   /// knows one (default: none). The Hamiltonian descent uses it to reject Armijo trials from a
   /// states-only simulation, J >= m (tf - t0) + Phi(x(tf)), without changing its iterates.

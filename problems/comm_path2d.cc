@@ -242,10 +242,20 @@ void CommPath2d::DynamicsJacobian(
 
 void CommPath2d::RunningCostGradient(
     double, ConstVecRef x, ConstVecRef u, double* L, VecRef Lx, VecRef Lu) const {
-  const CommPowerModel& m = options_.power;
   double s = 0.0;
   Eigen::Vector2d grad_s;
   channel_->Evaluate(Eigen::Vector2d(x[0], x[1]), &s, &grad_s, nullptr);
+  RunningCostGradientGivenChannel(x, u, s, grad_s, L, Lx, Lu);
+}
+
+void CommPath2d::RunningCostGradientGivenChannel(ConstVecRef x,
+                                                 ConstVecRef u,
+                                                 double s,
+                                                 const Eigen::Vector2d& grad_s,
+                                                 double* L,
+                                                 VecRef Lx,
+                                                 VecRef Lu) const {
+  const CommPowerModel& m = options_.power;
   // Transmission (2^R - 1)/K s: d/dq = (2^R - 1)/K grad s, d/dR = ln2 2^R s / K.
   const double two_r = std::exp2(u[2]);
   const double factor = (two_r - 1.0) * inv_k_;
@@ -329,6 +339,26 @@ void CommPath2d::MinimizeHamiltonian(double, ConstVecRef x, ConstVecRef p, VecRe
   double s = 0.0;
   channel_->Evaluate(Eigen::Vector2d(x[0], x[1]), &s, nullptr, nullptr);
   MinimizerGivenChannel(x, p, s, u);
+}
+
+void CommPath2d::MinimizeHamiltonianWithGradients(double t,
+                                                  ConstVecRef x,
+                                                  ConstVecRef p,
+                                                  VecRef u,
+                                                  VecRef f,
+                                                  MatRef fx,
+                                                  MatRef fu,
+                                                  double* L,
+                                                  VecRef Lx,
+                                                  VecRef Lu) const {
+  // The value s is the same number with or without its gradient (every ChannelQuality computes
+  // it first), so u* is MinimizeHamiltonian's bitwise.
+  double s = 0.0;
+  Eigen::Vector2d grad_s;
+  channel_->Evaluate(Eigen::Vector2d(x[0], x[1]), &s, &grad_s, nullptr);
+  MinimizerGivenChannel(x, p, s, u);
+  DynamicsJacobian(t, x, u, f, fx, fu);
+  RunningCostGradientGivenChannel(x, u, s, grad_s, L, Lx, Lu);
 }
 
 void CommPath2d::MinimizeAndCompareHamiltonian(double,

@@ -233,6 +233,18 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0>,
 
   bool HasHamiltonianMinimizer() const override { return true; }
   void MinimizeHamiltonian(double t, ConstVecRef x, ConstVecRef p, VecRef u) const override;
+  /// One channel evaluation at x1 (with its gradient) serves u*, f and L's gradient (the
+  /// default makes two); the same numbers bitwise.
+  void MinimizeHamiltonianWithGradients(double t,
+                                        ConstVecRef x,
+                                        ConstVecRef p,
+                                        VecRef u,
+                                        VecRef f,
+                                        MatRef fx,
+                                        MatRef fu,
+                                        double* L,
+                                        VecRef Lx,
+                                        VecRef Lu) const override;
   /// One channel evaluation at x1 serves u* and both values of H (the default makes three).
   void MinimizeAndCompareHamiltonian(double t,
                                      ConstVecRef x,
@@ -327,6 +339,14 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0>,
   /// MinimizeProximalHamiltonian given s and nv (raw arrays of 5, 3 and 3).
   void ProximalMinimizerGivenChannel(
       const double* p, double s, double nv, const double* center, double eps, double* w) const;
+  /// RunningCostGradient given s = s(x1) and its gradient.
+  void RunningCostGradientGivenChannel(ConstVecRef x,
+                                       ConstVecRef u,
+                                       double s,
+                                       const Eigen::Vector2d& grad_s,
+                                       double* L,
+                                       VecRef Lx,
+                                       VecRef Lu) const;
   /// H(x, u, p) given s = s(x1), with the operations of Dynamics and RunningCost.
   double HamiltonianGivenChannel(ConstVecRef x, ConstVecRef p, ConstVecRef u, double s) const;
 

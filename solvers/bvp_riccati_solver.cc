@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "solvers/all_finite.h"
 #include "solvers/small_lu.h"
 
 namespace ocpb {
@@ -42,13 +43,6 @@ inline void RiccatiGemm(int r_runtime,
       }
     }
   }
-}
-
-// True when every one of the n values is finite.
-inline bool RiccatiFinite(const double* v, int n) {
-  bool finite = true;
-  for (int i = 0; i < n; ++i) finite &= std::isfinite(v[i]);
-  return finite;
 }
 
 // The sweep for nx = kNx (kNx > 0: fixed at compile time; 0: pmp's nx at runtime). Matrices are
@@ -164,7 +158,7 @@ class RiccatiSweep final : public BvpRiccatiSolver::Sweep {
           for (int i = 0; i < n; ++i) Tk[j * n + i] = -V[j * 2 * n + n + i];
         }
       }
-      if (!RiccatiFinite(Sk, n * n)) return false;
+      if (!AllFinite(Sk, n * n)) return false;
     }
     // x_{k+1} = y_x - Y_x x_k - V_x nu from x_0 (which the initial rows fix): W_k = dx_k / dnu.
     if (nnu > 0) {
@@ -292,6 +286,12 @@ class RiccatiSweep final : public BvpRiccatiSolver::Sweep {
     d[core_] = dT;
   }
 
+  // r += d_c times column c of an interval block B (2 nx rows of width 4 nx, row-major).
+  void MultiplyColumn(const double* B, int c, double dc, double* r) const {
+    const int n = SmallDim<kNx>(nx_), width = 4 * n;
+    for (int i = 0; i < 2 * n; ++i) r[i] += B[i * width + c] * dc;
+  }
+
   // r = J d from the blocks (the factorized matrix; no sparse matrix needed).
   void Multiply(const double* d, Vec* r) const {
     const int n = SmallDim<kNx>(nx_), width = 4 * n;
@@ -305,10 +305,19 @@ class RiccatiSweep final : public BvpRiccatiSolver::Sweep {
       // Column by column: 2 nx independent sums (a row-by-row dot product would chain 4 nx
       // dependent additions per row, latency-bound).
       for (int i = 0; i < 2 * n; ++i) rk[i] = 0.0;
-      for (int c = 0; c < width; ++c) {
-        const double dc = dk[c];
-        for (int i = 0; i < 2 * n; ++i) rk[i] += B[i * width + c] * dc;
+      if (!euler_) {
+        for (int c = 0; c < width; ++c) MultiplyColumn(B, c, dk[c], rk);
+        continue;
       }
+      // Euler's middle columns are the constants (0, I; I, 0) (PmpResidual): their terms,
+      // added in the same column order, are d itself (1 * d exactly; a zero term would add
+      // nothing but the sign of a zero).
+      for (int c = 0; c < n; ++c) MultiplyColumn(B, c, dk[c], rk);
+      for (int i = 0; i < n; ++i) {
+        rk[i] += dk[2 * n + i];
+        rk[n + i] += dk[n + i];
+      }
+      for (int c = 3 * n; c < width; ++c) MultiplyColumn(B, c, dk[c], rk);
     }
     // (x_N, p_N, nu) are contiguous in z.
     const int m = nx_ + nnu_;

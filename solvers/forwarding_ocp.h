@@ -12,9 +12,11 @@ namespace ocpb {
 /// its dimensions, horizon, initial state, terminal weights, control set and free final time.
 /// A subclass overrides what it changes and documents it. HamiltonianReformulation() is not
 /// forwarded (it returns nullptr): a reformulation of `inner` would drop the subclass's change,
-/// so callers resolve reformulations before wrapping. Interfaces a problem implements next to Ocp
-/// (EulerStageModel) are not forwarded either: a wrapper only offers what it implements, which
-/// is also how tests run a problem without its fast paths.
+/// so callers resolve reformulations before wrapping. MinimizeHamiltonianWithGradients() is not
+/// forwarded either: Ocp's default composes it from this object's own (forwarded or overridden)
+/// three functions, so a subclass that changes one of them stays consistent. Interfaces a problem
+/// implements next to Ocp (EulerStageModel) are not forwarded either: a wrapper only offers what it
+/// implements, which is also how tests run a problem without its fast paths.
 class ForwardingOcp : public Ocp {
  public:
   explicit ForwardingOcp(const Ocp& inner) : ForwardingOcp(inner, true) {}

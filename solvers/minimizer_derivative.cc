@@ -83,8 +83,8 @@ bool MinimizerDerivativeInverseBlock(double* K, int* pivot, int n, int nu, doubl
 
 MinimizerDerivative::MinimizerDerivative(const Ocp& ocp)
     : ocp_(ocp), nx_(ocp.nx()), nu_(ocp.nu()), box_active_(ocp.nu(), false) {
-  A_.resize(nu_, nu_);
-  m_.resize(nu_, nu_);
+  a_.resize(nu_ * nu_);
+  m_.resize(nu_ * nu_);
   kkt_.resize(4 * nu_ * nu_);
   pivot_.resize(2 * nu_);
   inverse_.resize(nu_ * nu_);
@@ -101,10 +101,18 @@ MinimizerDerivative::MinimizerDerivative(const Ocp& ocp)
 bool MinimizerDerivative::Compute(
     ConstVecRef u, ConstVecRef Hu, ConstMatRef fu, ConstMatRef hess, MatRef du_dx, MatRef du_dp) {
   const int nx = nx_, nu = nu_;
-  // M = H_uu plus the curvature of active spheres; A = the active constraint rows.
-  Mat& M = m_;
-  M = hess.bottomRightCorner(nu, nu);
-  A_.setZero();
+  // M = H_uu plus the curvature of active spheres (nu x nu, column-major); A = the active
+  // constraint rows (row r at a + r nu), in plain loops on raw storage (Eigen's dynamic-size
+  // blocks cost more than these few flops). The norm and the dot product of a ball stay
+  // Eigen's, whose summation order for more than two components depends on alignment.
+  double* M = m_.data();
+  const Eigen::Index ld = hess.outerStride();
+  const double* huu = hess.data() + nx * ld + nx;
+  for (int j = 0; j < nu; ++j) {
+    for (int i = 0; i < nu; ++i) M[j * nu + i] = huu[j * ld + i];
+  }
+  double* a = a_.data();
+  std::fill(a_.begin(), a_.end(), 0.0);
   std::fill(box_active_.begin(), box_active_.end(), false);
   int na = 0;
   for (const ControlSet::Block& b : ocp_.control_set().blocks()) {
@@ -117,7 +125,7 @@ bool MinimizerDerivative::Compute(
         const bool at_upper =
             std::isfinite(up) && u[j] >= up - kActiveTolerance * std::max(1.0, std::abs(up));
         if (at_lower || at_upper) {
-          A_(na++, j) = 1.0;
+          a[na++ * nu + j] = 1.0;
           box_active_[j] = true;
         }
       }
@@ -127,8 +135,12 @@ bool MinimizerDerivative::Compute(
       if (b.radius > 0.0 && nd >= b.radius * (1.0 - kActiveTolerance)) {
         // n = d / |d|; H_u + mu (u - c) = 0 on the sphere, mu >= 0.
         const double mu = std::max(0.0, -d.dot(Hu.segment(b.offset, b.size)) / (nd * nd));
-        M.block(b.offset, b.offset, b.size, b.size).diagonal().array() += mu;
-        A_.block(na++, b.offset, 1, b.size) = d.transpose() / nd;
+        for (int i = 0; i < b.size; ++i) {
+          const int j = b.offset + i;
+          M[j * nu + j] += mu;
+          a[na * nu + j] = d[i] / nd;
+        }
+        ++na;
       }
     }
   }
@@ -138,18 +150,14 @@ bool MinimizerDerivative::Compute(
   // loops (solvers/small_lu.h; the reduced KKT matrix is symmetric indefinite and tiny).
   const int n = nu + na;
   double* K = kkt_.data();
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      double v = 0.0;
-      if (i < nu && j < nu) {
-        v = M(i, j);
-      } else if (i < nu) {
-        v = A_(j - nu, i);
-      } else if (j < nu) {
-        v = A_(i - nu, j);
-      }
-      K[j * n + i] = v;
-    }
+  for (int j = 0; j < nu; ++j) {
+    for (int i = 0; i < nu; ++i) K[j * n + i] = M[j * nu + i];
+    for (int r = 0; r < na; ++r) K[j * n + nu + r] = a[r * nu + j];
+  }
+  for (int r = 0; r < na; ++r) {
+    double* column = K + (nu + r) * n;
+    for (int i = 0; i < nu; ++i) column[i] = a[r * nu + i];
+    for (int i = nu; i < n; ++i) column[i] = 0.0;
   }
   // (du_dx, du_dp) = -Z (H_ux, f_u^T), Z the top-left nu x nu block of K^-1 (the right-hand
   // sides vanish in the constraint rows).

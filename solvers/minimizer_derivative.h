@@ -73,7 +73,8 @@ class MinimizerDerivative {
   int nx_, nu_;
   int num_active_ = 0;
   std::vector<bool> box_active_;
-  Mat m_, A_;
+  // M (nu x nu) and the active constraint rows A (at most nu rows of nu), see Compute.
+  std::vector<double> m_, a_;
   // The KKT matrix and its LU (at most 2 nu x 2 nu, column-major), Z (nu x nu), a solve's column.
   std::vector<double> kkt_, inverse_, work_;
   std::vector<int> pivot_;

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
+#include "solvers/all_finite.h"
 #include "solvers/small_dims.h"
 #include "solvers/small_lu.h"
 
@@ -69,15 +71,18 @@ PmpResidual::PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode
     for (int k = 0; k <= N_; ++k) s_[k] = (grid.t(k) - grid.t0()) / (grid.tf() - grid.t0());
     s_[N_] = 1.0;
   }
-  for (Node& n : nodes_) {
+  values_.resize(N_ + 1);
+  for (NodeValues& n : values_) {
     n.u.resize(nu_);
     n.f.resize(nx_);
     n.Hx.resize(nx_);
     n.Lx.resize(nx_);
     n.Lu.resize(nu_);
-    n.Hu.resize(nu_);
     n.fx.resize(nx_, nx_);
     n.fu.resize(nx_, nu_);
+  }
+  for (NodeBlocks& n : blocks_) {
+    n.Hu.resize(nu_);
     n.hess.resize(nx_ + nu_, nx_ + nu_);
     n.Ux.resize(nu_, nx_);
     n.Up.resize(nu_, nx_);
@@ -108,18 +113,51 @@ void PmpResidual::CheckApplicable(const Ocp& ocp, const TimeGrid& grid) {
 }
 
 void PmpResidual::BuildStructure() {
-  const int nx = nx_, W = 4 * nx_;
+  // The entries' layout (BuildSparseMatrix's order): the initial rows' identity, each interval's
+  // dense block, the terminal blocks, then the free final time's column and row.
+  const int nx = nx_;
   interval_entries_ = 8 * nx * nx;
+  terminal_offset_ = nx + N_ * interval_entries_;
+  time_offset_ = terminal_offset_ + 2 * nx * nx + 2 * nx * nnu_;
+  int entries = time_offset_;
+  if (free_time_) {
+    const int h_row_nodes = scheme_ == Scheme::kEuler ? N_ + 1 : 1;
+    entries += 2 * nx * N_ + 2 * nx * h_row_nodes;
+  }
+  entries_.assign(entries, 0.0);
+  if (scheme_ == Scheme::kEuler) EulerConstantEntries();
+}
+
+void PmpResidual::EulerConstantEntries() {
+  // Interval k's rows over (x_k, p_k, x_{k+1}, p_{k+1}): the state rows are (-I - h G_x, 0, I,
+  // -h G_p), the costate rows (-h E_x, I, 0, -I - h E_p); the middle columns never change.
+  const int nx = nx_, W = 4 * nx_;
+  for (int k = 0; k < N_; ++k) {
+    double* base = entries_.data() + nx + k * interval_entries_;
+    for (int i = 0; i < nx; ++i) {
+      double* s = base + i * W;
+      double* c = base + (nx + i) * W;
+      for (int j = 0; j < nx; ++j) {
+        const double eye = i == j ? 1.0 : 0.0;
+        s[nx + j] = 0.0;
+        s[2 * nx + j] = eye;
+        c[nx + j] = eye;
+        c[2 * nx + j] = 0.0;
+      }
+    }
+  }
+}
+
+void PmpResidual::BuildSparseMatrix() const {
+  const int nx = nx_, W = 4 * nx_;
   std::vector<Eigen::Triplet<double>> t;
-  t.reserve(static_cast<size_t>(nx) + static_cast<size_t>(N_) * interval_entries_ + 2 * nx * nx +
-            2 * nx * nnu_);
+  t.reserve(entries_.size());
   for (int i = 0; i < nx; ++i) t.emplace_back(i, i, 0.0);
   for (int k = 0; k < N_; ++k) {
     for (int r = 0; r < 2 * nx; ++r) {
       for (int c = 0; c < W; ++c) t.emplace_back(Row(k) + r, Col(k) + c, 0.0);
     }
   }
-  terminal_offset_ = static_cast<int>(t.size());
   const int rt = Row(N_);
   for (int i = 0; i < nx; ++i) {
     for (int c = 0; c < 2 * nx; ++c) t.emplace_back(rt + i, Col(N_) + c, 0.0);
@@ -130,7 +168,6 @@ void PmpResidual::BuildStructure() {
   for (int i = 0; i < nnu_; ++i) {
     for (int j = 0; j < nx; ++j) t.emplace_back(rt + nx + i, Col(N_) + j, 0.0);
   }
-  time_offset_ = static_cast<int>(t.size());
   if (free_time_) {
     const int last = size_ - 1;
     for (int k = 0; k < N_; ++k) {
@@ -142,11 +179,13 @@ void PmpResidual::BuildStructure() {
       for (int c = 0; c < 2 * nx; ++c) t.emplace_back(last, Col(k) + c, 0.0);
     }
   }
+  if (t.size() != entries_.size()) {
+    throw std::logic_error("PmpResidual: the sparse structure disagrees with the entries' layout");
+  }
   jacobian_.resize(size_, size_);
   jacobian_.setFromTriplets(t.begin(), t.end());
   jacobian_.makeCompressed();
   value_index_.resize(t.size());
-  entries_.assign(t.size(), 0.0);
   const int* outer = jacobian_.outerIndexPtr();
   const int* inner = jacobian_.innerIndexPtr();
   for (size_t e = 0; e < t.size(); ++e) {
@@ -214,51 +253,50 @@ ControlTrajectory PmpResidual::ControlFunction(ConstVecRef z) const {
                                    : ControlTrajectory::PiecewiseLinear(GridOf(z), Controls(z));
 }
 
-bool PmpResidual::EvaluateNode(
-    int k, double t, ConstVecRef x, ConstVecRef p, bool with_jacobian, Node* n) {
+bool PmpResidual::EvaluateNode(int k,
+                               double t,
+                               ConstVecRef x,
+                               ConstVecRef p,
+                               bool with_jacobian,
+                               bool reuse,
+                               NodeValues* n,
+                               NodeBlocks* b) {
   const int nx = nx_, nu = nu_;
-  ocp_.MinimizeHamiltonian(t, x, p, n->u);
-  ocp_.DynamicsJacobian(t, x, n->u, n->f, n->fx, n->fu);
-  ocp_.RunningCostGradient(t, x, n->u, &n->L, n->Lx, n->Lu);
   failure_node_ = k;
   // The node's blocks in plain loops on their column-major storage (nx x nu x nx is too small
   // for Eigen's dynamic-size kernels, whose dispatch costs more than the arithmetic).
   const double* fx = n->fx.data();
   const double* fu = n->fu.data();
   const double* pv = p.data();
-  double* Hx = n->Hx.data();
-  // Finiteness by flags (a running sum of x * 0 would chain every addition: latency-bound).
-  bool finite = std::isfinite(n->L);
-  for (int j = 0; j < nx; ++j) {
-    double v = n->Lx[j];
-    for (int i = 0; i < nx; ++i) v += fx[j * nx + i] * pv[i];
-    Hx[j] = v;
-    finite &= std::isfinite(v);
-    finite &= std::isfinite(n->f[j]);
-  }
-  for (int j = 0; j < nu; ++j) finite &= std::isfinite(n->u[j]);
-  if (!finite) {
-    failure_ = Failure::kNonFinite;
-    return false;
+  if (!reuse) {
+    ocp_.MinimizeHamiltonianWithGradients(t, x, p, n->u, n->f, n->fx, n->fu, &n->L, n->Lx, n->Lu);
+    double* Hx = n->Hx.data();
+    for (int j = 0; j < nx; ++j) {
+      double v = n->Lx[j];
+      for (int i = 0; i < nx; ++i) v += fx[j * nx + i] * pv[i];
+      Hx[j] = v;
+    }
+    if (!(std::isfinite(n->L) && AllFinite(Hx, nx) && AllFinite(n->f.data(), nx) &&
+          AllFinite(n->u.data(), nu))) {
+      failure_ = Failure::kNonFinite;
+      return false;
+    }
   }
   if (!with_jacobian) return true;
   for (int j = 0; j < nu; ++j) {
     double v = n->Lu[j];
     for (int i = 0; i < nx; ++i) v += fu[j * nx + i] * pv[i];
-    n->Hu[j] = v;
+    b->Hu[j] = v;
   }
   const Vec no_mu;
-  ocp_.PointHessian(t, x, n->u, 1.0, p, no_mu, n->hess);
+  ocp_.PointHessian(t, x, n->u, 1.0, p, no_mu, b->hess);
   const int nz = nx + nu;
-  const double* hess = n->hess.data();
-  for (int e = 0; e < nz * nz; ++e) finite &= std::isfinite(hess[e]);
-  for (int e = 0; e < nx * nx; ++e) finite &= std::isfinite(fx[e]);
-  for (int e = 0; e < nx * nu; ++e) finite &= std::isfinite(fu[e]);
-  if (!finite) {
+  const double* hess = b->hess.data();
+  if (!(AllFinite(hess, nz * nz) && AllFinite(fx, nx * nx) && AllFinite(fu, nx * nu))) {
     failure_ = Failure::kNonFinite;
     return false;
   }
-  if (!derivative_.Compute(n->u, n->Hu, n->fu, n->hess, n->Ux, n->Up)) {
+  if (!derivative_.Compute(n->u, b->Hu, n->fu, b->hess, b->Ux, b->Up)) {
     failure_ = Failure::kSingularMinimizer;
     return false;
   }
@@ -268,37 +306,55 @@ bool PmpResidual::EvaluateNode(
                             fx,
                             fu,
                             hess,
-                            n->Ux.data(),
-                            n->Up.data(),
-                            n->Gx.data(),
-                            n->Gp.data(),
-                            n->Ex.data(),
-                            n->Ep.data());
+                            b->Ux.data(),
+                            b->Up.data(),
+                            b->Gx.data(),
+                            b->Gp.data(),
+                            b->Ex.data(),
+                            b->Ep.data());
   });
   return true;
 }
 
-bool PmpResidual::EvaluateTrapezoid(
-    ConstVecRef z, VecRef F, double T, bool with_jacobian, double* cost) {
+bool PmpResidual::EvaluateTrapezoid(ConstVecRef z,
+                                    VecRef F,
+                                    double T,
+                                    bool with_jacobian,
+                                    bool reuse,
+                                    double abandon_limit,
+                                    double* squares,
+                                    double* cost) {
   const int nx = nx_, W = 4 * nx_;
   double* v = entries_.data();
   auto put = [v](int e, double value) { v[e] = value; };
   const double duration = T - grid_.t0();
   double J = 0.0;
-  if (!EvaluateNode(
-          0, NodeTime(0, T), z.segment(0, nx), z.segment(nx, nx), with_jacobian, &nodes_[0])) {
+  if (!EvaluateNode(0,
+                    NodeTime(0, T),
+                    z.segment(0, nx),
+                    z.segment(nx, nx),
+                    with_jacobian,
+                    reuse,
+                    &values_[0],
+                    &blocks_[0])) {
     return false;
   }
   for (int k = 0; k < N_; ++k) {
-    const Node& a = nodes_[k % 2];
-    Node& b = nodes_[(k + 1) % 2];
+    const NodeValues& a = values_[k];
+    NodeValues& b = values_[k + 1];
+    const NodeBlocks& da = blocks_[k % 2];
+    NodeBlocks& db = blocks_[(k + 1) % 2];
     const auto xa = z.segment(Col(k), nx), pa = z.segment(Col(k) + nx, nx);
     const auto xb = z.segment(Col(k + 1), nx), pb = z.segment(Col(k + 1) + nx, nx);
-    if (!EvaluateNode(k + 1, NodeTime(k + 1, T), xb, pb, with_jacobian, &b)) return false;
+    if (!EvaluateNode(k + 1, NodeTime(k + 1, T), xb, pb, with_jacobian, reuse, &b, &db)) {
+      return false;
+    }
     const double h = free_time_ ? duration * (s_[k + 1] - s_[k]) : grid_.h(k), hh = 0.5 * h;
     F.segment(Row(k), nx) = xb - xa - hh * (a.f + b.f);
     F.segment(Row(k) + nx, nx) = pb - pa + hh * (a.Hx + b.Hx);
     J += hh * (a.L + b.L);
+    *squares += F.segment(Row(k), 2 * nx).squaredNorm();
+    if (*squares > abandon_limit) return Abandon(k);
     if (!with_jacobian) continue;
     const int base = nx + k * interval_entries_;
     for (int i = 0; i < nx; ++i) {
@@ -306,14 +362,14 @@ bool PmpResidual::EvaluateTrapezoid(
       const int c = base + (nx + i) * W;  // costate row i
       for (int j = 0; j < nx; ++j) {
         const double eye = i == j ? 1.0 : 0.0;
-        put(s + j, -hh * a.Gx(i, j) - eye);
-        put(s + nx + j, -hh * a.Gp(i, j));
-        put(s + 2 * nx + j, -hh * b.Gx(i, j) + eye);
-        put(s + 3 * nx + j, -hh * b.Gp(i, j));
-        put(c + j, hh * a.Ex(i, j));
-        put(c + nx + j, hh * a.Ep(i, j) - eye);
-        put(c + 2 * nx + j, hh * b.Ex(i, j));
-        put(c + 3 * nx + j, hh * b.Ep(i, j) + eye);
+        put(s + j, -hh * da.Gx(i, j) - eye);
+        put(s + nx + j, -hh * da.Gp(i, j));
+        put(s + 2 * nx + j, -hh * db.Gx(i, j) + eye);
+        put(s + 3 * nx + j, -hh * db.Gp(i, j));
+        put(c + j, hh * da.Ex(i, j));
+        put(c + nx + j, hh * da.Ep(i, j) - eye);
+        put(c + 2 * nx + j, hh * db.Ex(i, j));
+        put(c + 3 * nx + j, hh * db.Ep(i, j) + eye);
       }
     }
     if (free_time_) {
@@ -331,14 +387,20 @@ bool PmpResidual::EvaluateTrapezoid(
   return true;
 }
 
-bool PmpResidual::EvaluateEuler(
-    ConstVecRef z, VecRef F, double T, bool with_jacobian, double* cost) {
+bool PmpResidual::EvaluateEuler(ConstVecRef z,
+                                VecRef F,
+                                double T,
+                                bool with_jacobian,
+                                bool reuse,
+                                double abandon_limit,
+                                double* squares,
+                                double* cost) {
   const int nx = nx_, W = 4 * nx_;
   double* v = entries_.data();
   auto put = [v](int e, double value) { v[e] = value; };
   const double duration = T - grid_.t0();
   double J = 0.0, dJdT = 0.0;
-  Node& a = nodes_[0];
+  NodeBlocks& d = blocks_[0];
   const double* zd = z.data();
   double* Fd = F.data();
   for (int k = 0; k < N_; ++k) {
@@ -347,12 +409,15 @@ bool PmpResidual::EvaluateEuler(
     const double* xb = zd + Col(k + 1);
     const double* pb = xb + nx;
     // u_k = u*(t_k, x_k, p_{k+1}): the node evaluation with the next costate.
+    NodeValues& a = values_[k];
     if (!EvaluateNode(k,
                       NodeTime(k, T),
                       z.segment(Col(k), nx),
                       z.segment(Col(k + 1) + nx, nx),
                       with_jacobian,
-                      &a)) {
+                      reuse,
+                      &a,
+                      &d)) {
       return false;
     }
     const double ds = free_time_ ? s_[k + 1] - s_[k] : 0.0;
@@ -361,33 +426,32 @@ bool PmpResidual::EvaluateEuler(
     double* Fc = Fs + nx;
     const double* f = a.f.data();
     const double* Hx = a.Hx.data();
-    double pf = 0.0;
+    double pf = 0.0, sq = 0.0;
     for (int i = 0; i < nx; ++i) {
       Fs[i] = xb[i] - xa[i] - h * f[i];
       Fc[i] = pa[i] - pb[i] - h * Hx[i];
       pf += pb[i] * f[i];
+      sq += Fs[i] * Fs[i] + Fc[i] * Fc[i];
     }
     J += h * a.L;
     if (free_time_) dJdT += ds * (pf + a.L);
+    *squares += sq;
+    if (*squares > abandon_limit) return Abandon(k);
     if (!with_jacobian) continue;
     const int base = nx + k * interval_entries_;
-    const double* Gx = a.Gx.data();
-    const double* Gp = a.Gp.data();
-    const double* Ex = a.Ex.data();
-    const double* Ep = a.Ep.data();
+    const double* Gx = d.Gx.data();
+    const double* Gp = d.Gp.data();
+    const double* Ex = d.Ex.data();
+    const double* Ep = d.Ep.data();
     for (int i = 0; i < nx; ++i) {
       double* s = v + base + i * W;         // state row i: columns x_k, p_k, x_{k+1}, p_{k+1}
       double* c = v + base + (nx + i) * W;  // costate row i
       for (int j = 0; j < nx; ++j) {
         const double eye = i == j ? 1.0 : 0.0;
         const int ij = j * nx + i;  // (i, j) of the column-major node blocks
-        s[j] = -h * Gx[ij] - eye;
-        s[nx + j] = 0.0;
-        s[2 * nx + j] = eye;
+        s[j] = -h * Gx[ij] - eye;   // s[nx + j], s[2 nx + j]: EulerConstantEntries
         s[3 * nx + j] = -h * Gp[ij];
-        c[j] = -h * Ex[ij];
-        c[nx + j] = eye;
-        c[2 * nx + j] = 0.0;
+        c[j] = -h * Ex[ij];  // c[nx + j], c[2 nx + j]: EulerConstantEntries
         c[3 * nx + j] = -h * Ep[ij] - eye;
       }
     }
@@ -401,8 +465,8 @@ bool PmpResidual::EvaluateEuler(
       // The H row: d(ds_k H_k)/dx_k = ds_k (H_x + U_x^T H_u), d/dp_{k+1} = ds_k (f + U_p^T H_u)
       // (H_u = 0 at an interior u*; kept for exactness on the active set).
       const int row = time_offset_ + 2 * nx * N_;
-      const Vec dx = a.Hx + a.Ux.transpose() * a.Hu;
-      const Vec dp = a.f + a.Up.transpose() * a.Hu;
+      const Vec dx = a.Hx + d.Ux.transpose() * d.Hu;
+      const Vec dp = a.f + d.Up.transpose() * d.Hu;
       for (int j = 0; j < nx; ++j) {
         put(row + 2 * nx * k + j, ds * dx[j]);
         put(row + 2 * nx * (k + 1) + nx + j, ds * dp[j]);
@@ -425,6 +489,7 @@ bool PmpResidual::EvaluateEuler(
 }
 
 const Eigen::SparseMatrix<double>& PmpResidual::jacobian() const {
+  if (value_index_.empty()) BuildSparseMatrix();
   if (jacobian_stale_) {
     double* v = jacobian_.valuePtr();
     for (size_t e = 0; e < entries_.size(); ++e) v[value_index_[e]] = entries_[e];
@@ -433,8 +498,22 @@ const Eigen::SparseMatrix<double>& PmpResidual::jacobian() const {
   return jacobian_;
 }
 
-bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jacobian) {
+bool PmpResidual::IsLastEvaluatedPoint(ConstVecRef z) const {
+  return values_valid_ && z.size() == evaluated_z_.size() &&
+         std::memcmp(z.data(), evaluated_z_.data(), sizeof(double) * z.size()) == 0;
+}
+
+bool PmpResidual::Abandon(int k) {
+  failure_ = Failure::kAbandoned;
+  failure_node_ = k;
+  return false;
+}
+
+bool PmpResidual::Evaluate(
+    ConstVecRef z, VecRef F, double* cost, bool with_jacobian, double abandon_above) {
   const int nx = nx_;
+  const bool reuse = with_jacobian && IsLastEvaluatedPoint(z);
+  values_valid_ = false;  // until this evaluation succeeds
   if (with_jacobian) jacobian_stale_ = true;
   failure_ = Failure::kNone;
   failure_node_ = -1;
@@ -452,8 +531,13 @@ bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jaco
     failure_node_ = N_ + 1;
     return false;
   }
-  const bool ok = scheme_ == Scheme::kEuler ? EvaluateEuler(z, F, T, with_jacobian, &J)
-                                            : EvaluateTrapezoid(z, F, T, with_jacobian, &J);
+  // NaN never exceeds the limit: a non-finite residual fails below, as before.
+  const double abandon_limit = abandon_above * (1.0 + kAbandonMargin);
+  double squares = F.head(nx).squaredNorm();
+  const bool ok =
+      scheme_ == Scheme::kEuler
+          ? EvaluateEuler(z, F, T, with_jacobian, reuse, abandon_limit, &squares, &J)
+          : EvaluateTrapezoid(z, F, T, with_jacobian, reuse, abandon_limit, &squares, &J);
   if (!ok) return false;
 
   // Terminal rows.
@@ -511,12 +595,13 @@ bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jaco
   }
   if (free_time_ && scheme_ == Scheme::kTrapezoid) {
     // H(t_N) = p_N^T f_N + L_N at u_N = u*(t_N, x_N, p_N): the node N scratch of the loop.
-    const Node& n = nodes_[N_ % 2];
+    const NodeValues& n = values_[N_];
+    const NodeBlocks& d = blocks_[N_ % 2];
     F[size_ - 1] = pN.dot(n.f) + n.L;
     if (with_jacobian) {
       const int e = time_offset_ + 2 * nx * N_;
-      const Vec dx = n.Hx + n.Ux.transpose() * n.Hu;
-      const Vec dp = n.f + n.Up.transpose() * n.Hu;
+      const Vec dx = n.Hx + d.Ux.transpose() * d.Hu;
+      const Vec dp = n.f + d.Up.transpose() * d.Hu;
       for (int j = 0; j < nx; ++j) {
         put(e + j, dx[j]);
         put(e + nx + j, dp[j]);
@@ -529,6 +614,8 @@ bool PmpResidual::Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jaco
     return false;
   }
   failure_node_ = -1;
+  if (!reuse) evaluated_z_ = z;
+  values_valid_ = true;
   return true;
 }
 
@@ -587,6 +674,8 @@ std::string PmpResidual::FailureMessage() const {
       return "NaN/inf in the residual or its derivatives at " + where;
     case Failure::kBadFinalTime:
       return "the free final time is not finite, not after t0, or outside its bounds";
+    case Failure::kAbandoned:
+      return "the residual's sum of squares exceeded the caller's bound at " + where;
     case Failure::kSingularMinimizer:
       return "the Hamiltonian's reduced Hessian in u is singular at " + where +
              " (u* is not differentiable there: H not strictly convex in u?)";

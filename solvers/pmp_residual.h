@@ -3,6 +3,7 @@
 // solves).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -99,7 +100,13 @@ class PmpResidual {
     kNonFinite,          ///< NaN/inf in u*, f, H_x, the derivatives or the residual
     kSingularMinimizer,  ///< the reduced KKT matrix of MinimizerDerivative is singular
     kBadFinalTime,       ///< a free final time outside its bounds, <= t0, or not finite
+    kAbandoned,          ///< stopped early: the sum of squares exceeds `abandon_above`
   };
+
+  /// The relative margin by which a partial sum of squares must exceed `abandon_above` before an
+  /// evaluation is abandoned: far above the rounding of any summation order of F's squares
+  /// (about size() * 1.1e-16), so the full sum would exceed the bound too.
+  static constexpr double kAbandonMargin = 1e-9;
 
   /// Throws std::invalid_argument when the grid does not span [t0, tf] (to 1e-9 relative; for a
   /// free final time [t0, T] with T within its bounds, the start's final time) or
@@ -137,15 +144,31 @@ class PmpResidual {
   /// Evaluates F(z) into F (size()) and the discrete cost into *cost (may be null). With
   /// `with_jacobian`, also the Jacobian's values into jacobian(). Returns false on failure;
   /// failure() and failure_node() then say why and where (node index, or N+1 for the terminal
-  /// rows).
-  bool Evaluate(ConstVecRef z, VecRef F, double* cost, bool with_jacobian);
+  /// rows). With `with_jacobian` at the point of the last successful evaluation (bitwise the
+  /// same z: Newton's Jacobian at its accepted trial), the problem's minimizer, dynamics and
+  /// running-cost values of that evaluation are reused (the same numbers), and only the
+  /// second-order work is done.
+  ///
+  /// With a finite `abandon_above` (a bound on sum_i F_i^2, such as a line search's sufficient
+  /// decrease), the evaluation stops as soon as the squares of the rows computed so far exceed
+  /// it by kAbandonMargin, and returns false with failure() = kAbandoned: a trial that is
+  /// rejected anyway costs only the intervals up to where its residual is large. The decision
+  /// is the full sum's (the squares are nonnegative), so callers' iterates do not change.
+  bool Evaluate(ConstVecRef z,
+                VecRef F,
+                double* cost,
+                bool with_jacobian,
+                double abandon_above = std::numeric_limits<double>::infinity());
 
   /// The Jacobian of the last Evaluate(..., with_jacobian = true): column-major, compressed, with
   /// the fixed structure described above.
   /// (The values are assembled in the structure's own order, entries_, and copied into the
-  /// sparse matrix when it is asked for: structured solvers that read the blocks never pay for
-  /// the scatter.)
+  /// sparse matrix when it is asked for; the matrix itself is built on the first call: structured
+  /// solvers that read the blocks never pay for the structure or the scatter.)
   const Eigen::SparseMatrix<double>& jacobian() const;
+  /// The number of entries of the Jacobian's structure (jacobian().nonZeros(), without building
+  /// the matrix).
+  int structural_nonzeros() const { return static_cast<int>(entries_.size()); }
   /// The trapezoid's u*(t_k, x_k, p_k) at every node of GridOf(z) (nu x N+1); Euler's
   /// u*(t_k, x_k, p_{k+1}) on every interval (nu x N).
   Mat Controls(ConstVecRef z) const;
@@ -180,18 +203,60 @@ class PmpResidual {
   std::string FailureMessage() const;
 
  private:
-  // Per-node values and derivative blocks (one node's scratch).
-  struct Node {
-    Vec u, f, Hx, Lx, Lu, Hu;
-    Mat fx, fu, hess, Ux, Up, Gx, Gp, Ex, Ep;
+  // What a residual evaluation computes at one node (Euler: at interval k's u_k = u*(t_k, x_k,
+  // p_{k+1})). Kept per node: Newton evaluates its Jacobian at the line search's accepted
+  // trial, the point evaluated last, and the Jacobian then reuses these instead of calling the
+  // problem again (the same numbers: the same calls at the same point).
+  struct NodeValues {
+    Vec u, f, Hx, Lx, Lu;
+    Mat fx, fu;
     double L = 0.0;
   };
-  bool EvaluateNode(int k, double t, ConstVecRef x, ConstVecRef p, bool with_jacobian, Node* node);
+  // The Jacobian's scratch at one node.
+  struct NodeBlocks {
+    Vec Hu;
+    Mat hess, Ux, Up, Gx, Gp, Ex, Ep;
+  };
+  // With `reuse`, n holds this node's values at this point already (the last evaluation's).
+  bool EvaluateNode(int k,
+                    double t,
+                    ConstVecRef x,
+                    ConstVecRef p,
+                    bool with_jacobian,
+                    bool reuse,
+                    NodeValues* n,
+                    NodeBlocks* b);
+  // Records an abandoned evaluation at interval k; returns false.
+  bool Abandon(int k);
+  // True when z is bitwise the point of the last successful evaluation (values_ hold it).
+  bool IsLastEvaluatedPoint(ConstVecRef z) const;
   // The interval rows (and the free-time column and row) of each scheme; false on failure.
-  bool EvaluateTrapezoid(ConstVecRef z, VecRef F, double T, bool with_jacobian, double* J);
-  bool EvaluateEuler(ConstVecRef z, VecRef F, double T, bool with_jacobian, double* J);
+  // `squares` starts at the sum of squares of the rows before the intervals', gains each
+  // interval's, and the evaluation is abandoned once it exceeds `abandon_limit`.
+  bool EvaluateTrapezoid(ConstVecRef z,
+                         VecRef F,
+                         double T,
+                         bool with_jacobian,
+                         bool reuse,
+                         double abandon_limit,
+                         double* squares,
+                         double* J);
+  bool EvaluateEuler(ConstVecRef z,
+                     VecRef F,
+                     double T,
+                     bool with_jacobian,
+                     bool reuse,
+                     double abandon_limit,
+                     double* squares,
+                     double* J);
   double NodeTime(int k, double T) const;
+  // The entries' layout (offsets and count), and for Euler the constant entries.
   void BuildStructure();
+  // Euler's interval entries that do not depend on the point (identities and zeros), written
+  // once: Evaluate writes only the others.
+  void EulerConstantEntries();
+  // jacobian_ and value_index_ from the layout (on the first jacobian() call).
+  void BuildSparseMatrix() const;
   int Row(int k) const { return nx_ + 2 * nx_ * k; }  // first row of interval k
   int Col(int k) const { return 2 * nx_ * k; }        // first column of node k
 
@@ -203,13 +268,16 @@ class PmpResidual {
   int nx_, nu_, npsi_, nnu_, N_, size_;
   std::vector<double> s_;  // free final time: the nodes' relative positions on [0, 1]
   MinimizerDerivative derivative_;
-  Node nodes_[2];  // nodes k and k+1 of the interval being assembled (by parity)
+  std::vector<NodeValues> values_;  // per node, N + 1 (Euler: per interval, the first N)
+  NodeBlocks blocks_[2];            // nodes k and k+1 of the interval being assembled (by parity)
+  Vec evaluated_z_;                 // the point of the last successful Evaluate, when values_valid_
+  bool values_valid_ = false;
   mutable Eigen::SparseMatrix<double> jacobian_;  // values copied from entries_ on demand
   mutable bool jacobian_stale_ = false;
   std::vector<double> entries_;  // the Jacobian's values in BuildStructure's order
   // value_index_[e] is the position in jacobian_.valuePtr() of structural entry e, in the order
   // BuildStructure() generates them.
-  std::vector<int> value_index_;
+  mutable std::vector<int> value_index_;
   int interval_entries_ = 0;  // 8 nx^2
   int terminal_offset_ = 0;   // first terminal entry
   int time_offset_ = 0;       // free final time: first entry of the T column, then the H row

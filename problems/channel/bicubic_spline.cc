@@ -89,21 +89,26 @@ BicubicSpline::BicubicSpline(double x0, double y0, double h, const Eigen::Matrix
   }
 }
 
-void BicubicSpline::Evaluate(
+// The evaluation at one order, known at compile time (0: value, 1: with the gradient, 2: with
+// the Hessian): the sums a lower order skips are not even tested for in the loop (the same
+// arithmetic, in the same order, as a runtime test of the order would do).
+template <int kOrder>
+void BicubicSpline::EvaluateOrder(
     double x, double y, double* value, Eigen::Vector2d* grad, Eigen::Matrix2d* hess) const {
   const double u = (x - x0_) / h_, v = (y - y0_) / h_;
-  const int i = static_cast<int>(std::clamp(std::floor(u), 0.0, static_cast<double>(nx() - 2)));
-  const int j = static_cast<int>(std::clamp(std::floor(v), 0.0, static_cast<double>(ny() - 2)));
-  const bool first = grad != nullptr || hess != nullptr, second = hess != nullptr;
+  // The cell (clamped to the boundary cells): for u >= 0 truncation is floor, and u < 0 clamps
+  // to 0 either way, so this is clamp(floor(u), 0, nx - 2) without floor's rounding sequence.
+  const int i = static_cast<int>(std::clamp(u, 0.0, static_cast<double>(nx() - 2)));
+  const int j = static_cast<int>(std::clamp(v, 0.0, static_cast<double>(ny() - 2)));
   const double tx = u - i, ty = v - j;
   double bx[4], dx[4], ddx[4], by[4], dy[4], ddy[4];
   Basis(tx, bx);
   Basis(ty, by);
-  if (first) {
+  if constexpr (kOrder >= 1) {
     BasisDerivative(tx, dx);
     BasisDerivative(ty, dy);
   }
-  if (second) {
+  if constexpr (kOrder >= 2) {
     BasisSecondDerivative(tx, ddx);
     BasisSecondDerivative(ty, ddy);
   }
@@ -114,22 +119,37 @@ void BicubicSpline::Evaluate(
     const double c0 = col[0], c1 = col[1], c2 = col[2], c3 = col[3];
     const double sv = c0 * bx[0] + c1 * bx[1] + c2 * bx[2] + c3 * bx[3];
     f += sv * by[b];
-    if (!first) continue;
-    const double sd = c0 * dx[0] + c1 * dx[1] + c2 * dx[2] + c3 * dx[3];
-    fx += sd * by[b];
-    fy += sv * dy[b];
-    if (!second) continue;
-    const double sdd = c0 * ddx[0] + c1 * ddx[1] + c2 * ddx[2] + c3 * ddx[3];
-    fxx += sdd * by[b];
-    fxy += sd * dy[b];
-    fyy += sv * ddy[b];
+    if constexpr (kOrder >= 1) {
+      const double sd = c0 * dx[0] + c1 * dx[1] + c2 * dx[2] + c3 * dx[3];
+      fx += sd * by[b];
+      fy += sv * dy[b];
+      if constexpr (kOrder >= 2) {
+        const double sdd = c0 * ddx[0] + c1 * ddx[1] + c2 * ddx[2] + c3 * ddx[3];
+        fxx += sdd * by[b];
+        fxy += sd * dy[b];
+        fyy += sv * ddy[b];
+      }
+    }
   }
   if (value != nullptr) *value = f;
-  const double inv_h = 1.0 / h_;
-  if (grad != nullptr) *grad = Eigen::Vector2d(fx * inv_h, fy * inv_h);
+  if constexpr (kOrder >= 1) {
+    const double inv_h = 1.0 / h_;
+    if (grad != nullptr) *grad = Eigen::Vector2d(fx * inv_h, fy * inv_h);
+    if constexpr (kOrder >= 2) {
+      const double s = inv_h * inv_h;
+      *hess << fxx * s, fxy * s, fxy * s, fyy * s;
+    }
+  }
+}
+
+void BicubicSpline::Evaluate(
+    double x, double y, double* value, Eigen::Vector2d* grad, Eigen::Matrix2d* hess) const {
   if (hess != nullptr) {
-    const double s = inv_h * inv_h;
-    *hess << fxx * s, fxy * s, fxy * s, fyy * s;
+    EvaluateOrder<2>(x, y, value, grad, hess);
+  } else if (grad != nullptr) {
+    EvaluateOrder<1>(x, y, value, grad, hess);
+  } else {
+    EvaluateOrder<0>(x, y, value, grad, hess);
   }
 }
 

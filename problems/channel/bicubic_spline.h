@@ -32,6 +32,10 @@ class BicubicSpline {
   int ny() const { return static_cast<int>(coef_.cols()) - 2; }
 
  private:
+  template <int kOrder>
+  void EvaluateOrder(
+      double x, double y, double* value, Eigen::Vector2d* grad, Eigen::Matrix2d* hess) const;
+
   double x0_ = 0.0, y0_ = 0.0, h_ = 1.0;
   Eigen::MatrixXd coef_;  // (nx + 2) x (ny + 2); coef_(a + 1, b + 1) multiplies B(. - a) B(. - b)
 };

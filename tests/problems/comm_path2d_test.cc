@@ -462,6 +462,52 @@ TEST(CommPath2d, StageModelIsBitwiseTheGenericFunctions) {
   }
 }
 
+// The indirect method's fused node evaluation (one channel evaluation) returns the numbers of
+// MinimizeHamiltonian, DynamicsJacobian and RunningCostGradient bitwise (Ocp's default), on the
+// path-loss channel and a map, with u* interior, on the ball and at both rate bounds; the
+// gradients it returns are the hand-written ones that DerivativesMatchFiniteDifferences checks.
+TEST(CommPath2d, FusedMinimizerWithGradientsIsBitwiseTheThreeCalls) {
+  std::mt19937_64 rng(43);
+  std::uniform_real_distribution<double> pos(-5.0, 55.0), vel(-2.0, 2.0), unit(-1.0, 1.0);
+  const auto map = RippleMap();
+  for (const auto& [k5, k6, channel] : {std::tuple{0.0, 0.0, PaperPathLoss()},
+                                        std::tuple{0.7, 1.3, PaperPathLoss()},
+                                        std::tuple{0.0, 0.0, map},
+                                        std::tuple{0.7, 1.3, map}}) {
+    const CommPath2d ocp(WithK56(k5, k6), channel);
+    for (int trial = 0; trial < 60; ++trial) {
+      Vec x(5), p(5);
+      x << pos(rng), pos(rng), vel(rng), vel(rng), 100.0 * (1.0 + unit(rng));
+      if (trial % 10 == 0) x[2] = x[3] = 0.0;
+      for (int i = 0; i < 5; ++i) p[i] = 5.0 * unit(rng);
+      // |p2| from tiny (interior u) to large (on the ball); p3 from rate 0 to Rmax.
+      p[2] *= std::pow(10.0, -3.0 * std::abs(unit(rng)));
+      p[4] = -std::abs(p[4]) * std::pow(10.0, -6.0 * std::abs(unit(rng)));
+      if (trial % 10 == 1) p[4] = 1.0;
+      const double t = 3.0;
+
+      Vec u_ref(3), f_ref(5), Lx_ref(5), Lu_ref(3);
+      Mat fx_ref(5, 5), fu_ref(5, 3);
+      double L_ref = 0.0;
+      ocp.MinimizeHamiltonian(t, x, p, u_ref);
+      ocp.DynamicsJacobian(t, x, u_ref, f_ref, fx_ref, fu_ref);
+      ocp.RunningCostGradient(t, x, u_ref, &L_ref, Lx_ref, Lu_ref);
+
+      Vec u(3), f(5), Lx(5), Lu(3);
+      Mat fx(5, 5), fu(5, 3);
+      double L = 0.0;
+      ocp.MinimizeHamiltonianWithGradients(t, x, p, u, f, fx, fu, &L, Lx, Lu);
+      EXPECT_EQ(u, u_ref);
+      EXPECT_EQ(f, f_ref);
+      EXPECT_EQ(fx, fx_ref);
+      EXPECT_EQ(fu, fu_ref);
+      EXPECT_EQ(L, L_ref);
+      EXPECT_EQ(Lx, Lx_ref);
+      EXPECT_EQ(Lu, Lu_ref);
+    }
+  }
+}
+
 // The proximal minimizer (Sakawa-Shindo's direction) beats a brute-force search over U of
 // H + |w - center|^2 / (2 eps) (a polar grid of the ball times a grid of [0, Rmax], a fine line in
 // R at w, and random points near w), for k5 = k6 = 0 and > 0 and eps from small to large; and

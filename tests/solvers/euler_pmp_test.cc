@@ -1,7 +1,10 @@
 // The Euler maximum principle (PmpResidual::Scheme::kEuler) and its fitted costates: the
 // Jacobian against finite differences, and its solutions against the Euler NLP's optimum.
 #include <cmath>
+#include <limits>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -69,6 +72,88 @@ TEST(PmpResidualEuler, FreeTimeJacobianMatchesFiniteDifferences) {
     const PmpResidual pmp(*ocp, TimeGrid::Uniform(0.0, 1.0, 5), mode, kEuler);
     ASSERT_TRUE(pmp.free_final_time());
     ExpectJacobianMatchesFiniteDifferences(*ocp, mode, PointFor(*ocp, pmp, 1.3), kEuler);
+  }
+}
+
+// Newton evaluates its Jacobian where it evaluated last (the accepted trial), and PmpResidual
+// then reuses that evaluation's node values (u*, f and L with their gradients): residual, J and
+// Jacobian are bitwise a fresh evaluation's, on both schemes, both terminal forms, clipped
+// controls (comm-path2d) and a free final time; after an evaluation at another point, and after
+// a failed one, nothing stale is reused.
+TEST(PmpResidual, JacobianAtTheLastEvaluatedPointIsBitwiseAFreshOne) {
+  struct Case {
+    const char* name;
+    std::vector<std::string> params;
+    double T;
+  };
+  for (const Case& c : {Case{"comm-path2d", {"channel=0", "tf=4"}, 4.0},
+                        Case{"vanderpol", {}, 0.0},
+                        Case{"double-integrator-free-time", {}, 1.3}}) {
+    const auto ocp = MakeProblem(c.name, c.params, 1);
+    for (const auto scheme : {PmpResidual::Scheme::kTrapezoid, kEuler}) {
+      for (TerminalMode mode : {TerminalMode::kPenalty, TerminalMode::kHard}) {
+        if (mode == TerminalMode::kHard && ocp->num_terminal() == 0) continue;
+        SCOPED_TRACE(std::string(c.name) + " " + ToString(mode) +
+                     (scheme == kEuler ? " euler" : " trapezoid"));
+        const TimeGrid grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 6);
+        PmpResidual fresh(*ocp, grid, mode, scheme), reused(*ocp, grid, mode, scheme);
+        const Vec z0 = PointFor(*ocp, fresh, c.T > 0.0 ? c.T : ocp->tf());
+        Vec z1 = z0;
+        for (int i = 0; i < z1.size(); ++i) z1[i] += 0.01 * std::sin(3.0 * i);
+        // z1 with a NaN in x_N's last component: every node is evaluated at z1's values, then
+        // the evaluation fails (a state row of the last interval is NaN).
+        Vec bad = z1;
+        bad[fresh.NodeColumn(grid.intervals()) + ocp->nx() - 1] =
+            std::numeric_limits<double>::quiet_NaN();
+        Vec F_fresh(fresh.size()), F(fresh.size()), F_reused(fresh.size());
+        double J_fresh = 0.0, J = 0.0, J_reused = 0.0;
+        ASSERT_TRUE(fresh.Evaluate(z0, F_fresh, &J_fresh, true)) << fresh.FailureMessage();
+        const Mat jacobian_fresh = Mat(fresh.jacobian());
+        // The structure built on demand has the layout's count of entries.
+        EXPECT_EQ(fresh.jacobian().nonZeros(), fresh.structural_nonzeros());
+        auto expect_fresh = [&]() {
+          ASSERT_TRUE(reused.Evaluate(z0, F_reused, &J_reused, true)) << reused.FailureMessage();
+          EXPECT_EQ(J_reused, J_fresh);
+          EXPECT_EQ(F_reused, F_fresh);
+          EXPECT_EQ(Mat(reused.jacobian()), jacobian_fresh);
+        };
+        ASSERT_TRUE(reused.Evaluate(z0, F, &J, false));
+        expect_fresh();  // the values of the residual evaluation at z0 reused
+        ASSERT_TRUE(reused.Evaluate(z1, F, &J, false));
+        expect_fresh();  // z1's values are not z0's: evaluated afresh
+        ASSERT_TRUE(reused.Evaluate(z0, F, &J, false));
+        EXPECT_FALSE(reused.Evaluate(bad, F, &J, false));
+        expect_fresh();  // the failed evaluation overwrote z0's node values
+      }
+    }
+  }
+}
+
+// A line-search trial's evaluation is abandoned once the squares of its rows so far exceed the
+// caller's bound (PmpResidual::Evaluate's abandon_above): never below the full sum of squares,
+// always once the interval rows alone exceed it; otherwise F and J are the unbounded ones.
+TEST(PmpResidual, EvaluationIsAbandonedOnlyAboveTheBound) {
+  const auto ocp = MakeProblem("comm-path2d", {"channel=0", "tf=4"}, 1);
+  for (const auto scheme : {PmpResidual::Scheme::kTrapezoid, kEuler}) {
+    for (TerminalMode mode : {TerminalMode::kPenalty, TerminalMode::kHard}) {
+      SCOPED_TRACE(std::string(ToString(mode)) + (scheme == kEuler ? " euler" : " trapezoid"));
+      PmpResidual pmp(*ocp, TimeGrid::Uniform(0.0, 4.0, 8), mode, scheme);
+      const Vec z = PointFor(*ocp, pmp, 4.0);
+      Vec F(pmp.size()), F_bounded(pmp.size());
+      double J = 0.0, J_bounded = 0.0;
+      ASSERT_TRUE(pmp.Evaluate(z, F, &J, false));
+      const double squares = F.squaredNorm();
+      ASSERT_TRUE(pmp.Evaluate(z, F_bounded, &J_bounded, false, squares));
+      EXPECT_EQ(F_bounded, F);
+      EXPECT_EQ(J_bounded, J);
+      // The initial and interval rows (all but the terminal ones) exceed half their own sum.
+      const int interval_rows = pmp.IntervalRow(pmp.intervals());
+      const double half = 0.5 * F.head(interval_rows).squaredNorm();
+      EXPECT_FALSE(pmp.Evaluate(z, F_bounded, &J_bounded, false, half));
+      EXPECT_EQ(pmp.failure(), PmpResidual::Failure::kAbandoned);
+      EXPECT_GE(pmp.failure_node(), 0);
+      EXPECT_LT(pmp.failure_node(), pmp.intervals());
+    }
   }
 }
 

@@ -1,6 +1,7 @@
 #include "solvers/small_lu.h"
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <utility>
@@ -11,6 +12,7 @@
 #include <Eigen/QR>
 
 #include "core/types.h"
+#include "solvers/all_finite.h"
 #include "solvers/small_dims.h"
 
 namespace ocpb {
@@ -151,6 +153,26 @@ TEST(SmallDims, DispatchesCompiledPairsAndFallsBackToRuntime) {
   EXPECT_EQ(sizes(7, 1), std::make_pair(0, 0));
   EXPECT_EQ(sizes(2, 4), std::make_pair(0, 0));
   EXPECT_EQ(sizes(0, 1), std::make_pair(0, 0));
+}
+
+// AllFinite is std::isfinite of every entry: true on finite values of any size (the largest
+// included, whose x - x is still 0), false with an infinity or a NaN at any position, for
+// lengths 0 .. 9 (odd and even: the two partial sums and the tail).
+TEST(AllFinite, IsIsFiniteOfEveryEntry) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double big = std::numeric_limits<double>::max();
+  for (int n = 0; n <= 9; ++n) {
+    std::vector<double> v(n);
+    for (int i = 0; i < n; ++i) v[i] = (i % 3 == 0 ? big : -0.5 * i) * (i % 2 == 0 ? 1.0 : -1.0);
+    EXPECT_TRUE(AllFinite(v.data(), n)) << n;
+    for (int i = 0; i < n; ++i) {
+      for (const double bad : {inf, -inf, std::numeric_limits<double>::quiet_NaN()}) {
+        std::vector<double> w = v;
+        w[i] = bad;
+        EXPECT_FALSE(AllFinite(w.data(), n)) << n << " " << i << " " << bad;
+      }
+    }
+  }
 }
 
 }  // namespace
