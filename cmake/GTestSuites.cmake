@@ -7,7 +7,10 @@
 # sanitizer build pays a fixed start and exit (ASan's shadow memory, the binary's pages, the leak
 # check): transcriptions_test's 242 tests took 49.7 s of CPU as 242 processes and 36.5 s as one
 # (2026-12-03). A suite keeps one concept's tests together: a failure still names its test (the
-# output lists each), `ctest -R <suite>` runs a concept and `ctest -R '^solvers_test\.'` a binary.
+# output lists each), `ctest -R '\.<suite>$'` runs a concept and `ctest -R '^solvers_test\.'` a
+# binary. A suite that runs no test fails (a filter that matches nothing would pass vacuously).
+# PROPERTIES are name/value pairs as for set_tests_properties; a value that holds a `;` (a list)
+# is not supported (it would be split into pairs).
 #
 # After each build of `target` its suites are listed (`--gtest_list_tests`) into
 # <target>_suites.cmake; CTest reads the list through a file registered in TEST_INCLUDE_FILES.
@@ -24,7 +27,7 @@ function(ocpb_add_gtest_suites target)
     VERBATIM)
   # The properties are written here, at configure time, as bracket arguments (an ENVIRONMENT
   # value may hold any character); the build only writes the suites' names.
-  set(properties "TIMEOUT 600")
+  set(properties "TIMEOUT 600 FAIL_REGULAR_EXPRESSION [==[\\[==========\\] 0 tests from]==]")
   foreach(value IN LISTS ARG_PROPERTIES)
     string(APPEND properties " [==[${value}]==]")
   endforeach()

@@ -1,19 +1,35 @@
 # cmake -D EXECUTABLE=<GoogleTest binary> -D OUTPUT=<file> -P ListGTestSuites.cmake
 # Writes `set(ocpb_gtest_suites ...)`, the binary's test suites in its own order, to OUTPUT (read by
-# ocpb_add_gtest_suites' include file, GTestSuites.cmake). Fails the build when the binary cannot
-# list its tests or lists none.
+# ocpb_add_gtest_suites' include file, GTestSuites.cmake). The old list is removed first, so a
+# failed listing leaves no stale suites behind (CTest then reports the binary as not built). Fails
+# the build when the binary cannot list its tests, lists none, or prints a line in column 0 that
+# is not a suite's. Suites named DISABLED_* are left out (GoogleTest would run none of them).
+file(REMOVE ${OUTPUT})
 execute_process(COMMAND ${EXECUTABLE} --gtest_list_tests
                 OUTPUT_VARIABLE listing ERROR_VARIABLE errors RESULT_VARIABLE rc TIMEOUT 60)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "${EXECUTABLE} --gtest_list_tests failed (${rc}):\n${errors}")
 endif()
-# A suite line starts in column 0 and ends its name with a dot (a typed suite's comment follows);
-# the tests below it are indented; gtest_main's "Running main() ..." line has no such name.
-string(REGEX MATCHALL "(^|\n)[A-Za-z_][A-Za-z0-9_/]*\\." lines "${listing}")
+# Only the names matter, so the characters that CMake's lists treat specially (a test's
+# `# GetParam() = ...` comment may hold any) are replaced before the listing is split into lines.
+string(REPLACE ";" "," listing "${listing}")
+string(REPLACE "[" "(" listing "${listing}")
+string(REPLACE "]" ")" listing "${listing}")
+string(REPLACE "\n" ";" lines "${listing}")
 set(content "set(ocpb_gtest_suites")
 set(count 0)
 foreach(line IN LISTS lines)
-  string(REGEX REPLACE "^\n?(.*)\\.$" "\\1" suite "${line}")
+  if(line STREQUAL "" OR line MATCHES "^ " OR line MATCHES "^Running main\\(\\) from ")
+    continue()  # a test of the suite above, or gtest_main's greeting
+  endif()
+  # A suite: its name and a dot in column 0 (a typed suite's `  # TypeParam = ...` follows).
+  if(NOT line MATCHES "^([A-Za-z_][A-Za-z0-9_/]*)\\.(  #.*)?$")
+    message(FATAL_ERROR "${EXECUTABLE} --gtest_list_tests: not a test suite: '${line}'")
+  endif()
+  set(suite "${CMAKE_MATCH_1}")  # before the next MATCHES resets CMAKE_MATCH_1
+  if(suite MATCHES "^DISABLED_")
+    continue()
+  endif()
   string(APPEND content "\n  [==[${suite}]==]")
   math(EXPR count "${count} + 1")
 endforeach()

@@ -21,7 +21,8 @@ rm -rf "$work"
 mkdir -p "$work"
 cd "$work"
 local_pid=""
-trap '[ -z "$local_pid" ] || kill "$local_pid" 2>/dev/null; local_slurm_stop "$state"' EXIT
+# The cluster is stopped whatever happens (a failed kill of an ended local run must not skip it).
+trap 'if [ -n "$local_pid" ]; then kill "$local_pid" 2>/dev/null || true; fi; local_slurm_stop "$state"' EXIT
 
 fail() {
   echo "slurm_array_test: FAILED: $*" >&2

@@ -29,10 +29,17 @@ crashes="${build}/fuzz/crashes/${target}"
 log="${build}/fuzz/${target}.log"
 mkdir -p "$work" "$crashes"
 echo "fuzzing ${target} for ${seconds} s (log ${log})"
+# -error_exitcode=1: libFuzzer's own default, 77, is CTest's skip code here (a crash reported
+# as skipped would pass the run).
 rc=0
 "${build}/bin/${target}_fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-  -artifact_prefix="${crashes}/" -print_final_stats=1 "$work" "${source}/tests/fuzz/corpus/${target}" \
-  >"$log" 2>&1 || rc=$?
+  -error_exitcode=1 -artifact_prefix="${crashes}/" -print_final_stats=1 "$work" \
+  "${source}/tests/fuzz/corpus/${target}" >"$log" 2>&1 || rc=$?
+if [ "$rc" -eq 77 ]; then rc=1; fi
 echo "--- ${target}_fuzzer: exit ${rc}"
+if [ "$rc" -ne 0 ]; then
+  # The report and the input's file; the statistics below would push them out of the tail.
+  grep -E '^==[0-9]+==|^SUMMARY:|deadly signal|Test unit written|^artifact_prefix' "$log" | head -n 40 || true
+fi
 tail -n 12 "$log"
 exit "$rc"
