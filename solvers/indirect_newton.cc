@@ -386,6 +386,8 @@ class NewtonIteration {
         return "singular_minimizer";
       case PmpResidual::Failure::kBadFinalTime:
         return "bad_final_time";
+      case PmpResidual::Failure::kAbandoned:  // only a line-search trial, never a reported point
+        return "abandoned_trial";
       default:
         return "nonfinite_residual";
     }

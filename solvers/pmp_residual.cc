@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include "solvers/all_finite.h"
@@ -531,8 +532,10 @@ bool PmpResidual::Evaluate(
     failure_node_ = N_ + 1;
     return false;
   }
-  // NaN never exceeds the limit: a non-finite residual fails below, as before.
-  const double abandon_limit = abandon_above * (1.0 + kAbandonMargin);
+  // NaN never exceeds the limit: a non-finite residual fails below, as before. An evaluation
+  // with the Jacobian is never abandoned: a half-written Jacobian would be left behind.
+  const double abandon_limit = with_jacobian ? std::numeric_limits<double>::infinity()
+                                             : abandon_above * (1.0 + kAbandonMargin);
   double squares = F.head(nx).squaredNorm();
   const bool ok =
       scheme_ == Scheme::kEuler

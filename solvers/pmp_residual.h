@@ -153,7 +153,8 @@ class PmpResidual {
   /// decrease), the evaluation stops as soon as the squares of the rows computed so far exceed
   /// it by kAbandonMargin, and returns false with failure() = kAbandoned: a trial that is
   /// rejected anyway costs only the intervals up to where its residual is large. The decision
-  /// is the full sum's (the squares are nonnegative), so callers' iterates do not change.
+  /// is the full sum's (the squares are nonnegative), so callers' iterates do not change. The
+  /// bound is ignored with `with_jacobian` (the Jacobian is written node by node).
   bool Evaluate(ConstVecRef z,
                 VecRef F,
                 double* cost,
