@@ -31,21 +31,57 @@ void PmpNodeBlocks(int nx_runtime,
                    double* __restrict Ex,
                    double* __restrict Ep) {
   const int nx = SmallDim<kNx>(nx_runtime), nu = SmallDim<kNu>(nu_runtime), nz = nx + nu;
+  // Column by column, the products added in the order l = 0, 1, ... to every entry (each
+  // entry's sum in the same order as one entry at a time), so the loop over the rows i runs
+  // over contiguous columns and vectorizes.
   for (int j = 0; j < nx; ++j) {
+    double* __restrict gx = Gx + j * nx;
+    double* __restrict gp = Gp + j * nx;
+    double* __restrict ex = Ex + j * nx;
+    double* __restrict ep = Ep + j * nx;
     for (int i = 0; i < nx; ++i) {
-      double gx = fx[j * nx + i], gp = 0.0, ex = hess[j * nz + i], ep = fx[i * nx + j];
-      for (int l = 0; l < nu; ++l) {
-        const double ux = Ux[j * nu + l], up = Up[j * nu + l];
-        const double fil = fu[l * nx + i], hil = hess[(nx + l) * nz + i];
-        gx += fil * ux;
-        gp += fil * up;
-        ex += hil * ux;
-        ep += hil * up;
+      gx[i] = fx[j * nx + i];
+      gp[i] = 0.0;
+      ex[i] = hess[j * nz + i];
+      ep[i] = fx[i * nx + j];
+    }
+    for (int l = 0; l < nu; ++l) {
+      const double ux = Ux[j * nu + l], up = Up[j * nu + l];
+      const double* fl = fu + l * nx;
+      const double* hl = hess + (nx + l) * nz;
+      for (int i = 0; i < nx; ++i) {
+        gx[i] += fl[i] * ux;
+        gp[i] += fl[i] * up;
+        ex[i] += hl[i] * ux;
+        ep[i] += hl[i] * up;
       }
-      Gx[j * nx + i] = gx;
-      Gp[j * nx + i] = gp;
-      Ex[j * nx + i] = ex;
-      Ep[j * nx + i] = ep;
+    }
+  }
+}
+
+// Interval k's Jacobian entries that change (row-major rows of width 4 nx over x_k, p_k,
+// x_{k+1}, p_{k+1}, from `rows`): the state rows' -h G_x - I and -h G_p, the costate rows' -h E_x
+// and -h E_p - I (the middle columns: PmpResidual::EulerConstantEntries), at the compile-time
+// kNx when nonzero, so the loops unroll.
+template <int kNx>
+void EulerIntervalEntries(int nx_runtime,
+                          double h,
+                          const double* __restrict Gx,
+                          const double* __restrict Gp,
+                          const double* __restrict Ex,
+                          const double* __restrict Ep,
+                          double* __restrict rows) {
+  const int nx = SmallDim<kNx>(nx_runtime), W = 4 * nx;
+  for (int i = 0; i < nx; ++i) {
+    double* s = rows + i * W;         // state row i: columns x_k, p_k, x_{k+1}, p_{k+1}
+    double* c = rows + (nx + i) * W;  // costate row i
+    for (int j = 0; j < nx; ++j) {
+      const double eye = i == j ? 1.0 : 0.0;
+      const int ij = j * nx + i;  // (i, j) of the column-major node blocks
+      s[j] = -h * Gx[ij] - eye;
+      s[3 * nx + j] = -h * Gp[ij];
+      c[j] = -h * Ex[ij];
+      c[3 * nx + j] = -h * Ep[ij] - eye;
     }
   }
 }
@@ -395,7 +431,7 @@ bool PmpResidual::EvaluateEuler(ConstVecRef z,
                                 double abandon_limit,
                                 double* squares,
                                 double* cost) {
-  const int nx = nx_, W = 4 * nx_;
+  const int nx = nx_;
   double* v = entries_.data();
   auto put = [v](int e, double value) { v[e] = value; };
   const double duration = T - grid_.t0();
@@ -438,23 +474,10 @@ bool PmpResidual::EvaluateEuler(ConstVecRef z,
     *squares += sq;
     if (*squares > abandon_limit) return Abandon(k);
     if (!with_jacobian) continue;
-    const int base = nx + k * interval_entries_;
-    const double* Gx = d.Gx.data();
-    const double* Gp = d.Gp.data();
-    const double* Ex = d.Ex.data();
-    const double* Ep = d.Ep.data();
-    for (int i = 0; i < nx; ++i) {
-      double* s = v + base + i * W;         // state row i: columns x_k, p_k, x_{k+1}, p_{k+1}
-      double* c = v + base + (nx + i) * W;  // costate row i
-      for (int j = 0; j < nx; ++j) {
-        const double eye = i == j ? 1.0 : 0.0;
-        const int ij = j * nx + i;  // (i, j) of the column-major node blocks
-        s[j] = -h * Gx[ij] - eye;   // s[nx + j], s[2 nx + j]: EulerConstantEntries
-        s[3 * nx + j] = -h * Gp[ij];
-        c[j] = -h * Ex[ij];  // c[nx + j], c[2 nx + j]: EulerConstantEntries
-        c[3 * nx + j] = -h * Ep[ij] - eye;
-      }
-    }
+    double* rows = v + nx + k * interval_entries_;
+    WithSmallDims(nx, nu_, [&]<int kNx, int>() {
+      EulerIntervalEntries<kNx>(nx, h, d.Gx.data(), d.Gp.data(), d.Ex.data(), d.Ep.data(), rows);
+    });
     if (free_time_) {
       // d/dT of h_k (...) with h_k = (T - t0) ds_k (autonomous: f, H_x do not depend on t).
       const int e = time_offset_ + 2 * nx * k;
