@@ -1,6 +1,7 @@
 // Optional per-point fast paths a problem may offer to first-order methods on a forward-Euler grid.
 #pragma once
 
+#include "core/time_grid.h"
 #include "core/types.h"
 
 namespace ocpb {
@@ -31,6 +32,16 @@ class EulerStageModel {
   /// trial states of an Armijo search without the generic Dynamics call per point.
   virtual void EulerStep(
       double t, double h, const double* x, const double* u, double* x_next) const = 0;
+
+  /// The Euler states of a whole trial: column k + 1 of X (nx x (N + 1), column-major, column
+  /// 0 given) is EulerStep(grid.t(k), grid.h(k), column k of X, column k of U (nu x N)), for k
+  /// = 0 .. N - 1, bitwise. The default makes those calls; a problem may override it with the
+  /// same arithmetic in one loop, without a virtual call per point.
+  virtual void EulerStates(const TimeGrid& grid, int nx, int nu, const double* U, double* X) const {
+    for (int k = 0; k < grid.intervals(); ++k) {
+      EulerStep(grid.t(k), grid.h(k), X + k * nx, U + k * nu, X + (k + 1) * nx);
+    }
+  }
 
   /// L(t, x, u), bitwise equal to Ocp::RunningCost(t, x, u); also writes StageCacheSize()
   /// doubles to `cache` for a later BackwardPoint at the same (t, x, u).

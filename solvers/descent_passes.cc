@@ -147,15 +147,8 @@ void DescentPasses::TrialStates() {
     trial_docp_->SimulateStates(trial_U_, &X_trial_);
     return;
   }
-  const TimeGrid& grid = trial_docp_->grid();
   X_trial_.col(0) = ocp_.x0();
-  for (int k = 0; k < N_; ++k) {
-    model_->EulerStep(grid.t(k),
-                      grid.h(k),
-                      X_trial_.col(k).data(),
-                      trial_U_.col(k).data(),
-                      X_trial_.col(k + 1).data());
-  }
+  model_->EulerStates(trial_docp_->grid(), nx_, nu_, trial_U_.data(), X_trial_.data());
 }
 
 bool DescentPasses::EvaluateTrial(double step, double threshold, double* J) {

@@ -28,6 +28,28 @@ bool MinimizerDerivativeProducts(int nx_runtime,
                                  int ld_dp) {
   const int nx = SmallDim<kNx>(nx_runtime), nu = SmallDim<kNu>(nu_runtime);
   double check_x = 0.0, check_p = 0.0;
+  if constexpr (kNu > 0) {
+    // Column j of both products in registers, the terms l = 0, 1, ... added to every entry in
+    // turn (each entry's sum in the order of the loop below).
+    for (int j = 0; j < nx; ++j) {
+      double vx[kNu], vp[kNu];
+      for (int i = 0; i < kNu; ++i) vx[i] = vp[i] = 0.0;
+      for (int l = 0; l < kNu; ++l) {
+        const double h = hux[j * ld_hess + l], f = fu[l * ld_fu + j];
+        for (int i = 0; i < kNu; ++i) {
+          vx[i] += Z[l * nu + i] * h;
+          vp[i] += Z[l * nu + i] * f;
+        }
+      }
+      for (int i = 0; i < kNu; ++i) {
+        du_dx[j * ld_dx + i] = -vx[i];
+        du_dp[j * ld_dp + i] = -vp[i];
+        check_x += vx[i] - vx[i];
+        check_p += vp[i] - vp[i];
+      }
+    }
+    return check_x + check_p == 0.0;
+  }
   for (int j = 0; j < nx; ++j) {
     for (int i = 0; i < nu; ++i) {
       double vx = 0.0, vp = 0.0;

@@ -59,6 +59,24 @@ void PmpNodeBlocks(int nx_runtime,
   }
 }
 
+// g = l + A^T p for the column-major nx x m matrix A (H_x = L_x + f_x^T p with m = nx, H_u =
+// L_u + f_u^T p with m = nu): each entry summed in the order i = 0, 1, ..., at the compile-time
+// sizes when nonzero (the runtime loops cost about three times the arithmetic).
+template <int kNx, int kM>
+void GradientPlusTransposedProduct(int nx_runtime,
+                                   int m_runtime,
+                                   const double* __restrict l,
+                                   const double* __restrict A,
+                                   const double* __restrict p,
+                                   double* __restrict g) {
+  const int nx = SmallDim<kNx>(nx_runtime), m = SmallDim<kM>(m_runtime);
+  for (int j = 0; j < m; ++j) {
+    double v = l[j];
+    for (int i = 0; i < nx; ++i) v += A[j * nx + i] * p[i];
+    g[j] = v;
+  }
+}
+
 // Interval k's Jacobian entries that change (row-major rows of width 4 nx over x_k, p_k,
 // x_{k+1}, p_{k+1}, from `rows`): the state rows' -h G_x - I and -h G_p, the costate rows' -h E_x
 // and -h E_p - I (the middle columns: PmpResidual::EulerConstantEntries), at the compile-time
@@ -307,11 +325,9 @@ bool PmpResidual::EvaluateNode(int k,
   if (!reuse) {
     ocp_.MinimizeHamiltonianWithGradients(t, x, p, n->u, n->f, n->fx, n->fu, &n->L, n->Lx, n->Lu);
     double* Hx = n->Hx.data();
-    for (int j = 0; j < nx; ++j) {
-      double v = n->Lx[j];
-      for (int i = 0; i < nx; ++i) v += fx[j * nx + i] * pv[i];
-      Hx[j] = v;
-    }
+    WithSmallDims(nx, nu, [&]<int kNx, int>() {
+      GradientPlusTransposedProduct<kNx, kNx>(nx, nx, n->Lx.data(), fx, pv, Hx);
+    });
     if (!(std::isfinite(n->L) && AllFinite(Hx, nx) && AllFinite(n->f.data(), nx) &&
           AllFinite(n->u.data(), nu))) {
       failure_ = Failure::kNonFinite;
@@ -319,11 +335,9 @@ bool PmpResidual::EvaluateNode(int k,
     }
   }
   if (!with_jacobian) return true;
-  for (int j = 0; j < nu; ++j) {
-    double v = n->Lu[j];
-    for (int i = 0; i < nx; ++i) v += fu[j * nx + i] * pv[i];
-    b->Hu[j] = v;
-  }
+  WithSmallDims(nx, nu, [&]<int kNx, int kNu>() {
+    GradientPlusTransposedProduct<kNx, kNu>(nx, nu, n->Lu.data(), fu, pv, b->Hu.data());
+  });
   const Vec no_mu;
   ocp_.PointHessian(t, x, n->u, 1.0, p, no_mu, b->hess);
   const int nz = nx + nu;
