@@ -56,6 +56,16 @@ class EulerStageModel {
   /// bound already fails the Armijo test without evaluating L (and so without the channel).
   virtual double PointwiseRunningCostBound(double t, const double* x, const double* u) const = 0;
 
+  /// m[k] = PointwiseRunningCostBound(grid.t(k), column k of X, column k of U) for k = 0 ..
+  /// N - 1 (X nx x (N + 1), U nu x N, column-major), bitwise. The default makes those calls; a
+  /// problem may override it with the same arithmetic in one loop.
+  virtual void PointwiseRunningCostBounds(
+      const TimeGrid& grid, int nx, int nu, const double* X, const double* U, double* m) const {
+    for (int k = 0; k < grid.intervals(); ++k) {
+      m[k] = PointwiseRunningCostBound(grid.t(k), X + k * nx, U + k * nu);
+    }
+  }
+
   /// One step of the backward sweep at grid point k (time t, step h), given the `cache`
   /// RunningCostCaching wrote for this (t, x, u), with p = lambda_{k+1} on entry:
   ///   u_star = argmin_{w in U} H(t, x, w, p)   (bitwise Ocp::MinimizeHamiltonian),

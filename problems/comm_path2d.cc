@@ -418,6 +418,15 @@ double CommPath2d::PointwiseRunningCostBound(double, const double* x, const doub
   return options_.power.Motion(u[0] * u[0] + u[1] * u[1], x[2] * x[2] + x[3] * x[3]);
 }
 
+void CommPath2d::PointwiseRunningCostBounds(
+    const TimeGrid& grid, int, int, const double* X, const double* U, double* m) const {
+  for (int k = 0; k < grid.intervals(); ++k) {
+    const double* x = X + 5 * k;
+    const double* u = U + 3 * k;
+    m[k] = options_.power.Motion(u[0] * u[0] + u[1] * u[1], x[2] * x[2] + x[3] * x[3]);
+  }
+}
+
 void CommPath2d::BackwardPoint(double,
                                double h,
                                const double* x,

@@ -289,6 +289,13 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0>,
                             double* cache) const override;
   /// The motion power gamma (k1 |u|^2 + ...): L minus the transmission term (2^R - 1)/K s >= 0.
   double PointwiseRunningCostBound(double t, const double* x, const double* u) const override;
+  /// PointwiseRunningCostBound's arithmetic in one loop.
+  void PointwiseRunningCostBounds(const TimeGrid& grid,
+                                  int nx,
+                                  int nu,
+                                  const double* X,
+                                  const double* U,
+                                  double* m) const override;
   void BackwardPoint(double t,
                      double h,
                      const double* x,
