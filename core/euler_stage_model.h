@@ -1,6 +1,7 @@
 // Optional per-point fast paths a problem may offer to first-order methods on a forward-Euler grid.
 #pragma once
 
+#include "core/time_grid.h"
 #include "core/types.h"
 
 namespace ocpb {
@@ -32,6 +33,16 @@ class EulerStageModel {
   virtual void EulerStep(
       double t, double h, const double* x, const double* u, double* x_next) const = 0;
 
+  /// The Euler states of a whole trial: column k + 1 of X (nx x (N + 1), column-major, column
+  /// 0 given) is EulerStep(grid.t(k), grid.h(k), column k of X, column k of U (nu x N)), for k
+  /// = 0 .. N - 1, bitwise. The default makes those calls; a problem may override it with the
+  /// same arithmetic in one loop, without a virtual call per point.
+  virtual void EulerStates(const TimeGrid& grid, int nx, int nu, const double* U, double* X) const {
+    for (int k = 0; k < grid.intervals(); ++k) {
+      EulerStep(grid.t(k), grid.h(k), X + k * nx, U + k * nu, X + (k + 1) * nx);
+    }
+  }
+
   /// L(t, x, u), bitwise equal to Ocp::RunningCost(t, x, u); also writes StageCacheSize()
   /// doubles to `cache` for a later BackwardPoint at the same (t, x, u).
   virtual double RunningCostCaching(double t,
@@ -44,6 +55,16 @@ class EulerStageModel {
   /// transmission term that is >= 0 and added last). The descent rejects Armijo trials whose
   /// bound already fails the Armijo test without evaluating L (and so without the channel).
   virtual double PointwiseRunningCostBound(double t, const double* x, const double* u) const = 0;
+
+  /// m[k] = PointwiseRunningCostBound(grid.t(k), column k of X, column k of U) for k = 0 ..
+  /// N - 1 (X nx x (N + 1), U nu x N, column-major), bitwise. The default makes those calls; a
+  /// problem may override it with the same arithmetic in one loop.
+  virtual void PointwiseRunningCostBounds(
+      const TimeGrid& grid, int nx, int nu, const double* X, const double* U, double* m) const {
+    for (int k = 0; k < grid.intervals(); ++k) {
+      m[k] = PointwiseRunningCostBound(grid.t(k), X + k * nx, U + k * nu);
+    }
+  }
 
   /// One step of the backward sweep at grid point k (time t, step h), given the `cache`
   /// RunningCostCaching wrote for this (t, x, u), with p = lambda_{k+1} on entry:

@@ -383,11 +383,13 @@ void CommPath2d::MinimizeAndCompareHamiltonian(double,
 
 void CommPath2d::EulerStep(
     double, double h, const double* x, const double* u, double* x_next) const {
-  x_next[0] = x[0] + h * x[2];
-  x_next[1] = x[1] + h * x[3];
-  x_next[2] = x[2] + h * u[0];
-  x_next[3] = x[3] + h * u[1];
-  x_next[4] = x[4] + h * u[2];
+  EulerStepOf(h, x, u, x_next);
+}
+
+void CommPath2d::EulerStates(const TimeGrid& grid, int, int, const double* U, double* X) const {
+  for (int k = 0; k < grid.intervals(); ++k) {
+    EulerStepOf(grid.h(k), X + 5 * k, U + 3 * k, X + 5 * (k + 1));
+  }
 }
 
 double CommPath2d::RunningCostCaching(double,
@@ -414,6 +416,15 @@ double CommPath2d::RunningCostCaching(double,
 
 double CommPath2d::PointwiseRunningCostBound(double, const double* x, const double* u) const {
   return options_.power.Motion(u[0] * u[0] + u[1] * u[1], x[2] * x[2] + x[3] * x[3]);
+}
+
+void CommPath2d::PointwiseRunningCostBounds(
+    const TimeGrid& grid, int, int, const double* X, const double* U, double* m) const {
+  for (int k = 0; k < grid.intervals(); ++k) {
+    const double* x = X + 5 * k;
+    const double* u = U + 3 * k;
+    m[k] = options_.power.Motion(u[0] * u[0] + u[1] * u[1], x[2] * x[2] + x[3] * x[3]);
+  }
 }
 
 void CommPath2d::BackwardPoint(double,

@@ -281,12 +281,21 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0>,
   int StageCacheSize() const override { return kStageCache; }
   void EulerStep(
       double t, double h, const double* x, const double* u, double* x_next) const override;
+  /// EulerStep's arithmetic in one loop (nx = 5, nu = 3).
+  void EulerStates(const TimeGrid& grid, int nx, int nu, const double* U, double* X) const override;
   double RunningCostCaching(double t,
                             const double* x,
                             const double* u,
                             double* cache) const override;
   /// The motion power gamma (k1 |u|^2 + ...): L minus the transmission term (2^R - 1)/K s >= 0.
   double PointwiseRunningCostBound(double t, const double* x, const double* u) const override;
+  /// PointwiseRunningCostBound's arithmetic in one loop.
+  void PointwiseRunningCostBounds(const TimeGrid& grid,
+                                  int nx,
+                                  int nu,
+                                  const double* X,
+                                  const double* U,
+                                  double* m) const override;
   void BackwardPoint(double t,
                      double h,
                      const double* x,
@@ -332,6 +341,14 @@ class CommPath2d final : public AutoDiffOcp<CommPath2d, 5, 3, 5, 0>,
 
  private:
   static constexpr int kStageCache = 6;
+  /// x_next = x + h f(x, u), shared by EulerStep and EulerStates.
+  static void EulerStepOf(double h, const double* x, const double* u, double* x_next) {
+    x_next[0] = x[0] + h * x[2];
+    x_next[1] = x[1] + h * x[3];
+    x_next[2] = x[2] + h * u[0];
+    x_next[3] = x[3] + h * u[1];
+    x_next[4] = x[4] + h * u[2];
+  }
   /// u* of MinimizeHamiltonian given s = s(x1).
   void MinimizerGivenChannel(ConstVecRef x, ConstVecRef p, double s, VecRef u) const;
   /// The same given also nv = n(x2), the smoothed speed (p, u: raw arrays of 5 and 3).

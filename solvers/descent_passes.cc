@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
 #include "solvers/hamiltonian_descent.h"
+#include "solvers/small_dims.h"
 
 namespace ocpb {
 namespace {
@@ -45,6 +47,7 @@ DescentPasses::DescentPasses(const DiscreteOcp& docp,
   cache_.resize(cache_size_, N_);
   cache_trial_.resize(cache_size_, N_);
   suffix_.assign(static_cast<size_t>(N_) + 1, 0.0);
+  if (pointwise_) bounds_.resize(N_);
   ConstantBound(docp.grid());
   terms_.resize(N_);
   nows_.resize(N_);
@@ -147,15 +150,8 @@ void DescentPasses::TrialStates() {
     trial_docp_->SimulateStates(trial_U_, &X_trial_);
     return;
   }
-  const TimeGrid& grid = trial_docp_->grid();
   X_trial_.col(0) = ocp_.x0();
-  for (int k = 0; k < N_; ++k) {
-    model_->EulerStep(grid.t(k),
-                      grid.h(k),
-                      X_trial_.col(k).data(),
-                      trial_U_.col(k).data(),
-                      X_trial_.col(k + 1).data());
-  }
+  model_->EulerStates(trial_docp_->grid(), nx_, nu_, trial_U_.data(), X_trial_.data());
 }
 
 bool DescentPasses::EvaluateTrial(double step, double threshold, double* J) {
@@ -187,11 +183,9 @@ bool DescentPasses::EvaluateTrial(double step, double threshold, double* J) {
   }
   if (pointwise_) {
     const TimeGrid& grid = trial_docp_->grid();
-    for (int k = N_ - 1; k >= 0; --k) {
-      suffix_[k] = suffix_[k + 1] +
-                   grid.h(k) * model_->PointwiseRunningCostBound(
-                                   grid.t(k), X_trial_.col(k).data(), trial_U_.col(k).data());
-    }
+    model_->PointwiseRunningCostBounds(
+        grid, nx_, nu_, X_trial_.data(), trial_U_.data(), bounds_.data());
+    for (int k = N_ - 1; k >= 0; --k) suffix_[k] = suffix_[k + 1] + grid.h(k) * bounds_[k];
     if (suffix_[0] + phi > exit_above) {
       ++work_.pointwise_bound_rejections;
       ++work_.rejections;
@@ -323,6 +317,17 @@ void DescentPasses::PointDirection(double t,
   *h_star = ocp_.Hamiltonian(t, x, w, p);
 }
 
+void DescentPasses::CopyCostate(const double* from, double* to) const {
+  // A copy of a compile-time length is a few moves; of nx_ a call of memmove.
+  WithSmallDims(nx_, nu_, [&]<int kNx, int>() {
+    if constexpr (kNx > 0) {
+      std::memcpy(to, from, sizeof(double) * kNx);
+    } else {
+      std::copy_n(from, nx_, to);
+    }
+  });
+}
+
 // DiscreteOcp::Adjoint's Euler recursion and HamiltonianDescent::Direction in one sweep: at step
 // k the costate lam_ is lambda_{k+1}, the one both need. theta and its scale are summed forward
 // afterwards, in Direction's order.
@@ -339,7 +344,7 @@ double DescentPasses::BackwardEuler(double* theta_scale, double eps) {
     if (model_) {
       // lambda_k is computed in place from a copy of lambda_{k+1}.
       double* p = Lambda_.col(k).data();
-      std::copy_n(Lambda_.col(k + 1).data(), nx_, p);
+      CopyCostate(Lambda_.col(k + 1).data(), p);
       double* d = D_.col(k).data();
       const double* u = U_.col(k).data();
       model_->BackwardPoint(t,

@@ -162,8 +162,10 @@ class DescentPasses {
                       double* h_star,
                       double* h_now,
                       double* h_min);
-  // The Euler states of trial_U_ into X_trial_ (the model's EulerStep, or SimulateStates).
+  // The Euler states of trial_U_ into X_trial_ (the model's EulerStates, or SimulateStates).
   void TrialStates();
+  // nx_ doubles from `from` to `to` (a costate column).
+  void CopyCostate(const double* from, double* to) const;
 
   const DiscreteOcp* docp_;                           // the iterate's discrete problem
   const DiscreteOcp* trial_docp_;                     // the trial's (docp_ unless T moves)
@@ -183,6 +185,7 @@ class DescentPasses {
   Mat trial_U_, X_trial_, cache_, cache_trial_, G_;
   Vec final_step_, x_bound_;    // x_N(U + D) - x_N(U), and a trial's x_N (affine_final_state_)
   std::vector<double> suffix_;  // suffix_[k] = sum_{j>=k} h_j m_j of the current trial
+  std::vector<double> bounds_;  // m_k of the current trial (the pointwise bound)
   std::vector<double> terms_, scales_, mins_;  // mins_: h_k (H(u*_k) - H(u_k)) (proximal)
   double stationarity_theta_ = NAN;
   Vec lam_, tmp_x_, f_, Lx_, Lu_;

@@ -11,7 +11,9 @@ namespace {
 
 // du_dx = -Z H_ux and du_dp = -Z f_u^T (Z nu x nu, H_ux the rows nx.. of the PointHessian, all
 // column-major with the given leading dimensions), at the compile-time sizes kNx, kNu when
-// nonzero (solvers/small_dims.h). False when an entry is not finite.
+// nonzero (solvers/small_dims.h). False when an entry is not finite: v - v is 0 for a finite v
+// and NaN otherwise, and a sum stays NaN once a term is (solvers/all_finite.h), one subtraction
+// and addition per entry where a std::isfinite test and flag took eight instructions.
 template <int kNx, int kNu>
 bool MinimizerDerivativeProducts(int nx_runtime,
                                  int nu_runtime,
@@ -25,7 +27,29 @@ bool MinimizerDerivativeProducts(int nx_runtime,
                                  double* __restrict du_dp,
                                  int ld_dp) {
   const int nx = SmallDim<kNx>(nx_runtime), nu = SmallDim<kNu>(nu_runtime);
-  bool finite = true;
+  double check_x = 0.0, check_p = 0.0;
+  if constexpr (kNu > 0) {
+    // Column j of both products in registers, the terms l = 0, 1, ... added to every entry in
+    // turn (each entry's sum in the order of the loop below).
+    for (int j = 0; j < nx; ++j) {
+      double vx[kNu], vp[kNu];
+      for (int i = 0; i < kNu; ++i) vx[i] = vp[i] = 0.0;
+      for (int l = 0; l < kNu; ++l) {
+        const double h = hux[j * ld_hess + l], f = fu[l * ld_fu + j];
+        for (int i = 0; i < kNu; ++i) {
+          vx[i] += Z[l * nu + i] * h;
+          vp[i] += Z[l * nu + i] * f;
+        }
+      }
+      for (int i = 0; i < kNu; ++i) {
+        du_dx[j * ld_dx + i] = -vx[i];
+        du_dp[j * ld_dp + i] = -vp[i];
+        check_x += vx[i] - vx[i];
+        check_p += vp[i] - vp[i];
+      }
+    }
+    return check_x + check_p == 0.0;
+  }
   for (int j = 0; j < nx; ++j) {
     for (int i = 0; i < nu; ++i) {
       double vx = 0.0, vp = 0.0;
@@ -35,11 +59,11 @@ bool MinimizerDerivativeProducts(int nx_runtime,
       }
       du_dx[j * ld_dx + i] = -vx;
       du_dp[j * ld_dp + i] = -vp;
-      finite &= std::isfinite(vx);
-      finite &= std::isfinite(vp);
+      check_x += vx - vx;
+      check_p += vp - vp;
     }
   }
-  return finite;
+  return check_x + check_p == 0.0;
 }
 
 // Factors the n x n column-major KKT matrix K in place and writes Z, the top-left nu x nu block
@@ -56,6 +80,28 @@ bool MinimizerDerivativeInverseBlockOfOrder(
     for (int i = 0; i < nu; ++i) Z[c * nu + i] = w[i];
   }
   return true;
+}
+
+// |d|^2 and d . g of a ball's d = u_b - c_b (size components). Up to two components by hand:
+// a single addition, the number Eigen's reductions give whatever the alignment; Eigen's
+// reductions otherwise (their summation order for more components depends on alignment).
+void BallProducts(
+    const double* u, const double* c, const double* g, int size, double* dd, double* dg) {
+  if (size <= 2) {
+    const double d0 = u[0] - c[0];
+    *dd = d0 * d0;
+    *dg = d0 * g[0];
+    if (size == 2) {
+      const double d1 = u[1] - c[1];
+      *dd += d1 * d1;
+      *dg += d1 * g[1];
+    }
+    return;
+  }
+  using Map = Eigen::Map<const Vec>;
+  const Vec d = Map(u, size) - Map(c, size);
+  *dd = d.squaredNorm();
+  *dg = d.dot(Map(g, size));
 }
 
 // The same at the compile-time order n = nu + (active rows) when it is at most 6 (nu <= 3: every
@@ -130,15 +176,18 @@ bool MinimizerDerivative::Compute(
         }
       }
     } else {
-      const auto d = u.segment(b.offset, b.size) - b.center;
-      const double nd = d.norm();
+      const double* ub = u.data() + b.offset;
+      const double* cb = b.center.data();
+      double dd = 0.0, dg = 0.0;
+      BallProducts(ub, cb, Hu.data() + b.offset, b.size, &dd, &dg);
+      const double nd = std::sqrt(dd);
       if (b.radius > 0.0 && nd >= b.radius * (1.0 - kActiveTolerance)) {
         // n = d / |d|; H_u + mu (u - c) = 0 on the sphere, mu >= 0.
-        const double mu = std::max(0.0, -d.dot(Hu.segment(b.offset, b.size)) / (nd * nd));
+        const double mu = std::max(0.0, -dg / (nd * nd));
         for (int i = 0; i < b.size; ++i) {
           const int j = b.offset + i;
           M[j * nu + j] += mu;
-          a[na * nu + j] = d[i] / nd;
+          a[na * nu + j] = (ub[i] - cb[i]) / nd;
         }
         ++na;
       }

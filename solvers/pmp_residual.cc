@@ -32,21 +32,75 @@ void PmpNodeBlocks(int nx_runtime,
                    double* __restrict Ex,
                    double* __restrict Ep) {
   const int nx = SmallDim<kNx>(nx_runtime), nu = SmallDim<kNu>(nu_runtime), nz = nx + nu;
+  // Column by column, the products added in the order l = 0, 1, ... to every entry (each
+  // entry's sum in the same order as one entry at a time), so the loop over the rows i runs
+  // over contiguous columns and vectorizes.
   for (int j = 0; j < nx; ++j) {
+    double* __restrict gx = Gx + j * nx;
+    double* __restrict gp = Gp + j * nx;
+    double* __restrict ex = Ex + j * nx;
+    double* __restrict ep = Ep + j * nx;
     for (int i = 0; i < nx; ++i) {
-      double gx = fx[j * nx + i], gp = 0.0, ex = hess[j * nz + i], ep = fx[i * nx + j];
-      for (int l = 0; l < nu; ++l) {
-        const double ux = Ux[j * nu + l], up = Up[j * nu + l];
-        const double fil = fu[l * nx + i], hil = hess[(nx + l) * nz + i];
-        gx += fil * ux;
-        gp += fil * up;
-        ex += hil * ux;
-        ep += hil * up;
+      gx[i] = fx[j * nx + i];
+      gp[i] = 0.0;
+      ex[i] = hess[j * nz + i];
+      ep[i] = fx[i * nx + j];
+    }
+    for (int l = 0; l < nu; ++l) {
+      const double ux = Ux[j * nu + l], up = Up[j * nu + l];
+      const double* fl = fu + l * nx;
+      const double* hl = hess + (nx + l) * nz;
+      for (int i = 0; i < nx; ++i) {
+        gx[i] += fl[i] * ux;
+        gp[i] += fl[i] * up;
+        ex[i] += hl[i] * ux;
+        ep[i] += hl[i] * up;
       }
-      Gx[j * nx + i] = gx;
-      Gp[j * nx + i] = gp;
-      Ex[j * nx + i] = ex;
-      Ep[j * nx + i] = ep;
+    }
+  }
+}
+
+// g = l + A^T p for the column-major nx x m matrix A (H_x = L_x + f_x^T p with m = nx, H_u =
+// L_u + f_u^T p with m = nu): each entry summed in the order i = 0, 1, ..., at the compile-time
+// sizes when nonzero (the runtime loops cost about three times the arithmetic).
+template <int kNx, int kM>
+void GradientPlusTransposedProduct(int nx_runtime,
+                                   int m_runtime,
+                                   const double* __restrict l,
+                                   const double* __restrict A,
+                                   const double* __restrict p,
+                                   double* __restrict g) {
+  const int nx = SmallDim<kNx>(nx_runtime), m = SmallDim<kM>(m_runtime);
+  for (int j = 0; j < m; ++j) {
+    double v = l[j];
+    for (int i = 0; i < nx; ++i) v += A[j * nx + i] * p[i];
+    g[j] = v;
+  }
+}
+
+// Interval k's Jacobian entries that change (row-major rows of width 4 nx over x_k, p_k,
+// x_{k+1}, p_{k+1}, from `rows`): the state rows' -h G_x - I and -h G_p, the costate rows' -h E_x
+// and -h E_p - I (the middle columns: PmpResidual::EulerConstantEntries), at the compile-time
+// kNx when nonzero, so the loops unroll.
+template <int kNx>
+void EulerIntervalEntries(int nx_runtime,
+                          double h,
+                          const double* __restrict Gx,
+                          const double* __restrict Gp,
+                          const double* __restrict Ex,
+                          const double* __restrict Ep,
+                          double* __restrict rows) {
+  const int nx = SmallDim<kNx>(nx_runtime), W = 4 * nx;
+  for (int i = 0; i < nx; ++i) {
+    double* s = rows + i * W;         // state row i: columns x_k, p_k, x_{k+1}, p_{k+1}
+    double* c = rows + (nx + i) * W;  // costate row i
+    for (int j = 0; j < nx; ++j) {
+      const double eye = i == j ? 1.0 : 0.0;
+      const int ij = j * nx + i;  // (i, j) of the column-major node blocks
+      s[j] = -h * Gx[ij] - eye;
+      s[3 * nx + j] = -h * Gp[ij];
+      c[j] = -h * Ex[ij];
+      c[3 * nx + j] = -h * Ep[ij] - eye;
     }
   }
 }
@@ -272,11 +326,9 @@ bool PmpResidual::EvaluateNode(int k,
   if (!reuse) {
     ocp_.MinimizeHamiltonianWithGradients(t, x, p, n->u, n->f, n->fx, n->fu, &n->L, n->Lx, n->Lu);
     double* Hx = n->Hx.data();
-    for (int j = 0; j < nx; ++j) {
-      double v = n->Lx[j];
-      for (int i = 0; i < nx; ++i) v += fx[j * nx + i] * pv[i];
-      Hx[j] = v;
-    }
+    WithSmallDims(nx, nu, [&]<int kNx, int>() {
+      GradientPlusTransposedProduct<kNx, kNx>(nx, nx, n->Lx.data(), fx, pv, Hx);
+    });
     if (!(std::isfinite(n->L) && AllFinite(Hx, nx) && AllFinite(n->f.data(), nx) &&
           AllFinite(n->u.data(), nu))) {
       failure_ = Failure::kNonFinite;
@@ -284,11 +336,9 @@ bool PmpResidual::EvaluateNode(int k,
     }
   }
   if (!with_jacobian) return true;
-  for (int j = 0; j < nu; ++j) {
-    double v = n->Lu[j];
-    for (int i = 0; i < nx; ++i) v += fu[j * nx + i] * pv[i];
-    b->Hu[j] = v;
-  }
+  WithSmallDims(nx, nu, [&]<int kNx, int kNu>() {
+    GradientPlusTransposedProduct<kNx, kNu>(nx, nu, n->Lu.data(), fu, pv, b->Hu.data());
+  });
   const Vec no_mu;
   ocp_.PointHessian(t, x, n->u, 1.0, p, no_mu, b->hess);
   const int nz = nx + nu;
@@ -396,7 +446,7 @@ bool PmpResidual::EvaluateEuler(ConstVecRef z,
                                 double abandon_limit,
                                 double* squares,
                                 double* cost) {
-  const int nx = nx_, W = 4 * nx_;
+  const int nx = nx_;
   double* v = entries_.data();
   auto put = [v](int e, double value) { v[e] = value; };
   const double duration = T - grid_.t0();
@@ -439,23 +489,10 @@ bool PmpResidual::EvaluateEuler(ConstVecRef z,
     *squares += sq;
     if (*squares > abandon_limit) return Abandon(k);
     if (!with_jacobian) continue;
-    const int base = nx + k * interval_entries_;
-    const double* Gx = d.Gx.data();
-    const double* Gp = d.Gp.data();
-    const double* Ex = d.Ex.data();
-    const double* Ep = d.Ep.data();
-    for (int i = 0; i < nx; ++i) {
-      double* s = v + base + i * W;         // state row i: columns x_k, p_k, x_{k+1}, p_{k+1}
-      double* c = v + base + (nx + i) * W;  // costate row i
-      for (int j = 0; j < nx; ++j) {
-        const double eye = i == j ? 1.0 : 0.0;
-        const int ij = j * nx + i;  // (i, j) of the column-major node blocks
-        s[j] = -h * Gx[ij] - eye;   // s[nx + j], s[2 nx + j]: EulerConstantEntries
-        s[3 * nx + j] = -h * Gp[ij];
-        c[j] = -h * Ex[ij];  // c[nx + j], c[2 nx + j]: EulerConstantEntries
-        c[3 * nx + j] = -h * Ep[ij] - eye;
-      }
-    }
+    double* rows = v + nx + k * interval_entries_;
+    WithSmallDims(nx, nu_, [&]<int kNx, int>() {
+      EulerIntervalEntries<kNx>(nx, h, d.Gx.data(), d.Gp.data(), d.Ex.data(), d.Ep.data(), rows);
+    });
     if (free_time_) {
       // d/dT of h_k (...) with h_k = (T - t0) ds_k (autonomous: f, H_x do not depend on t).
       const int e = time_offset_ + 2 * nx * k;

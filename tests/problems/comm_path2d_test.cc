@@ -7,6 +7,8 @@
 #include <random>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -458,6 +460,49 @@ TEST(CommPath2d, StageModelIsBitwiseTheGenericFunctions) {
       EXPECT_EQ(h_star, h_star_ref);
       EXPECT_EQ(h_now, h_now_ref);
       EXPECT_EQ(lam, lam_ref);
+    }
+  }
+}
+
+// The whole-trial calls of the descent (EulerStates, PointwiseRunningCostBounds: one loop each
+// on comm-path2d) return the per-point calls' numbers bitwise, and so does the interface's
+// default (the per-point calls), on a non-uniform grid with random controls.
+TEST(CommPath2d, WholeTrialStageCallsAreBitwiseThePointCalls) {
+  std::mt19937_64 rng(47);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<double> points = {0.0};
+  for (int k = 0; k < 37; ++k) points.push_back(points.back() + 0.05 + 0.1 * std::abs(unit(rng)));
+  const TimeGrid grid = TimeGrid::FromPoints(points);
+  const int N = grid.intervals();
+  for (const auto& [k5, k6] : {std::pair{0.0, 0.0}, std::pair{0.7, 1.3}}) {
+    const CommPath2d ocp(WithK56(k5, k6), PaperPathLoss());
+    const EulerStageModel& model = ocp;
+    Mat U(3, N);
+    for (int k = 0; k < N; ++k) {
+      U.col(k) << 0.4 * unit(rng), 0.4 * unit(rng), 3.0 + 3.0 * unit(rng);
+      if (k % 7 == 3) U.col(k).setZero();
+    }
+    Mat X(5, N + 1), X_default(5, N + 1), X_ref(5, N + 1);
+    X.col(0) << 20.0, 40.0, 0.3, -0.2, 1.0;
+    X_default.col(0) = X_ref.col(0) = X.col(0);
+    for (int k = 0; k < N; ++k) {
+      model.EulerStep(
+          grid.t(k), grid.h(k), X_ref.col(k).data(), U.col(k).data(), X_ref.col(k + 1).data());
+    }
+    model.EulerStates(grid, 5, 3, U.data(), X.data());
+    model.EulerStageModel::EulerStates(grid, 5, 3, U.data(), X_default.data());
+    EXPECT_EQ(X, X_ref);
+    EXPECT_EQ(X_default, X_ref);
+
+    std::vector<double> m(N), m_default(N);
+    model.PointwiseRunningCostBounds(grid, 5, 3, X.data(), U.data(), m.data());
+    model.EulerStageModel::PointwiseRunningCostBounds(
+        grid, 5, 3, X.data(), U.data(), m_default.data());
+    for (int k = 0; k < N; ++k) {
+      const double ref =
+          model.PointwiseRunningCostBound(grid.t(k), X.col(k).data(), U.col(k).data());
+      EXPECT_EQ(m[k], ref) << k;
+      EXPECT_EQ(m_default[k], ref) << k;
     }
   }
 }

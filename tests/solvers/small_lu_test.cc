@@ -1,5 +1,6 @@
 #include "solvers/small_lu.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -157,11 +158,12 @@ TEST(SmallDims, DispatchesCompiledPairsAndFallsBackToRuntime) {
 
 // AllFinite is std::isfinite of every entry: true on finite values of any size (the largest
 // included, whose x - x is still 0), false with an infinity or a NaN at any position, for
-// lengths 0 .. 9 (odd and even: the two partial sums and the tail).
+// lengths 0 .. 70 (the packed turns of four, every tail length, and the 64 entries of a node's
+// PointHessian at nx + nu = 8), from an unaligned start as well.
 TEST(AllFinite, IsIsFiniteOfEveryEntry) {
   const double inf = std::numeric_limits<double>::infinity();
   const double big = std::numeric_limits<double>::max();
-  for (int n = 0; n <= 9; ++n) {
+  for (int n = 0; n <= 70; ++n) {
     std::vector<double> v(n);
     for (int i = 0; i < n; ++i) v[i] = (i % 3 == 0 ? big : -0.5 * i) * (i % 2 == 0 ? 1.0 : -1.0);
     EXPECT_TRUE(AllFinite(v.data(), n)) << n;
@@ -170,6 +172,9 @@ TEST(AllFinite, IsIsFiniteOfEveryEntry) {
         std::vector<double> w = v;
         w[i] = bad;
         EXPECT_FALSE(AllFinite(w.data(), n)) << n << " " << i << " " << bad;
+        std::vector<double> shifted(n + 1, 0.0);  // the same values one double further
+        std::copy(w.begin(), w.end(), shifted.begin() + 1);
+        EXPECT_FALSE(AllFinite(shifted.data() + 1, n)) << n << " " << i << " " << bad;
       }
     }
   }
