@@ -42,6 +42,9 @@ struct IterationRecord {
   double primal_inf = NAN;   ///< NLP solvers: constraint violation
   double dual_inf = NAN;     ///< NLP solvers: dual infeasibility
   double cpu_seconds = 0.0;  ///< cumulative CPU time since the solve started
+  /// Intervals of the grid this iterate lives on when that is not the request's grid (a
+  /// grid-sequenced solve's coarser grids: its J is that grid's discrete J); -1: the request's.
+  int intervals = -1;
 };
 
 /// One mesh of an adaptive mesh refinement (the collocation transcriptions' mesh_tolerance > 0):

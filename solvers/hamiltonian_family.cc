@@ -5,10 +5,12 @@
 #include <memory>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "core/discrete_ocp.h"
 #include "solvers/constant_costate_start.h"
 #include "solvers/euler_costate_fit.h"
+#include "solvers/grid_sequence.h"
 #include "solvers/hamiltonian_target.h"
 #include "solvers/indirect_newton.h"
 #include "solvers/message_number.h"
@@ -80,47 +82,22 @@ HamiltonianTarget ResolveFamilyTarget(const std::string& name,
   return t;
 }
 
-}  // namespace
+// What every phase of one Solve shares.
+struct FamilyRun {
+  const std::string& name;
+  const HamiltonianFamilyOptions& o;
+  const Ocp& original;
+  const HamiltonianTarget& target;
+  const Stopwatch& clock;
+};
 
-HamiltonianFamily::HamiltonianFamily(Preset preset) : HamiltonianFamily(Defaults(preset), preset) {}
+// A solve on one grid, and whether its polish (when on) converged.
+struct GridSolve {
+  SolveResult result;
+  bool polished = false;
+};
 
-HamiltonianFamily::HamiltonianFamily(const Options& options, Preset preset)
-    : preset_(preset), options_(options) {
-  std::string error;
-  if (!options_.IsValid(&error)) throw std::invalid_argument(name() + ": " + error);
-}
-
-HamiltonianFamily::Options HamiltonianFamily::Proximal() {
-  Options o;
-  o.direction = Options::Direction::kProximal;
-  return o;
-}
-
-HamiltonianFamily::Options HamiltonianFamily::AugmentedLagrangian() {
-  Options o;
-  o.path = Options::PathConstraints::kAugmentedLagrangian;
-  return o;
-}
-
-HamiltonianFamily::Options HamiltonianFamily::Polished() {
-  Options o;
-  o.polish = true;
-  // Newton's first attempt after 250 descent steps (then 500, 1000, ...): on comm-path2d's hard
-  // form (N = 400, seeds 1-5, gamma = 1e-2 .. 1e-5) every case converged within two attempts
-  // (BM_HardFormFamilyPolish; figures in solvers/README-family.md).
-  o.max_iterations = 250;
-  return o;
-}
-
-void HamiltonianFamily::Polish(const Options& o,
-                               const Ocp& original,
-                               const Ocp& problem,
-                               const SolveRequest& request,
-                               const Stopwatch& clock,
-                               DescentLoopOptions loop,
-                               DescentPasses* passes,
-                               SolveResult* r) const {
-  auto& stats = r->solver_stats;
+IndirectNewtonOptions PolishNewtonOptions(const HamiltonianFamilyOptions& o) {
   IndirectNewtonOptions no;
   no.scheme = IndirectNewtonOptions::Scheme::kEuler;
   no.max_iterations = o.newton_max_iterations;
@@ -131,11 +108,27 @@ void HamiltonianFamily::Polish(const Options& o,
   no.sufficient_decrease = o.newton_sufficient_decrease;
   no.path_penalty = o.path_penalty;  // SolveFrom resolves the same reformulation
   no.regularization = o.regularization;
+  return no;
+}
+
+// The polish stage after the descent: fitted costates, Newton on the Euler maximum principle,
+// and on failure more descent and another attempt (polish_attempts). Updates *r; true when
+// Newton converged.
+bool Polish(const FamilyRun& run,
+            const Ocp& problem,
+            const SolveRequest& request,
+            DescentLoopOptions loop,
+            DescentPasses* passes,
+            SolveResult* r) {
+  const HamiltonianFamilyOptions& o = run.o;
+  const Stopwatch& clock = run.clock;
+  auto& stats = r->solver_stats;
+  const IndirectNewtonOptions no = PolishNewtonOptions(o);
   int descent_iterations = static_cast<int>(stats["descent_iterations"]);
   int newton_iterations = 0;
   double newton_cpu = 0.0;
   for (int attempt = 1;; ++attempt) {
-    if (!std::isfinite(passes->J()) || !passes->X().allFinite()) return;
+    if (!std::isfinite(passes->J()) || !passes->X().allFinite()) return false;
     const double cpu0 = clock.cpu();
     SolveRequest newton_request;
     newton_request.grid = passes->grid();
@@ -148,7 +141,7 @@ void HamiltonianFamily::Polish(const Options& o,
       stats["start_constant_costates"] = start.solved;
       stats["start_constant_costate_evaluations"] += start.evaluations;
     }
-    const SolveResult n = IndirectNewton(no).SolveFrom(original, newton_request, X, P);
+    const SolveResult n = IndirectNewton(no).SolveFrom(run.original, newton_request, X, P);
     newton_cpu += clock.cpu() - cpu0;
     newton_iterations += n.iterations;
     const int offset = static_cast<int>(r->history.size());
@@ -179,17 +172,18 @@ void HamiltonianFamily::Polish(const Options& o,
       r->objective = n.objective;
       const auto final_time = n.solver_stats.find("final_time");
       if (final_time != n.solver_stats.end()) stats["final_time"] = final_time->second;
-      return;
+      return true;
     }
     // The result keeps the descent's iterate; continue the descent (its budget doubles) unless
     // the attempts, the CPU limit or the descent itself are done.
     r->message += " (the controls are the descent's)";
     if (attempt >= o.polish_attempts || clock.cpu() >= o.max_cpu_seconds ||
         descent_iterations == 0) {
-      return;
+      return false;
     }
     loop.max_iterations = descent_iterations;
     // Rows are numbered by their place in the history (descent and Newton rows interleave).
+    const double descent_cpu0 = clock.cpu();
     const DescentLoopOutcome more = RunDescentLoop(loop,
                                                    clock,
                                                    passes,
@@ -197,7 +191,8 @@ void HamiltonianFamily::Polish(const Options& o,
                                                    static_cast<int>(r->history.size()) - 1,
                                                    -1,
                                                    /*record_first=*/false);
-    if (more.iterations == 0) return;  // the descent cannot move: Newton would start alike
+    stats["descent_cpu_seconds"] += clock.cpu() - descent_cpu0;
+    if (more.iterations == 0) return false;  // the descent cannot move: Newton would start alike
     descent_iterations += more.iterations;
     if (loop.proximal && std::isfinite(more.eps)) loop.proximal->initial_eps = more.eps;
     stats["descent_iterations"] = descent_iterations;
@@ -212,14 +207,12 @@ void HamiltonianFamily::Polish(const Options& o,
   }
 }
 
-SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& request) const {
-  const Options o = ApplyOptions(preset_, request.options, options_);
-  const std::string name = this->name();
-  CheckRequest(name, original, request);
-  const Stopwatch clock;
-  HamiltonianTarget target = ResolveFamilyTarget(name, original, request, o);
-  if (target.not_applicable) return *target.not_applicable;
-  const Ocp& problem = *target.ocp;
+// The family on request.grid: the descent (or the outer loop), then the polish when it is on.
+GridSolve SolveOnGrid(const FamilyRun& run, const SolveRequest& request) {
+  const HamiltonianFamilyOptions& o = run.o;
+  const Stopwatch& clock = run.clock;
+  const double cpu_start = clock.cpu();
+  const Ocp& problem = *run.target.ocp;
   const bool path_al =
       problem.num_path() > 0;  // ResolveFamilyTarget left them only for the outer loop
   // The hard form by the outer loop, unless Newton finishes: then the descent runs on the
@@ -257,10 +250,11 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
   loop.max_iterations = o.max_iterations;
   loop.relative_theta_tolerance = o.polish ? o.polish_switch : o.relative_theta_tolerance;
   loop.max_cpu_seconds = o.max_cpu_seconds;
-  if (o.direction == Options::Direction::kProximal) loop.proximal = o.proximal;
+  if (o.direction == HamiltonianFamilyOptions::Direction::kProximal) loop.proximal = o.proximal;
 
-  SolveResult r;
-  r.solver = name;
+  GridSolve out;
+  SolveResult& r = out.result;
+  r.solver = run.name;
   auto& stats = r.solver_stats;
   int descent_iterations = 0;
   double theta = NAN;
@@ -288,13 +282,12 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
     theta = outcome.theta;
     have_costates = outcome.have_costates;
   }
-  const double descent_cpu = clock.cpu();
   stats["descent_iterations"] = descent_iterations;
-  stats["descent_cpu_seconds"] = descent_cpu;
+  stats["descent_cpu_seconds"] = clock.cpu() - cpu_start;
   stats["final_theta"] = theta;
   stats["simulations"] = passes.work().simulations;
   stats["prefilter_rejections"] = passes.work().rejections;
-  stats["reformulated"] = target.reformulated ? 1.0 : 0.0;
+  stats["reformulated"] = run.target.reformulated ? 1.0 : 0.0;
   if (passes.free_final_time()) {
     stats["final_time"] = passes.T();
     stats["dJdT"] = passes.dJdT();
@@ -303,7 +296,7 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
   const TimeGrid grid = passes.grid();
   r.status = stop.status;
   r.solver_status = stop.code;
-  r.message = target.NotePrefix() + "descent: " + stop.why;
+  r.message = run.target.NotePrefix() + "descent: " + stop.why;
   r.iterations = descent_iterations;
   r.controls = ControlTrajectory::PiecewiseConstant(grid, passes.U());
   r.state_grid = grid;
@@ -313,7 +306,151 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
   r.objective = DiscreteOcp(problem, grid, request.integrator, request.terminal)
                     .Simulate(passes.U(), nullptr);
 
-  if (o.polish) Polish(o, original, problem, request, clock, loop, &passes, &r);
+  if (o.polish) out.polished = Polish(run, problem, request, loop, &passes, &r);
+  return out;
+}
+
+// The polish with grid sequencing: the whole polish (descent, fitted costates, one Newton
+// attempt) on the coarsest grid, Newton on each finer grid from the coarser solution
+// (NewtonOnFinerGrids); where that fails, the request's grid is solved as without sequencing
+// and the record says so.
+SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, int levels) {
+  const Stopwatch& clock = run.clock;
+  std::vector<TimeGrid> grids{request.grid};  // fine to coarse
+  for (int l = 0; l < levels; ++l) grids.push_back(EveryOtherNode(grids.back()));
+  const int coarse_intervals = grids.back().intervals();
+  HamiltonianFamilyOptions first = run.o;
+  first.polish_attempts = 1;
+  SolveRequest coarse_request = request;
+  coarse_request.grid = grids.back();
+  const double cpu0 = clock.cpu();
+  GridSolve coarse =
+      SolveOnGrid({run.name, first, run.original, run.target, clock}, coarse_request);
+  const double coarse_cpu = clock.cpu() - cpu0;
+  std::vector<IterationRecord> history = std::move(coarse.result.history);
+  for (IterationRecord& row : history) row.intervals = coarse_intervals;
+  GridSequenceOutcome finer;
+  if (coarse.polished) {
+    finer = NewtonOnFinerGrids(run.original,
+                               PolishNewtonOptions(run.o),
+                               request.terminal,
+                               coarse.result,
+                               std::vector<TimeGrid>(grids.rbegin() + 1, grids.rend()),
+                               clock,
+                               &history);
+  }
+  const double fine_cpu = clock.cpu() - cpu0 - coarse_cpu;
+  const auto coarse_newton_stat = coarse.result.solver_stats.find("newton_iterations");
+  const double coarse_newton =
+      coarse_newton_stat == coarse.result.solver_stats.end() ? 0.0 : coarse_newton_stat->second;
+  const std::string coarse_message = "on " + std::to_string(coarse_intervals) +
+                                     " intervals (grid sequencing): " + coarse.result.message;
+
+  SolveResult r;
+  if (coarse.polished && finer.converged) {
+    r = std::move(coarse.result);
+    const SolveResult& n = finer.last;
+    auto& stats = r.solver_stats;
+    r.controls = n.controls;
+    r.state_grid = n.state_grid;
+    r.states = n.states;
+    r.costates = n.costates;
+    r.objective = n.objective;
+    r.status = n.status;
+    r.solver_status = n.solver_status;
+    r.iterations += finer.newton_iterations;
+    r.message = coarse_message + "; " + finer.message;
+    stats["newton_iterations"] += finer.newton_iterations;
+    stats["newton_cpu_seconds"] += finer.newton_cpu_seconds;
+    if (!n.history.empty()) stats["newton_residual_inf"] = n.history.back().primal_inf;
+    for (const auto& [key, value] : n.solver_stats) stats["newton_" + key] = value;
+    const auto final_time = n.solver_stats.find("final_time");
+    if (final_time != n.solver_stats.end()) stats["final_time"] = final_time->second;
+    stats["coarse_fallback"] = 0;
+  } else {
+    // The request's grid as without sequencing, after the failed sequence (whose rows stay in
+    // the history, first, and whose steps count in `iterations`).
+    r = SolveOnGrid(run, request).result;
+    const int failed_rows = static_cast<int>(history.size());
+    for (IterationRecord row : r.history) {
+      row.iteration += failed_rows;
+      history.push_back(row);
+    }
+    const int failed_iterations = coarse.result.iterations + finer.newton_iterations;
+    r.iterations += failed_iterations;
+    r.message = "grid sequence failed " + coarse_message +
+                (coarse.polished ? "; " + finer.message : std::string()) +
+                "; then on the request's grid: " + r.message;
+    auto& stats = r.solver_stats;
+    stats["coarse_fallback"] = 1;
+    stats["coarse_fallback_intervals"] =
+        coarse.polished ? finer.failed_intervals : coarse_intervals;
+    stats["coarse_failed_iterations"] = failed_iterations;
+  }
+  r.history = std::move(history);
+  auto& stats = r.solver_stats;
+  stats["coarse_levels"] = levels;
+  stats["coarse_intervals"] = coarse_intervals;
+  stats["coarse_newton_iterations"] = coarse_newton;
+  stats["fine_newton_iterations"] = finer.newton_iterations;
+  stats["coarse_cpu_seconds"] = coarse_cpu;
+  stats["fine_cpu_seconds"] = fine_cpu;
+  return r;
+}
+
+}  // namespace
+
+HamiltonianFamily::HamiltonianFamily(Preset preset) : HamiltonianFamily(Defaults(preset), preset) {}
+
+HamiltonianFamily::HamiltonianFamily(const Options& options, Preset preset)
+    : preset_(preset), options_(options) {
+  std::string error;
+  if (!options_.IsValid(&error)) throw std::invalid_argument(name() + ": " + error);
+}
+
+HamiltonianFamily::Options HamiltonianFamily::Proximal() {
+  Options o;
+  o.direction = Options::Direction::kProximal;
+  return o;
+}
+
+HamiltonianFamily::Options HamiltonianFamily::AugmentedLagrangian() {
+  Options o;
+  o.path = Options::PathConstraints::kAugmentedLagrangian;
+  return o;
+}
+
+HamiltonianFamily::Options HamiltonianFamily::Polished() {
+  Options o;
+  o.polish = true;
+  // Newton's first attempt after 250 descent steps (then 500, 1000, ...): on comm-path2d's hard
+  // form (N = 400, seeds 1-5, gamma = 1e-2 .. 1e-5) every case converged within two attempts
+  // (BM_HardFormFamilyPolish; figures in solvers/README-family.md).
+  o.max_iterations = 250;
+  return o;
+}
+
+SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& request) const {
+  const Options o = ApplyOptions(preset_, request.options, options_);
+  const std::string name = this->name();
+  CheckRequest(name, original, request);
+  const Stopwatch clock;
+  HamiltonianTarget target = ResolveFamilyTarget(name, original, request, o);
+  if (target.not_applicable) return *target.not_applicable;
+  const FamilyRun run{name, o, original, target, clock};
+  SolveResult r;
+  if (o.polish) {
+    const int levels =
+        GridSequenceLevels(request.grid, o.polish_coarse_levels, o.polish_coarse_min_intervals);
+    if (levels > 0) {
+      r = SolveSequenced(run, request, levels);
+    } else {
+      r = SolveOnGrid(run, request).result;
+      r.solver_stats["coarse_levels"] = 0;
+    }
+  } else {
+    r = SolveOnGrid(run, request).result;
+  }
   if (std::isfinite(r.objective)) r.message += "; final J = " + MessageNumber(r.objective);
   r.cpu_seconds = clock.cpu();
   r.wall_seconds = clock.wall();

@@ -100,6 +100,22 @@ struct HamiltonianFamilyOptions {
   /// slower at every gamma <= 1e-3 (the descent's path is far from the optimum's, and the
   /// budget's costate on that path is 30x the optimum's; solvers/README-family.md).
   bool polish_constant_costate_start = false;
+  /// Grid sequencing of the polish (solvers/grid_sequence.h). With L > 0 halvings of the
+  /// request's grid, the whole polish (descent, fitted costates, one Newton attempt) runs on the
+  /// grid of every 2^L-th node, then Newton on each finer grid (every 2^(L-1)-th node, ..., the
+  /// request's) from the coarser solution's states and costates interpolated linearly (a free
+  /// final time keeps the coarser solution's T as its start; nu is re-estimated from p_N). The
+  /// descent and Newton's steps through the moving active set are paid on the coarse grid, and
+  /// each finer grid takes a few steps (Newton's mesh independence: comm-path2d, N = 400: 3-4
+  /// steps from the interpolated N = 200 solution; solvers/README-family.md). Where any grid of
+  /// the sequence fails, the request's grid is solved as without sequencing (all
+  /// polish_attempts), after it, and the record says so. L is the largest level <=
+  /// polish_coarse_levels at which every grid has an even number of intervals to halve and the
+  /// coarsest keeps at least polish_coarse_min_intervals: with the defaults (2, 100) N = 400 ->
+  /// 200 -> 100, N = 200 -> 100, N = 300 -> 150, and no sequencing below N = 200 or for odd N.
+  /// Keys "polish_coarse_levels" (>= 0; 0: off) and "polish_coarse_min_intervals" (>= 1).
+  int polish_coarse_levels = 2;
+  int polish_coarse_min_intervals = 100;
 
   bool IsValid(std::string* error) const;
 };
@@ -121,7 +137,9 @@ struct HamiltonianFamilyOptions {
 ///     costates are fitted to its controls (FitEulerCostates) and IndirectNewton with
 ///     Scheme::kEuler solves the Euler maximum principle of the same discrete problem (penalty
 ///     or hard form, T included) from its states: the optimum of the discrete problem to Newton's
-///     tolerance, the Euler transcription's NLP optimum.
+///     tolerance, the Euler transcription's NLP optimum. On grids of 200 intervals or more the
+///     polish is grid-sequenced by default (polish_coarse_levels): it runs on a coarser grid
+///     first and Newton refines the solution grid by grid.
 ///
 /// Result: controls piecewise constant on state_grid (the request's grid, stretched to T for a
 /// free final time); states, costates of the final iterate (the polished one with polish);
@@ -139,7 +157,18 @@ struct HamiltonianFamilyOptions {
 /// those of psi_i = 0 in the Lagrangian J + nu^T psi); free time: "final_time", "dJdT"; polish:
 /// "newton_iterations", "newton_cpu_seconds", "newton_residual_inf" and Newton's own stats prefixed
 /// "newton_"; with polish_constant_costate_start "start_constant_costates" and
-/// "start_constant_costate_evaluations".
+/// "start_constant_costate_evaluations". Grid sequencing (polish_coarse_levels): "coarse_levels"
+/// (halvings used; 0: the polish ran on the request's grid alone), and when > 0
+/// "coarse_intervals" (the coarsest grid's), "coarse_newton_iterations" (Newton steps there),
+/// "fine_newton_iterations" (on the finer grids), "coarse_cpu_seconds" (the coarsest grid's
+/// descent and Newton), "fine_cpu_seconds" (Newton on the finer grids), "coarse_fallback" (1
+/// when the sequence failed and the request's grid was solved without it), and with a fallback
+/// "coarse_fallback_intervals" (the grid that failed) and "coarse_failed_iterations" (the
+/// failed sequence's steps). A sequenced solve's descent_* stats and "final_theta" are the
+/// coarsest grid's descent's (or, after a fallback, the request grid's); its history holds the
+/// rows of every grid in the order of execution, each coarser grid's rows with their grid's
+/// IterationRecord::intervals (their J is that grid's discrete J); `iterations` counts every
+/// step taken, a failed sequence's included.
 ///
 /// Not applicable (kNotApplicable, reason in `message`): no Hamiltonian minimizer; path
 /// constraints left after the choice of `path`; a free final time with RK4; a polish with path
@@ -182,17 +211,6 @@ class HamiltonianFamily final : public Solver {
   SolveResult Solve(const Ocp& ocp, const SolveRequest& request) const override;
 
  private:
-  // The polish stage after the descent: fitted costates, Newton on the Euler maximum principle,
-  // and on failure more descent and another attempt (polish_attempts). Updates *r.
-  void Polish(const Options& o,
-              const Ocp& original,
-              const Ocp& problem,
-              const SolveRequest& request,
-              const Stopwatch& clock,
-              DescentLoopOptions loop,
-              DescentPasses* passes,
-              SolveResult* r) const;
-
   Preset preset_;
   Options options_;
 };

@@ -224,6 +224,15 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
          &O::polish_constant_costate_start,
          "polish: start Newton with each integrator state's costate constant, solved from that "
          "state's terminal condition");
+  t.Integer("polish_coarse_levels",
+            &O::polish_coarse_levels,
+            "polish: grid sequencing, the polish first on every 2^L-th node and Newton on each "
+            "finer grid from there (L at most this; 0: off)",
+            OptionBounds::AtLeast(0));
+  t.Integer("polish_coarse_min_intervals",
+            &O::polish_coarse_min_intervals,
+            "polish: grid sequencing's coarsest grid keeps at least this many intervals",
+            OptionBounds::AtLeast(1));
   return t;
 }
 

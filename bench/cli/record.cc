@@ -140,6 +140,7 @@ json HistoryJson(const std::vector<IterationRecord>& history) {
                         {"primal_inf", JsonNumber(h.primal_inf)},
                         {"dual_inf", JsonNumber(h.dual_inf)},
                         {"cpu_seconds", JsonNumber(h.cpu_seconds)}});
+    if (h.intervals >= 0) hist.back()["intervals"] = h.intervals;
   }
   return hist;
 }
@@ -220,6 +221,8 @@ std::vector<IterationRecord> HistoryFrom(const Reader& r) {
     row.Number("primal_inf", &rec.primal_inf);
     row.Number("dual_inf", &rec.dual_inf);
     row.Number("cpu_seconds", &rec.cpu_seconds);
+    row.Integer("intervals", &rec.intervals);
+    if (row.Has("intervals") && rec.intervals < 1) row.Fail("intervals", "an integer >= 1");
     out.push_back(rec);
   }
   return out;

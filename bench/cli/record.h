@@ -20,7 +20,8 @@ namespace ocpb {
 /// (they carry no schema_version); 2: the typed record (adds schema_version, solver_options,
 /// transcription_options); 3: adds warnings, discretization_gap, stopping_tolerance,
 /// continuation and trajectory.own (the method's own states and costates, a warm start's
-/// source). Readers take all three (fields a version lacks keep their defaults).
+/// source); later within 3, optional history[i].intervals (an iterate on a grid-sequenced solve's
+/// coarser grid). Readers take all three (fields a version lacks keep their defaults).
 inline constexpr int kRecordSchemaVersion = 3;
 
 /// The trajectory a record keeps (for figures): t (N + 1 grid points), states x (nx rows of

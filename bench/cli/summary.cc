@@ -203,6 +203,8 @@ std::vector<DerivedFields> DeriveTargets(const std::vector<Record>& records) {
     d.reached_target = WithinTarget(d.final_J, d.best_J);
     if (!d.reached_target) continue;
     for (const IterationRecord& h : r.history) {
+      // An iterate of a coarser grid (grid sequencing) has that grid's J: not the request's.
+      if (h.intervals >= 0) continue;
       if (WithinTarget(h.J, d.best_J) && !(h.primal_inf > kFeasibleHistory)) {
         d.time_to_target = h.cpu_seconds;
         break;

@@ -9,7 +9,9 @@
 // is built once per seed outside the timed region. Counters: J (Euler J without penalty, by the
 // common evaluator), terminal (terminal violation, evaluator), cpu_s (the solve's own CPU
 // time), converged (1 or 0), and for the family descent_iterations, newton_iterations,
-// newton_attempts; for Ipopt iterations.
+// newton_attempts and its grid sequence's coarse_newton_iterations, fine_newton_iterations and
+// coarse_fallback; for Ipopt iterations. The table of the issue-19 figures from a JSON run:
+// bench/kernels/hardform_ratios.py.
 #include <map>
 #include <memory>
 #include <string>
@@ -39,7 +41,12 @@ void Report(benchmark::State& state, const Ocp& ocp, const SolveResult& r) {
   state.counters["terminal"] = ev.terminal_violation;
   state.counters["cpu_s"] = r.cpu_seconds;
   state.counters["converged"] = IsSuccess(r.status) ? 1.0 : 0.0;
-  for (const char* key : {"descent_iterations", "newton_iterations", "newton_attempts"}) {
+  for (const char* key : {"descent_iterations",
+                          "newton_iterations",
+                          "newton_attempts",
+                          "coarse_newton_iterations",
+                          "fine_newton_iterations",
+                          "coarse_fallback"}) {
     const auto it = r.solver_stats.find(key);
     if (it != r.solver_stats.end()) state.counters[key] = it->second;
   }

@@ -2,6 +2,7 @@
 // records shaped like those `ocpbench run` writes (bench/cli/case_runner.cc).
 #include "bench/cli/summary.h"
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -120,6 +121,23 @@ TEST(DeriveTargets, AnIterateWithoutPrimalInfeasibilityCounts) {
   json h = MakeRecord("hamiltonian", "", 474.0, 474.0);
   h["history"] = History({{900.0, 0.1}, {478.0, 0.25}, {474.0, 0.5}});
   EXPECT_DOUBLE_EQ(Derived({h})[0]["time_to_target"].get<double>(), 0.25);
+}
+
+TEST(DeriveTargets, IteratesOfACoarserGridDoNotCount) {
+  // A grid-sequenced solve: rows 0-1 on a 100-interval grid (their J is that grid's, here
+  // within 1 % of the best), row 2 the first on the request's grid within 1 %. The record's
+  // intervals survive the reader.
+  json h = MakeRecord("hamiltonian-polish", "", 474.0, 474.0);
+  h["history"] = History({{900.0, 0.1}, {474.1, 0.2}, {474.0, 0.3}});
+  h["history"][0]["intervals"] = 100;
+  h["history"][1]["intervals"] = 100;
+  EXPECT_EQ(Record::FromJson(h).history[1].intervals, 100);
+  EXPECT_EQ(Record::FromJson(h).history[2].intervals, -1);
+  EXPECT_DOUBLE_EQ(Derived({h})[0]["time_to_target"].get<double>(), 0.3);
+  EXPECT_EQ(Derived({h})[0]["history"][1]["intervals"], 100);
+  EXPECT_FALSE(Derived({h})[0]["history"][2].contains("intervals"));
+  h["history"][1]["intervals"] = 0;
+  EXPECT_THROW(Record::FromJson(h), std::invalid_argument);
 }
 
 TEST(DeriveTargets, WithoutAQualifyingIterateTheTotalCpuTimeCounts) {

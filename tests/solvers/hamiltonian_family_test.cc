@@ -569,6 +569,135 @@ TEST(Polish, RecordShowsBothPhases) {
   EXPECT_NE(r.message.find("Newton"), std::string::npos);
 }
 
+// ---- grid sequencing of the polish --------------------------------------------------------------
+
+// The number of history rows on each grid, in the order the grids appear (-1: the request's).
+std::vector<std::pair<int, int>> RowsPerGrid(const SolveResult& r) {
+  std::vector<std::pair<int, int>> out;
+  for (const IterationRecord& row : r.history) {
+    if (out.empty() || out.back().first != row.intervals) out.push_back({row.intervals, 0});
+    ++out.back().second;
+  }
+  return out;
+}
+
+// On N = 400 the polish runs on 100 intervals, then Newton on 200 and 400 from the interpolated
+// coarser solutions (measured: 17 Newton steps on 100 intervals, 6 on the finer two), and lands
+// on the optimum the polish finds on the request's grid alone (polish_coarse_levels = 0) to
+// Newton's tolerance; the record shows the grids and adds up.
+TEST(Polish, GridSequencingReachesTheOptimumOfTheRequestsGrid) {
+  const auto ocp = MakeProblem("comm-path2d", {"channel=0", "gamma=1e-3"}, 1);
+  const SolveRequest request = FamilyRequest(*ocp, 400, TerminalMode::kHard);
+  const HamiltonianFamily polish(HamiltonianFamily::Preset::kPolish);
+  const SolveResult sequenced = polish.Solve(*ocp, request);
+  SolveRequest alone_request = request;
+  alone_request.options.Set("polish_coarse_levels", 0);
+  const SolveResult alone = polish.Solve(*ocp, alone_request);
+  ASSERT_EQ(sequenced.status, SolveStatus::kConverged) << sequenced.message;
+  ASSERT_EQ(alone.status, SolveStatus::kConverged) << alone.message;
+  EXPECT_EQ(Stat(alone, "coarse_levels"), 0.0);
+  EXPECT_EQ(Stat(sequenced, "coarse_levels"), 2.0);
+  EXPECT_EQ(Stat(sequenced, "coarse_intervals"), 100.0);
+  EXPECT_EQ(Stat(sequenced, "coarse_fallback"), 0.0);
+  EXPECT_TRUE(std::isnan(Stat(sequenced, "coarse_fallback_intervals")));
+
+  // The same discrete optimum (Newton's 1e-10 on both), on the request's grid.
+  ASSERT_EQ(sequenced.state_grid.intervals(), 400);
+  EXPECT_NEAR(sequenced.objective, alone.objective, 1e-10 * std::abs(alone.objective));
+  EXPECT_LT((sequenced.states - alone.states).cwiseAbs().maxCoeff(), 1e-7);
+  EXPECT_LE(Stat(sequenced, "newton_residual_inf"), 1e-10);
+  const Evaluation judged =
+      Evaluate(*ocp, sequenced.controls, sequenced.state_grid, Integrator::kEuler);
+  EXPECT_LE(judged.terminal_violation, 1e-8);
+
+  // The record: rows on 100 intervals (the descent's and Newton's), then on 200, then on the
+  // request's grid (intervals -1); the steps add up; the request's grid took fewer Newton steps
+  // than the polish on that grid alone.
+  const auto grids = RowsPerGrid(sequenced);
+  ASSERT_EQ(grids.size(), 3u);
+  EXPECT_EQ(grids[0].first, 100);
+  EXPECT_EQ(grids[1].first, 200);
+  EXPECT_EQ(grids[2].first, -1);
+  const double descent = Stat(sequenced, "descent_iterations");
+  const double coarse_newton = Stat(sequenced, "coarse_newton_iterations");
+  const double fine_newton = Stat(sequenced, "fine_newton_iterations");
+  EXPECT_EQ(grids[0].second, descent + 1 + coarse_newton + 1);  // each phase's start row too
+  EXPECT_EQ(grids[1].second + grids[2].second, fine_newton + 2);
+  EXPECT_EQ(Stat(sequenced, "newton_iterations"), coarse_newton + fine_newton);
+  EXPECT_EQ(sequenced.iterations, descent + coarse_newton + fine_newton);
+  EXPECT_LT(grids[2].second - 1, Stat(alone, "newton_iterations"));
+  for (size_t i = 0; i < sequenced.history.size(); ++i) {
+    EXPECT_EQ(sequenced.history[i].iteration, static_cast<int>(i));
+    if (i > 0) {
+      EXPECT_GE(sequenced.history[i].cpu_seconds, sequenced.history[i - 1].cpu_seconds) << i;
+    }
+  }
+  EXPECT_LE(Stat(sequenced, "coarse_cpu_seconds") + Stat(sequenced, "fine_cpu_seconds"),
+            sequenced.cpu_seconds);
+  EXPECT_LE(Stat(sequenced, "descent_cpu_seconds") + Stat(sequenced, "newton_cpu_seconds"),
+            sequenced.cpu_seconds);
+  EXPECT_NE(sequenced.message.find("Newton on 200 intervals"), std::string::npos);
+  EXPECT_NE(sequenced.message.find("Newton on 400 intervals"), std::string::npos);
+
+  // Below 200 intervals (or with an odd count) nothing changes: the polish alone.
+  const SolveResult small = polish.Solve(*ocp, FamilyRequest(*ocp, 150, TerminalMode::kHard));
+  EXPECT_EQ(Stat(small, "coarse_levels"), 0.0);
+  for (const IterationRecord& row : small.history) EXPECT_EQ(row.intervals, -1);
+}
+
+// Where the coarsest grid's Newton fails (comm-path2d, channel 0, gamma = 3e-5: 100 steps on 100
+// intervals without converging, measured), the request's grid is solved as without sequencing,
+// after the failed sequence; the record keeps both and says so.
+TEST(Polish, FailedGridSequenceFallsBackToTheRequestsGrid) {
+  const auto ocp = MakeProblem("comm-path2d", {"channel=0", "gamma=3e-5"}, 1);
+  const SolveRequest request = FamilyRequest(*ocp, 400, TerminalMode::kHard);
+  const HamiltonianFamily polish(HamiltonianFamily::Preset::kPolish);
+  const SolveResult r = polish.Solve(*ocp, request);
+  ASSERT_EQ(Stat(r, "coarse_fallback"), 1.0) << r.message;
+  EXPECT_EQ(Stat(r, "coarse_fallback_intervals"), 100.0);
+  ASSERT_EQ(r.status, SolveStatus::kConverged) << r.message;
+  SolveRequest alone_request = request;
+  alone_request.options.Set("polish_coarse_levels", 0);
+  const SolveResult alone = polish.Solve(*ocp, alone_request);
+  ASSERT_EQ(alone.status, SolveStatus::kConverged) << alone.message;
+  // The fallback is the polish on the request's grid: the same iterates.
+  EXPECT_EQ(r.objective, alone.objective);
+  EXPECT_EQ(Stat(r, "newton_iterations"), Stat(alone, "newton_iterations"));
+  EXPECT_EQ(Stat(r, "descent_iterations"), Stat(alone, "descent_iterations"));
+  // The failed sequence's rows first (all on 100 intervals), then the fallback's, numbered on;
+  // its steps count in `iterations`.
+  const auto grids = RowsPerGrid(r);
+  ASSERT_EQ(grids.size(), 2u);
+  EXPECT_EQ(grids[0].first, 100);
+  EXPECT_EQ(grids[1].first, -1);
+  EXPECT_EQ(grids[1].second, static_cast<int>(alone.history.size()));
+  const double failed = Stat(r, "coarse_failed_iterations");
+  EXPECT_EQ(failed, grids[0].second - 2);  // the descent's and Newton's rows but their starts
+  EXPECT_GT(Stat(r, "coarse_newton_iterations"), 0.0);
+  EXPECT_EQ(r.iterations, alone.iterations + failed);
+  EXPECT_EQ(Stat(r, "fine_newton_iterations"), 0.0);
+  for (size_t i = 0; i < r.history.size(); ++i) {
+    EXPECT_EQ(r.history[i].iteration, static_cast<int>(i));
+  }
+  EXPECT_EQ(r.message.find("grid sequence failed on 100 intervals"), 0u) << r.message;
+  EXPECT_NE(r.message.find("then on the request's grid"), std::string::npos) << r.message;
+}
+
+TEST(Polish, GridSequencingOptionsAreValidated) {
+  for (const auto& [key, value] : std::vector<std::pair<std::string, int>>{
+           {"polish_coarse_levels", -1}, {"polish_coarse_min_intervals", 0}}) {
+    OptionMap bad;
+    bad.Set(key, value);
+    try {
+      HamiltonianFamily::ApplyOptions(
+          HamiltonianFamily::Preset::kPolish, bad, HamiltonianFamily::Polished());
+      ADD_FAILURE() << key << " = " << value << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
+}
+
 // ---- applicability ------------------------------------------------------------------------------
 
 TEST(HamiltonianFamily, NotApplicableCasesSaySo) {
