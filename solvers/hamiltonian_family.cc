@@ -95,6 +95,9 @@ struct FamilyRun {
 struct GridSolve {
   SolveResult result;
   bool polished = false;
+  /// The polish's last Newton attempt (its own states and costates on the grid, whether it
+  /// converged or not); empty when Newton did not run.
+  SolveResult last_newton;
 };
 
 IndirectNewtonOptions PolishNewtonOptions(const HamiltonianFamilyOptions& o) {
@@ -112,14 +115,15 @@ IndirectNewtonOptions PolishNewtonOptions(const HamiltonianFamilyOptions& o) {
 }
 
 // The polish stage after the descent: fitted costates, Newton on the Euler maximum principle,
-// and on failure more descent and another attempt (polish_attempts). Updates *r; true when
-// Newton converged.
+// and on failure more descent and another attempt (polish_attempts). Updates *r and keeps the
+// last attempt's result in *last_newton; true when Newton converged.
 bool Polish(const FamilyRun& run,
             const Ocp& problem,
             const SolveRequest& request,
             DescentLoopOptions loop,
             DescentPasses* passes,
-            SolveResult* r) {
+            SolveResult* r,
+            SolveResult* last_newton) {
   const HamiltonianFamilyOptions& o = run.o;
   const Stopwatch& clock = run.clock;
   auto& stats = r->solver_stats;
@@ -141,7 +145,8 @@ bool Polish(const FamilyRun& run,
       stats["start_constant_costates"] = start.solved;
       stats["start_constant_costate_evaluations"] += start.evaluations;
     }
-    const SolveResult n = IndirectNewton(no).SolveFrom(run.original, newton_request, X, P);
+    *last_newton = IndirectNewton(no).SolveFrom(run.original, newton_request, X, P);
+    const SolveResult& n = *last_newton;
     newton_cpu += clock.cpu() - cpu0;
     newton_iterations += n.iterations;
     const int offset = static_cast<int>(r->history.size());
@@ -176,7 +181,6 @@ bool Polish(const FamilyRun& run,
     }
     // The result keeps the descent's iterate; continue the descent (its budget doubles) unless
     // the attempts, the CPU limit or the descent itself are done.
-    r->message += " (the controls are the descent's)";
     if (attempt >= o.polish_attempts || clock.cpu() >= o.max_cpu_seconds ||
         descent_iterations == 0) {
       return false;
@@ -306,14 +310,25 @@ GridSolve SolveOnGrid(const FamilyRun& run, const SolveRequest& request) {
   r.objective = DiscreteOcp(problem, grid, request.integrator, request.terminal)
                     .Simulate(passes.U(), nullptr);
 
-  if (o.polish) out.polished = Polish(run, problem, request, loop, &passes, &r);
+  if (o.polish) out.polished = Polish(run, problem, request, loop, &passes, &r, &out.last_newton);
   return out;
+}
+
+// The result of a polish whose Newton ran and never converged is the descent's iterate.
+SolveResult ResultOf(GridSolve g) {
+  const bool newton_ran = !g.last_newton.solver.empty();
+  if (newton_ran && !g.polished) g.result.message += " (the controls are the descent's)";
+  return std::move(g.result);
 }
 
 // The polish with grid sequencing: the whole polish (descent, fitted costates, one Newton
 // attempt) on the coarsest grid, Newton on each finer grid from the coarser solution
 // (NewtonOnFinerGrids); where that fails, the request's grid is solved as without sequencing
-// and the record says so.
+// and the record says so. The finer grids start from the coarsest grid's last Newton iterate
+// even when that Newton did not converge: it fails mostly in its line search at a kink of the
+// semismooth residual close to the solution (comm-path2d, N = 100, ||F||_inf 1e-5 .. 1e-2 where
+// it started at 1.5), which is a different kink, or none, on the finer grid
+// (solvers/README-family.md).
 SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, int levels) {
   const Stopwatch& clock = run.clock;
   std::vector<TimeGrid> grids{request.grid};  // fine to coarse
@@ -330,11 +345,15 @@ SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, in
   std::vector<IterationRecord> history = std::move(coarse.result.history);
   for (IterationRecord& row : history) row.intervals = coarse_intervals;
   GridSequenceOutcome finer;
-  if (coarse.polished) {
+  const SolveResult& seed = coarse.last_newton;
+  const bool seeded = seed.states.cols() == coarse_request.grid.size() &&
+                      seed.costates.cols() == seed.states.cols() && seed.states.allFinite() &&
+                      seed.costates.allFinite();
+  if (seeded) {
     finer = NewtonOnFinerGrids(run.original,
                                PolishNewtonOptions(run.o),
                                request.terminal,
-                               coarse.result,
+                               seed,
                                std::vector<TimeGrid>(grids.rbegin() + 1, grids.rend()),
                                clock,
                                &history);
@@ -343,11 +362,15 @@ SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, in
   const auto coarse_newton_stat = coarse.result.solver_stats.find("newton_iterations");
   const double coarse_newton =
       coarse_newton_stat == coarse.result.solver_stats.end() ? 0.0 : coarse_newton_stat->second;
-  const std::string coarse_message = "on " + std::to_string(coarse_intervals) +
-                                     " intervals (grid sequencing): " + coarse.result.message;
+  std::string coarse_message =
+      "on " + std::to_string(coarse_intervals) + " intervals: " + coarse.result.message;
+  if (seeded) {
+    if (!coarse.polished) coarse_message += " (its last iterate starts the finer grids)";
+    coarse_message += "; " + finer.message;
+  }
 
   SolveResult r;
-  if (coarse.polished && finer.converged) {
+  if (finer.converged) {
     r = std::move(coarse.result);
     const SolveResult& n = finer.last;
     auto& stats = r.solver_stats;
@@ -359,7 +382,7 @@ SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, in
     r.status = n.status;
     r.solver_status = n.solver_status;
     r.iterations += finer.newton_iterations;
-    r.message = coarse_message + "; " + finer.message;
+    r.message = "grid sequencing, " + coarse_message;
     stats["newton_iterations"] += finer.newton_iterations;
     stats["newton_cpu_seconds"] += finer.newton_cpu_seconds;
     if (!n.history.empty()) stats["newton_residual_inf"] = n.history.back().primal_inf;
@@ -370,7 +393,7 @@ SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, in
   } else {
     // The request's grid as without sequencing, after the failed sequence (whose rows stay in
     // the history, first, and whose steps count in `iterations`).
-    r = SolveOnGrid(run, request).result;
+    r = ResultOf(SolveOnGrid(run, request));
     const int failed_rows = static_cast<int>(history.size());
     for (IterationRecord row : r.history) {
       row.iteration += failed_rows;
@@ -378,13 +401,11 @@ SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, in
     }
     const int failed_iterations = coarse.result.iterations + finer.newton_iterations;
     r.iterations += failed_iterations;
-    r.message = "grid sequence failed " + coarse_message +
-                (coarse.polished ? "; " + finer.message : std::string()) +
-                "; then on the request's grid: " + r.message;
+    r.message = "grid sequencing failed, " + coarse_message +
+                "; then on the request's grid alone: " + r.message;
     auto& stats = r.solver_stats;
     stats["coarse_fallback"] = 1;
-    stats["coarse_fallback_intervals"] =
-        coarse.polished ? finer.failed_intervals : coarse_intervals;
+    stats["coarse_fallback_intervals"] = seeded ? finer.failed_intervals : coarse_intervals;
     stats["coarse_failed_iterations"] = failed_iterations;
   }
   r.history = std::move(history);
@@ -392,6 +413,7 @@ SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, in
   stats["coarse_levels"] = levels;
   stats["coarse_intervals"] = coarse_intervals;
   stats["coarse_newton_iterations"] = coarse_newton;
+  stats["coarse_newton_converged"] = coarse.polished ? 1 : 0;
   stats["fine_newton_iterations"] = finer.newton_iterations;
   stats["coarse_cpu_seconds"] = coarse_cpu;
   stats["fine_cpu_seconds"] = fine_cpu;
@@ -445,11 +467,11 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
     if (levels > 0) {
       r = SolveSequenced(run, request, levels);
     } else {
-      r = SolveOnGrid(run, request).result;
+      r = ResultOf(SolveOnGrid(run, request));
       r.solver_stats["coarse_levels"] = 0;
     }
   } else {
-    r = SolveOnGrid(run, request).result;
+    r = ResultOf(SolveOnGrid(run, request));
   }
   if (std::isfinite(r.objective)) r.message += "; final J = " + MessageNumber(r.objective);
   r.cpu_seconds = clock.cpu();

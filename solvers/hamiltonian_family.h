@@ -104,7 +104,9 @@ struct HamiltonianFamilyOptions {
   /// request's grid, the whole polish (descent, fitted costates, one Newton attempt) runs on the
   /// grid of every 2^L-th node, then Newton on each finer grid (every 2^(L-1)-th node, ..., the
   /// request's) from the coarser solution's states and costates interpolated linearly (a free
-  /// final time keeps the coarser solution's T as its start; nu is re-estimated from p_N). The
+  /// final time keeps the coarser solution's T as its start; nu is re-estimated from p_N); the
+  /// coarsest grid's last Newton iterate starts the finer grids even when it did not converge
+  /// (it stops mostly at a kink of the semismooth residual near the solution). The
   /// descent and Newton's steps through the moving active set are paid on the coarse grid, and
   /// each finer grid takes a few steps (Newton's mesh independence: comm-path2d, N = 400: 3-4
   /// steps from the interpolated N = 200 solution; solvers/README-family.md). Where any grid of
@@ -160,6 +162,8 @@ struct HamiltonianFamilyOptions {
 /// "start_constant_costate_evaluations". Grid sequencing (polish_coarse_levels): "coarse_levels"
 /// (halvings used; 0: the polish ran on the request's grid alone), and when > 0
 /// "coarse_intervals" (the coarsest grid's), "coarse_newton_iterations" (Newton steps there),
+/// "coarse_newton_converged" (1, or 0 when its Newton did not converge and its last iterate
+/// started the finer grids anyway),
 /// "fine_newton_iterations" (on the finer grids), "coarse_cpu_seconds" (the coarsest grid's
 /// descent and Newton), "fine_cpu_seconds" (Newton on the finer grids), "coarse_fallback" (1
 /// when the sequence failed and the request's grid was solved without it), and with a fallback

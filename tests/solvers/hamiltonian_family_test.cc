@@ -645,42 +645,73 @@ TEST(Polish, GridSequencingReachesTheOptimumOfTheRequestsGrid) {
   for (const IterationRecord& row : small.history) EXPECT_EQ(row.intervals, -1);
 }
 
-// Where the coarsest grid's Newton fails (comm-path2d, channel 0, gamma = 3e-5: 100 steps on 100
-// intervals without converging, measured), the request's grid is solved as without sequencing,
-// after the failed sequence; the record keeps both and says so.
-TEST(Polish, FailedGridSequenceFallsBackToTheRequestsGrid) {
+// Where the coarsest grid's Newton does not converge (comm-path2d, channel 0, gamma = 3e-5: 100
+// steps on 100 intervals, measured), its last iterate starts Newton on the finer grids, which
+// converge to the optimum of the request's grid.
+TEST(Polish, UnconvergedCoarsestNewtonStillStartsTheFinerGrids) {
   const auto ocp = MakeProblem("comm-path2d", {"channel=0", "gamma=3e-5"}, 1);
   const SolveRequest request = FamilyRequest(*ocp, 400, TerminalMode::kHard);
   const HamiltonianFamily polish(HamiltonianFamily::Preset::kPolish);
   const SolveResult r = polish.Solve(*ocp, request);
-  ASSERT_EQ(Stat(r, "coarse_fallback"), 1.0) << r.message;
-  EXPECT_EQ(Stat(r, "coarse_fallback_intervals"), 100.0);
   ASSERT_EQ(r.status, SolveStatus::kConverged) << r.message;
+  EXPECT_EQ(Stat(r, "coarse_newton_converged"), 0.0) << r.message;
+  EXPECT_EQ(Stat(r, "coarse_fallback"), 0.0) << r.message;
+  EXPECT_NE(r.message.find("its last iterate starts the finer grids"), std::string::npos)
+      << r.message;
   SolveRequest alone_request = request;
   alone_request.options.Set("polish_coarse_levels", 0);
   const SolveResult alone = polish.Solve(*ocp, alone_request);
   ASSERT_EQ(alone.status, SolveStatus::kConverged) << alone.message;
+  EXPECT_NEAR(r.objective, alone.objective, 1e-10 * std::abs(alone.objective));
+  EXPECT_LT((r.states - alone.states).cwiseAbs().maxCoeff(), 1e-7);
+  const auto grids = RowsPerGrid(r);
+  ASSERT_EQ(grids.size(), 3u);
+  EXPECT_EQ(grids[2].first, -1);
+}
+
+// Where the sequence fails (forced: one Newton step per attempt, one attempt), the request's
+// grid is solved as without sequencing, after the failed sequence, with the same iterates; the
+// record keeps both and says so.
+TEST(Polish, FailedGridSequenceFallsBackToTheRequestsGrid) {
+  const auto ocp = MakeProblem("comm-path2d", {"channel=0", "gamma=1e-2"}, 1);
+  SolveRequest request = FamilyRequest(*ocp, 400, TerminalMode::kHard);
+  request.options.Set("newton_max_iterations", 1);
+  request.options.Set("polish_attempts", 1);
+  const HamiltonianFamily polish(HamiltonianFamily::Preset::kPolish);
+  const SolveResult r = polish.Solve(*ocp, request);
+  ASSERT_EQ(Stat(r, "coarse_fallback"), 1.0) << r.message;
+  EXPECT_EQ(Stat(r, "coarse_newton_converged"), 0.0);
+  EXPECT_EQ(Stat(r, "coarse_fallback_intervals"), 200.0);  // the first grid after the coarsest
+  EXPECT_EQ(r.status, SolveStatus::kMaxIterations) << r.message;
+  SolveRequest alone_request = request;
+  alone_request.options.Set("polish_coarse_levels", 0);
+  const SolveResult alone = polish.Solve(*ocp, alone_request);
   // The fallback is the polish on the request's grid: the same iterates.
   EXPECT_EQ(r.objective, alone.objective);
+  EXPECT_EQ(r.status, alone.status);
   EXPECT_EQ(Stat(r, "newton_iterations"), Stat(alone, "newton_iterations"));
   EXPECT_EQ(Stat(r, "descent_iterations"), Stat(alone, "descent_iterations"));
-  // The failed sequence's rows first (all on 100 intervals), then the fallback's, numbered on;
-  // its steps count in `iterations`.
+  EXPECT_EQ((r.states - alone.states).cwiseAbs().maxCoeff(), 0.0);
+  // The failed sequence's rows first (100, then 200 intervals), then the fallback's, numbered
+  // on; its steps count in `iterations`.
   const auto grids = RowsPerGrid(r);
-  ASSERT_EQ(grids.size(), 2u);
+  ASSERT_EQ(grids.size(), 3u);
   EXPECT_EQ(grids[0].first, 100);
-  EXPECT_EQ(grids[1].first, -1);
-  EXPECT_EQ(grids[1].second, static_cast<int>(alone.history.size()));
+  EXPECT_EQ(grids[1].first, 200);
+  EXPECT_EQ(grids[2].first, -1);
+  EXPECT_EQ(grids[2].second, static_cast<int>(alone.history.size()));
   const double failed = Stat(r, "coarse_failed_iterations");
-  EXPECT_EQ(failed, grids[0].second - 2);  // the descent's and Newton's rows but their starts
-  EXPECT_GT(Stat(r, "coarse_newton_iterations"), 0.0);
+  EXPECT_EQ(failed, grids[0].second + grids[1].second - 3);  // all rows but the three starts
+  EXPECT_EQ(Stat(r, "coarse_newton_iterations"), 1.0);
+  EXPECT_EQ(Stat(r, "fine_newton_iterations"), 1.0);
   EXPECT_EQ(r.iterations, alone.iterations + failed);
-  EXPECT_EQ(Stat(r, "fine_newton_iterations"), 0.0);
   for (size_t i = 0; i < r.history.size(); ++i) {
     EXPECT_EQ(r.history[i].iteration, static_cast<int>(i));
   }
-  EXPECT_EQ(r.message.find("grid sequence failed on 100 intervals"), 0u) << r.message;
-  EXPECT_NE(r.message.find("then on the request's grid"), std::string::npos) << r.message;
+  EXPECT_EQ(r.message.find("grid sequencing failed, on 100 intervals"), 0u) << r.message;
+  EXPECT_NE(r.message.find("Newton on 200 intervals"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("then on the request's grid alone"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("the controls are the descent's"), std::string::npos) << r.message;
 }
 
 TEST(Polish, GridSequencingOptionsAreValidated) {
