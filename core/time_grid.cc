@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace ocpb {
 
@@ -48,6 +50,20 @@ TimeGrid TimeGrid::StretchedTo(double tf) const {
   std::vector<double> pts = points_;
   for (double& p : pts) p = t0() + r * (p - t0());
   pts.back() = tf;
+  TimeGrid g = FromPoints(std::move(pts));
+  g.uniform_ = uniform_;
+  return g;
+}
+
+TimeGrid TimeGrid::Coarsened(int factor) const {
+  if (factor < 1 || intervals() % factor != 0) {
+    throw std::invalid_argument("time grid: a coarsening factor must be >= 1 and divide the " +
+                                std::to_string(intervals()) + " intervals (got " +
+                                std::to_string(factor) + ")");
+  }
+  std::vector<double> pts;
+  pts.reserve(intervals() / factor + 1);
+  for (int k = 0; k <= intervals(); k += factor) pts.push_back(points_[k]);
   TimeGrid g = FromPoints(std::move(pts));
   g.uniform_ = uniform_;
   return g;

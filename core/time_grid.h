@@ -28,6 +28,10 @@ class TimeGrid {
   int Locate(double t) const;
   /// Every interval split into `factor` equal pieces.
   TimeGrid Refined(int factor) const;
+  /// Every `factor`-th node (the same points, so the kept nodes are exactly the originals; a
+  /// uniform grid stays uniform). Throws std::invalid_argument unless factor >= 1 divides
+  /// intervals().
+  TimeGrid Coarsened(int factor) const;
   /// The same relative node positions on [t0, tf] (a free final time's grid at T = tf): t_k ->
   /// t0 + (t_k - t0) (tf - t0) / (tf() - t0), the last node exactly tf. Throws
   /// std::invalid_argument unless tf > t0 is finite.

@@ -18,21 +18,6 @@ int GridSequenceLevels(const TimeGrid& grid, int max_levels, int min_intervals) 
   return levels;
 }
 
-TimeGrid EveryOtherNode(const TimeGrid& grid) {
-  const int n = grid.intervals();
-  if (n < 2 || n % 2 != 0) {
-    throw std::invalid_argument(
-        "grid sequencing: every other node needs an even number of "
-        "intervals (got " +
-        std::to_string(n) + ")");
-  }
-  if (grid.uniform()) return TimeGrid::Uniform(grid.t0(), grid.tf(), n / 2);
-  std::vector<double> points;
-  points.reserve(n / 2 + 1);
-  for (int k = 0; k <= n; k += 2) points.push_back(grid.t(k));
-  return TimeGrid::FromPoints(std::move(points));
-}
-
 Mat InterpolateNodes(const TimeGrid& from, const Mat& values, const TimeGrid& to) {
   if (values.cols() != from.size()) {
     throw std::invalid_argument("grid sequencing: values need one column per node of the grid");
@@ -59,13 +44,22 @@ GridSequenceOutcome NewtonOnFinerGrids(const Ocp& ocp,
                                        const SolveResult& coarse,
                                        const std::vector<TimeGrid>& finer,
                                        const Stopwatch& clock,
-                                       std::vector<IterationRecord>* history) {
+                                       std::vector<IterationRecord>* history,
+                                       double max_cpu_seconds) {
   if (finer.empty()) throw std::invalid_argument("grid sequencing: no finer grid to solve on");
   GridSequenceOutcome out;
   const IndirectNewton newton(options);
   const SolveResult* previous = &coarse;
   for (size_t level = 0; level < finer.size(); ++level) {
     const TimeGrid& from = previous->state_grid;
+    if (clock.cpu() >= max_cpu_seconds) {
+      out.out_of_time = true;
+      out.failed_intervals = finer[level].intervals();
+      if (!out.message.empty()) out.message += "; ";
+      out.message += "max_cpu_seconds reached before Newton on " +
+                     std::to_string(finer[level].intervals()) + " intervals";
+      return out;
+    }
     SolveRequest request;
     request.terminal = terminal;
     // A free final time: the finer grid on the coarser solution's horizon (its T).

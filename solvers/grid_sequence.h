@@ -12,6 +12,7 @@
 // maximum principle it is measured, not guaranteed, and a caller keeps a fallback.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -30,11 +31,6 @@ namespace ocpb {
 /// 100 intervals); N = 300: 1 (150); N = 100: 0.
 int GridSequenceLevels(const TimeGrid& grid, int max_levels, int min_intervals);
 
-/// The grid of every other node of `grid` (its interval count must be even: throws
-/// std::invalid_argument otherwise). A uniform grid stays uniform (TimeGrid::Uniform on the same
-/// horizon, so the kept nodes agree with the originals to rounding).
-TimeGrid EveryOtherNode(const TimeGrid& grid);
-
 /// values (rows x from.size(), one column per node of `from`) interpolated linearly in time at
 /// the nodes of `to` (rows x to.size()); nodes of `to` outside [from.t0(), from.tf()] take the
 /// end values.
@@ -46,8 +42,10 @@ struct GridSequenceOutcome {
   /// failed (its status and message say why).
   SolveResult last;
   bool converged = false;
-  /// Intervals of the grid whose Newton solve failed (-1: none failed).
+  /// Intervals of the grid whose Newton solve failed, or that was not started because the CPU
+  /// limit had been reached (-1: none failed).
   int failed_intervals = -1;
+  bool out_of_time = false;   ///< the CPU limit stopped the sequence before a grid
   int newton_iterations = 0;  ///< Newton steps over every grid tried
   double newton_cpu_seconds = 0.0;
   std::string message;  ///< one clause per grid: "Newton on N intervals: <its message>"
@@ -57,17 +55,21 @@ struct GridSequenceOutcome {
 /// from the previous solution's states and costates interpolated at its nodes (InterpolateNodes;
 /// the first start is `coarse`'s; nu is re-estimated from p_N by SolveFrom). For a free final
 /// time each grid is stretched to the previous solution's T (the relative node positions are
-/// kept). Stops at the first grid that does not converge. Each Newton row is appended to
+/// kept). Stops at the first grid that does not converge, and before a grid when clock.cpu() >=
+/// max_cpu_seconds (Newton itself has no CPU limit: a grid once started runs to its end). Each
+/// Newton row is appended to
 /// *history, numbered by its place there, with its CPU time from `clock`'s start and the grid's
 /// intervals in IterationRecord::intervals (-1 for the last grid of `finer`, the request's).
 /// `coarse` must hold states and costates on its state_grid; `finer` must not be empty (throws
 /// std::invalid_argument).
-GridSequenceOutcome NewtonOnFinerGrids(const Ocp& ocp,
-                                       const IndirectNewtonOptions& options,
-                                       TerminalMode terminal,
-                                       const SolveResult& coarse,
-                                       const std::vector<TimeGrid>& finer,
-                                       const Stopwatch& clock,
-                                       std::vector<IterationRecord>* history);
+GridSequenceOutcome NewtonOnFinerGrids(
+    const Ocp& ocp,
+    const IndirectNewtonOptions& options,
+    TerminalMode terminal,
+    const SolveResult& coarse,
+    const std::vector<TimeGrid>& finer,
+    const Stopwatch& clock,
+    std::vector<IterationRecord>* history,
+    double max_cpu_seconds = std::numeric_limits<double>::infinity());
 
 }  // namespace ocpb

@@ -332,7 +332,7 @@ SolveResult ResultOf(GridSolve g) {
 SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, int levels) {
   const Stopwatch& clock = run.clock;
   std::vector<TimeGrid> grids{request.grid};  // fine to coarse
-  for (int l = 0; l < levels; ++l) grids.push_back(EveryOtherNode(grids.back()));
+  for (int l = 0; l < levels; ++l) grids.push_back(grids.back().Coarsened(2));
   const int coarse_intervals = grids.back().intervals();
   HamiltonianFamilyOptions first = run.o;
   first.polish_attempts = 1;
@@ -356,7 +356,8 @@ SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, in
                                seed,
                                std::vector<TimeGrid>(grids.rbegin() + 1, grids.rend()),
                                clock,
-                               &history);
+                               &history,
+                               run.o.max_cpu_seconds);
   }
   const double fine_cpu = clock.cpu() - cpu0 - coarse_cpu;
   const auto coarse_newton_stat = coarse.result.solver_stats.find("newton_iterations");
@@ -390,6 +391,28 @@ SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, in
     const auto final_time = n.solver_stats.find("final_time");
     if (final_time != n.solver_stats.end()) stats["final_time"] = final_time->second;
     stats["coarse_fallback"] = 0;
+  } else if (clock.cpu() >= run.o.max_cpu_seconds) {
+    // No time left for the request's grid alone: the coarsest grid's controls (Newton's where
+    // it converged, else the descent's), judged on the request's grid, where they are piecewise
+    // constant too (its nodes include the coarse ones).
+    r = std::move(coarse.result);
+    TimeGrid grid = request.grid;
+    if (r.state_grid.tf() != grid.tf()) grid = grid.StretchedTo(r.state_grid.tf());
+    const Mat U = r.controls.SampleIntervals(grid);
+    Mat X;
+    r.objective =
+        DiscreteOcp(*run.target.ocp, grid, request.integrator, request.terminal).Simulate(U, &X);
+    r.controls = ControlTrajectory::PiecewiseConstant(grid, U);
+    r.state_grid = grid;
+    r.states = X;
+    r.costates = Mat();
+    r.status = SolveStatus::kMaxTime;
+    r.solver_status = "max_cpu_seconds";
+    r.iterations += finer.newton_iterations;
+    r.message =
+        "grid sequencing stopped by max_cpu_seconds = " + MessageNumber(run.o.max_cpu_seconds) +
+        ", " + coarse_message + "; the controls are the coarsest grid's, on the request's grid";
+    r.solver_stats["coarse_fallback"] = 0;
   } else {
     // The request's grid as without sequencing, after the failed sequence (whose rows stay in
     // the history, first, and whose steps count in `iterations`).
@@ -462,8 +485,12 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
   const FamilyRun run{name, o, original, target, clock};
   SolveResult r;
   if (o.polish) {
+    // Without Newton steps (newton_max_iterations = 0) there is nothing to refine.
     const int levels =
-        GridSequenceLevels(request.grid, o.polish_coarse_levels, o.polish_coarse_min_intervals);
+        o.newton_max_iterations == 0
+            ? 0
+            : GridSequenceLevels(
+                  request.grid, o.polish_coarse_levels, o.polish_coarse_min_intervals);
     if (levels > 0) {
       r = SolveSequenced(run, request, levels);
     } else {

@@ -109,13 +109,16 @@ struct HamiltonianFamilyOptions {
   /// (it stops mostly at a kink of the semismooth residual near the solution). The
   /// descent and Newton's steps through the moving active set are paid on the coarse grid, and
   /// each finer grid takes a few steps (Newton's mesh independence: comm-path2d, N = 400: 3-4
-  /// steps from the interpolated N = 200 solution; solvers/README-family.md). Where any grid of
-  /// the sequence fails, the request's grid is solved as without sequencing (all
-  /// polish_attempts), after it, and the record says so. L is the largest level <=
+  /// steps from the interpolated N = 200 solution; solvers/README-family.md). Where Newton on a
+  /// finer grid fails (or the coarsest grid's polish leaves no finite iterate), the request's
+  /// grid is solved as without sequencing (all polish_attempts), after the failed sequence, and
+  /// the record says so; when max_cpu_seconds is reached first, the result is the coarsest
+  /// grid's controls on the request's grid (status kMaxTime). L is the largest level <=
   /// polish_coarse_levels at which every grid has an even number of intervals to halve and the
   /// coarsest keeps at least polish_coarse_min_intervals: with the defaults (2, 100) N = 400 ->
-  /// 200 -> 100, N = 200 -> 100, N = 300 -> 150, and no sequencing below N = 200 or for odd N.
-  /// Keys "polish_coarse_levels" (>= 0; 0: off) and "polish_coarse_min_intervals" (>= 1).
+  /// 200 -> 100, N = 200 -> 100, N = 300 -> 150, and no sequencing for N < 200, odd N, or
+  /// newton_max_iterations = 0. Keys "polish_coarse_levels" (>= 0; 0: off) and
+  /// "polish_coarse_min_intervals" (>= 1).
   int polish_coarse_levels = 2;
   int polish_coarse_min_intervals = 100;
 
@@ -139,9 +142,9 @@ struct HamiltonianFamilyOptions {
 ///     costates are fitted to its controls (FitEulerCostates) and IndirectNewton with
 ///     Scheme::kEuler solves the Euler maximum principle of the same discrete problem (penalty
 ///     or hard form, T included) from its states: the optimum of the discrete problem to Newton's
-///     tolerance, the Euler transcription's NLP optimum. On grids of 200 intervals or more the
-///     polish is grid-sequenced by default (polish_coarse_levels): it runs on a coarser grid
-///     first and Newton refines the solution grid by grid.
+///     tolerance, the Euler transcription's NLP optimum. On grids of an even number >= 200 of
+///     intervals the polish is grid-sequenced by default (polish_coarse_levels): it runs on a
+///     coarser grid first and Newton refines the solution grid by grid.
 ///
 /// Result: controls piecewise constant on state_grid (the request's grid, stretched to T for a
 /// free final time); states, costates of the final iterate (the polished one with polish);
@@ -153,7 +156,8 @@ struct HamiltonianFamilyOptions {
 /// polish the descent's (or the outer loop's: "al_converged", "al_max_outer_iterations",
 /// "max_iterations", or the inner failure's code); with polish Newton's (its solver_status
 /// verbatim); when Newton does not converge the result keeps the descent's controls, states and J,
-/// and says so. solver_stats: "descent_iterations", "descent_cpu_seconds", "final_theta",
+/// and says so. solver_stats: "descent_iterations", "descent_cpu_seconds" (the descent's CPU,
+/// the outer loop's and the continuations' between Newton attempts included), "final_theta",
 /// "simulations", "prefilter_rejections", "reformulated"; AL: "outer_iterations",
 /// "terminal_residual", "path_violation", "penalty", "nu_<i>" (the final terminal multipliers,
 /// those of psi_i = 0 in the Lagrangian J + nu^T psi); free time: "final_time", "dJdT"; polish:
@@ -162,17 +166,20 @@ struct HamiltonianFamilyOptions {
 /// "start_constant_costate_evaluations". Grid sequencing (polish_coarse_levels): "coarse_levels"
 /// (halvings used; 0: the polish ran on the request's grid alone), and when > 0
 /// "coarse_intervals" (the coarsest grid's), "coarse_newton_iterations" (Newton steps there),
-/// "coarse_newton_converged" (1, or 0 when its Newton did not converge and its last iterate
-/// started the finer grids anyway),
+/// "coarse_newton_converged" (1 when the coarsest grid's Newton converged, else 0),
 /// "fine_newton_iterations" (on the finer grids), "coarse_cpu_seconds" (the coarsest grid's
 /// descent and Newton), "fine_cpu_seconds" (Newton on the finer grids), "coarse_fallback" (1
 /// when the sequence failed and the request's grid was solved without it), and with a fallback
-/// "coarse_fallback_intervals" (the grid that failed) and "coarse_failed_iterations" (the
-/// failed sequence's steps). A sequenced solve's descent_* stats and "final_theta" are the
-/// coarsest grid's descent's (or, after a fallback, the request grid's); its history holds the
-/// rows of every grid in the order of execution, each coarser grid's rows with their grid's
-/// IterationRecord::intervals (their J is that grid's discrete J); `iterations` counts every
-/// step taken, a failed sequence's included.
+/// "coarse_fallback_intervals" (the grid whose Newton failed: the coarsest when it left no
+/// finite iterate) and "coarse_failed_iterations" (the failed sequence's steps). When the
+/// sequence converged, the descent's stats ("descent_*", "final_theta", "simulations",
+/// "prefilter_rejections", "dJdT", "start_constant_*") and "newton_attempts" are the coarsest
+/// grid's, "newton_iterations" and "newton_cpu_seconds" sum every grid's, and the other
+/// "newton_<key>" and "newton_residual_inf" are the request grid's Newton's; after a fallback
+/// all of these describe the solve on the request's grid alone (the failed sequence is in the
+/// coarse_* stats). The history holds the rows of every grid in the order of execution, each
+/// coarser grid's rows with their grid's IterationRecord::intervals (their J is that grid's
+/// discrete J); `iterations` counts every step taken, a failed sequence's included.
 ///
 /// Not applicable (kNotApplicable, reason in `message`): no Hamiltonian minimizer; path
 /// constraints left after the choice of `path`; a free final time with RK4; a polish with path

@@ -140,7 +140,7 @@ json HistoryJson(const std::vector<IterationRecord>& history) {
                         {"primal_inf", JsonNumber(h.primal_inf)},
                         {"dual_inf", JsonNumber(h.dual_inf)},
                         {"cpu_seconds", JsonNumber(h.cpu_seconds)}});
-    if (h.intervals >= 0) hist.back()["intervals"] = h.intervals;
+    if (h.intervals > 0) hist.back()["intervals"] = h.intervals;
   }
   return hist;
 }

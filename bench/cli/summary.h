@@ -20,8 +20,10 @@ namespace ocpb {
 ///  - reached_target: final_J is within 1% of best_J, |final_J - best_J| <= 0.01 |best_J|;
 ///  - time_to_target: for a record that reached the target, the CPU seconds of its first history
 ///    entry whose J (the method's own objective) is within 1% of best_J and whose primal_inf,
-///    where reported, is <= 1e-6 (in either terminal form), or the record's total CPU seconds when
-///    no entry qualifies; NaN ("never") for a record that did not reach it;
+///    where reported, is <= 1e-6 (in either terminal form), entries of another grid than the
+///    request's (IterationRecord::intervals set: a grid-sequenced solve's coarser grids) left
+///    out, or the record's total CPU seconds when no entry qualifies; NaN ("never") for a record
+///    that did not reach it;
 ///  - section and method_label: the summary table and the row the record is shown in (the
 ///    plotting script labels its figures with them).
 struct DerivedFields {

@@ -8,8 +8,9 @@
 
 Per case (method, gamma, seed) the median of the repetitions' `cpu_s` counter (each solve's own
 CPU time); per gamma the ratio Ipopt / polish of those medians on every seed, then their median
-and minimum. Also per gamma: the polish's Newton steps, fallbacks of its grid sequence, and its J
-relative to Ipopt's (both judged by the common evaluator on the Euler grid).
+and minimum. Also per gamma: the polish's Newton steps, fallbacks of its grid sequence, its
+largest terminal violation, its J relative to Ipopt's (both judged by the common evaluator on the
+Euler grid: J without penalty) and how many Ipopt solves converged.
 """
 import json
 import re
@@ -43,11 +44,12 @@ def main(path, polish="FamilyPolish", ipopt="IpoptEuler"):
     runs = load(path)
     gammas = sorted({g for (_, g, _) in runs})
     print(f"| gamma | Ipopt / polish CPU: median, min (per seed) | polish CPU s (median) "
-          f"| Ipopt CPU s (median) | Newton steps per seed | fallbacks | J rel. to Ipopt (max abs) |")
-    print("|---|---|---|---|---|---|---|")
+          f"| Ipopt CPU s (median) | Newton steps per seed | fallbacks | terminal violation (max) "
+          f"| J rel. to Ipopt (per seed) | Ipopt converged |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for g in gammas:
         seeds = sorted(s for (m, gg, s) in runs if m == polish and gg == g)
-        ratios, p_cpu, i_cpu, steps, fallbacks, rel = [], [], [], [], 0, []
+        ratios, p_cpu, i_cpu, steps, fallbacks, rel, term, ipopt_ok = [], [], [], [], 0, [], [], 0
         for s in seeds:
             p, i = runs[(polish, g, s)], runs.get((ipopt, g, s))
             if not i:
@@ -59,12 +61,15 @@ def main(path, polish="FamilyPolish", ipopt="IpoptEuler"):
             steps.append(int(p[0].get("newton_iterations", -1)))
             fallbacks += int(p[0].get("coarse_fallback", 0))
             rel.append((p[0]["J"] - i[0]["J"]) / abs(i[0]["J"]))
+            term.append(max(r["terminal"] for r in p))
+            ipopt_ok += int(all(r["converged"] == 1 for r in i))
         if not ratios:
             continue
         per_seed = ", ".join(f"{r:.1f}" for r in ratios)
         print(f"| 1e-{g} | {statistics.median(ratios):.1f}x, {min(ratios):.1f}x ({per_seed}) "
               f"| {statistics.median(p_cpu):.4f} | {statistics.median(i_cpu):.3f} "
-              f"| {', '.join(map(str, steps))} | {fallbacks} | {max(map(abs, rel)):.1e} |")
+              f"| {', '.join(map(str, steps))} | {fallbacks} | {max(term):.1e} "
+              f"| {', '.join(f'{x:.1e}' for x in rel)} | {ipopt_ok}/{len(rel)} |")
 
 
 if __name__ == "__main__":

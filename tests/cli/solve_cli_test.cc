@@ -79,6 +79,45 @@ TEST(SolveCli, IpoptJsonHasTheContractFields) {
   EXPECT_NEAR(r["J"].get<double>(), r["objective"].get<double>(), 1e-9 * r["J"].get<double>());
 }
 
+// A grid-sequenced polish (N = 200: the polish on 100 intervals first) writes the coarser grid's
+// history rows with their `intervals` and the request grid's without; the record is snapshotted
+// and so checked against the schema (records_match_schema).
+TEST(SolveCli, GridSequencedPolishRecordsItsGrids) {
+  const std::string dir = testing::FreshDirectory("solve-polish-sequenced");
+  const ProgramRun run = RunOcpbenchProgram({"solve",
+                                             "--problem",
+                                             "comm-path2d",
+                                             "--set",
+                                             "channel=0",
+                                             "--N",
+                                             "200",
+                                             "--solver",
+                                             "hamiltonian-polish",
+                                             "--terminal",
+                                             "hard",
+                                             "--json",
+                                             "out.json"},
+                                            dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
+  const json r = json::parse(testing::ReadText(dir + "/out.json"));
+  EXPECT_EQ(r["status"], "converged") << r["message"];
+  EXPECT_EQ(r["solver_stats"]["coarse_levels"], 1.0);
+  EXPECT_EQ(r["solver_stats"]["coarse_intervals"], 100.0);
+  int coarse_rows = 0, request_rows = 0;
+  for (const json& h : r["history"]) {
+    if (h.contains("intervals")) {
+      EXPECT_EQ(h["intervals"], 100);
+      EXPECT_EQ(request_rows, 0) << "a coarse row after the request grid's";
+      ++coarse_rows;
+    } else {
+      ++request_rows;
+    }
+  }
+  EXPECT_GT(coarse_rows, 0);
+  EXPECT_GT(request_rows, 0);
+  EXPECT_EQ(ocpb::Record::FromJson(r).history.front().intervals, 100);
+}
+
 // A free final time: the record's final_time is the solution's T, and J_fine judges the controls
 // on [0, T] for the indirect method and for Ipopt (T an NLP variable); a method that keeps the
 // horizon fixed (single shooting) writes a not_applicable record (exit 0).

@@ -1,6 +1,7 @@
 #include "core/time_grid.h"
 
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -19,6 +20,22 @@ TEST(TimeGrid, UniformAndLocate) {
   const TimeGrid r = g.Refined(3);
   EXPECT_EQ(r.intervals(), 1200);
   EXPECT_NEAR(r.t(3), g.t(1), 1e-12);
+}
+
+TEST(TimeGrid, CoarsenedKeepsEveryFactorthNodeExactly) {
+  const TimeGrid fine = TimeGrid::Uniform(0.5, 40.5, 400);
+  const TimeGrid coarse = fine.Coarsened(2);
+  ASSERT_EQ(coarse.intervals(), 200);
+  EXPECT_TRUE(coarse.uniform());
+  for (int k = 0; k <= 200; ++k) EXPECT_EQ(coarse.t(k), fine.t(2 * k)) << k;
+  EXPECT_EQ(fine.Coarsened(1).points(), fine.points());
+  const TimeGrid uneven = TimeGrid::FromPoints({0.0, 0.1, 0.3, 0.7, 1.5});
+  const TimeGrid kept = uneven.Coarsened(2);
+  EXPECT_FALSE(kept.uniform());
+  EXPECT_EQ(kept.points(), (std::vector<double>{0.0, 0.3, 1.5}));
+  EXPECT_EQ(uneven.Coarsened(4).points(), (std::vector<double>{0.0, 1.5}));
+  EXPECT_THROW(uneven.Coarsened(3), std::invalid_argument);
+  EXPECT_THROW(uneven.Coarsened(0), std::invalid_argument);
 }
 
 TEST(TimeGrid, RejectsInvalidGridsWithAClearMessage) {

@@ -27,22 +27,6 @@ TEST(GridSequenceLevels, HalvesWhileEvenAndAboveTheFloor) {
   EXPECT_EQ(GridSequenceLevels(grid(2), 3, 0), 1);  // a floor below 1 counts as 1
 }
 
-TEST(EveryOtherNode, KeepsEveryOtherNodeAndUniformity) {
-  const TimeGrid fine = TimeGrid::Uniform(0.5, 40.5, 400);
-  const TimeGrid coarse = EveryOtherNode(fine);
-  ASSERT_EQ(coarse.intervals(), 200);
-  EXPECT_TRUE(coarse.uniform());
-  EXPECT_EQ(coarse.t0(), fine.t0());
-  EXPECT_EQ(coarse.tf(), fine.tf());
-  for (int k = 0; k <= 200; ++k) EXPECT_NEAR(coarse.t(k), fine.t(2 * k), 1e-13) << k;
-
-  const TimeGrid uneven = TimeGrid::FromPoints({0.0, 0.1, 0.3, 0.7, 1.5});
-  const TimeGrid kept = EveryOtherNode(uneven);
-  EXPECT_FALSE(kept.uniform());
-  EXPECT_EQ(kept.points(), (std::vector<double>{0.0, 0.3, 1.5}));
-  EXPECT_THROW(EveryOtherNode(TimeGrid::FromPoints({0.0, 0.1, 0.3, 0.7})), std::invalid_argument);
-}
-
 TEST(InterpolateNodes, IsExactForLinesAndKeepsTheEnds) {
   const TimeGrid from = TimeGrid::FromPoints({0.0, 0.5, 2.0});
   Mat values(2, 3);

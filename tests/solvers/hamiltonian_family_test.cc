@@ -7,6 +7,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -639,18 +640,88 @@ TEST(Polish, GridSequencingReachesTheOptimumOfTheRequestsGrid) {
   EXPECT_NE(sequenced.message.find("Newton on 200 intervals"), std::string::npos);
   EXPECT_NE(sequenced.message.find("Newton on 400 intervals"), std::string::npos);
 
-  // Below 200 intervals (or with an odd count) nothing changes: the polish alone.
-  const SolveResult small = polish.Solve(*ocp, FamilyRequest(*ocp, 150, TerminalMode::kHard));
-  EXPECT_EQ(Stat(small, "coarse_levels"), 0.0);
-  for (const IterationRecord& row : small.history) EXPECT_EQ(row.intervals, -1);
+  // Below 200 intervals or with an odd count nothing changes: the polish alone, the same
+  // iterates as with polish_coarse_levels = 0 (gamma = 1e-2: one Newton attempt each).
+  const auto easy = MakeProblem("comm-path2d", {"channel=0", "gamma=1e-2"}, 1);
+  for (const int n : {150, 201}) {
+    SCOPED_TRACE(n);
+    SolveRequest small = FamilyRequest(*easy, n, TerminalMode::kHard);
+    const SolveResult r = polish.Solve(*easy, small);
+    small.options.Set("polish_coarse_levels", 0);
+    const SolveResult off = polish.Solve(*easy, small);
+    EXPECT_EQ(r.status, SolveStatus::kConverged) << r.message;
+    EXPECT_EQ(Stat(r, "coarse_levels"), 0.0);
+    EXPECT_EQ(r.objective, off.objective);
+    EXPECT_EQ(r.iterations, off.iterations);
+    for (const IterationRecord& row : r.history) EXPECT_EQ(row.intervals, -1);
+  }
+  SolveRequest descent_only = request;
+  descent_only.options.Set("newton_max_iterations", 0);
+  descent_only.options.Set("polish_attempts", 1);
+  EXPECT_EQ(Stat(polish.Solve(*ocp, descent_only), "coarse_levels"), 0.0);
 }
 
-// Where the coarsest grid's Newton does not converge (comm-path2d, channel 0, gamma = 3e-5: 100
-// steps on 100 intervals, measured), its last iterate starts Newton on the finer grids, which
-// converge to the optimum of the request's grid.
+// The penalty form and a free final time are sequenced too (double-integrator-free-time, N = 200:
+// one level; the 200-interval grid stretched to the coarse solution's T), to the optimum of the
+// request's grid.
+TEST(Polish, GridSequencingInThePenaltyFormAndWithAFreeFinalTime) {
+  const auto comm = MakeProblem("comm-path2d", {"channel=0", "gamma=1e-3"}, 1);
+  const auto free_time = MakeProblem("double-integrator-free-time", {}, 0);
+  const HamiltonianFamily polish(HamiltonianFamily::Preset::kPolish);
+  for (const auto& [ocp, n, mode] : std::vector<std::tuple<const Ocp*, int, TerminalMode>>{
+           {comm.get(), 400, TerminalMode::kPenalty},
+           {free_time.get(), 200, TerminalMode::kHard},
+           {free_time.get(), 200, TerminalMode::kPenalty}}) {
+    SCOPED_TRACE(ocp->name() + " " + ToString(mode));
+    SolveRequest request = FamilyRequest(*ocp, n, mode);
+    const SolveResult sequenced = polish.Solve(*ocp, request);
+    request.options.Set("polish_coarse_levels", 0);
+    const SolveResult alone = polish.Solve(*ocp, request);
+    ASSERT_EQ(sequenced.status, SolveStatus::kConverged) << sequenced.message;
+    ASSERT_EQ(alone.status, SolveStatus::kConverged) << alone.message;
+    EXPECT_GT(Stat(sequenced, "coarse_levels"), 0.0);
+    EXPECT_EQ(Stat(sequenced, "coarse_fallback"), 0.0) << sequenced.message;
+    EXPECT_NEAR(sequenced.objective, alone.objective, 1e-10 * std::abs(alone.objective));
+    EXPECT_EQ(sequenced.state_grid.intervals(), n);
+    EXPECT_NEAR(sequenced.state_grid.tf(), alone.state_grid.tf(), 1e-9 * alone.state_grid.tf());
+    if (ocp->free_final_time()) {
+      EXPECT_NEAR(Stat(sequenced, "final_time"), sequenced.state_grid.tf(), 1e-12);
+      EXPECT_GT(std::abs(sequenced.state_grid.tf() - ocp->tf()), 0.1);  // T moved
+    }
+  }
+}
+
+// When max_cpu_seconds is used up before the finer grids, the result is the coarsest grid's
+// controls judged on the request's grid, with status max_time; the request's grid is not solved
+// again.
+TEST(Polish, GridSequencingStopsAtTheCpuLimitWithTheCoarseControlsOnTheRequestsGrid) {
+  const auto ocp = MakeProblem("comm-path2d", {"channel=0", "gamma=1e-2"}, 1);
+  SolveRequest request = FamilyRequest(*ocp, 400, TerminalMode::kHard);
+  request.options.Set("max_cpu_seconds", 1e-9);
+  const SolveResult r = HamiltonianFamily(HamiltonianFamily::Preset::kPolish).Solve(*ocp, request);
+  EXPECT_EQ(r.status, SolveStatus::kMaxTime) << r.message;
+  EXPECT_EQ(r.solver_status, "max_cpu_seconds");
+  EXPECT_NE(r.message.find("stopped by max_cpu_seconds"), std::string::npos) << r.message;
+  EXPECT_EQ(Stat(r, "coarse_fallback"), 0.0);
+  EXPECT_EQ(Stat(r, "fine_newton_iterations"), 0.0);
+  ASSERT_EQ(r.state_grid.intervals(), 400);
+  ASSERT_EQ(r.states.cols(), 401);
+  const Mat U = r.controls.SampleIntervals(r.state_grid);
+  Mat X;
+  const double J =
+      DiscreteOcp(*ocp, r.state_grid, Integrator::kEuler, TerminalMode::kHard).Simulate(U, &X);
+  EXPECT_EQ(r.objective, J);
+  EXPECT_EQ((r.states - X).cwiseAbs().maxCoeff(), 0.0);
+  for (const IterationRecord& row : r.history) EXPECT_EQ(row.intervals, 100);
+}
+
+// Where the coarsest grid's Newton does not converge (forced: at most 5 Newton steps per grid,
+// where the 100-interval grid needs 7 at gamma = 1e-2), its last iterate starts Newton on the
+// finer grids (measured: 3 steps each), which converge to the optimum of the request's grid.
 TEST(Polish, UnconvergedCoarsestNewtonStillStartsTheFinerGrids) {
-  const auto ocp = MakeProblem("comm-path2d", {"channel=0", "gamma=3e-5"}, 1);
-  const SolveRequest request = FamilyRequest(*ocp, 400, TerminalMode::kHard);
+  const auto ocp = MakeProblem("comm-path2d", {"channel=0", "gamma=1e-2"}, 1);
+  SolveRequest request = FamilyRequest(*ocp, 400, TerminalMode::kHard);
+  request.options.Set("newton_max_iterations", 5);
   const HamiltonianFamily polish(HamiltonianFamily::Preset::kPolish);
   const SolveResult r = polish.Solve(*ocp, request);
   ASSERT_EQ(r.status, SolveStatus::kConverged) << r.message;
@@ -658,7 +729,9 @@ TEST(Polish, UnconvergedCoarsestNewtonStillStartsTheFinerGrids) {
   EXPECT_EQ(Stat(r, "coarse_fallback"), 0.0) << r.message;
   EXPECT_NE(r.message.find("its last iterate starts the finer grids"), std::string::npos)
       << r.message;
-  SolveRequest alone_request = request;
+  EXPECT_EQ(Stat(r, "coarse_newton_iterations"), 5.0);
+  // The optimum of the polish alone on the request's grid (with Newton's default limits).
+  SolveRequest alone_request = FamilyRequest(*ocp, 400, TerminalMode::kHard);
   alone_request.options.Set("polish_coarse_levels", 0);
   const SolveResult alone = polish.Solve(*ocp, alone_request);
   ASSERT_EQ(alone.status, SolveStatus::kConverged) << alone.message;
@@ -666,6 +739,8 @@ TEST(Polish, UnconvergedCoarsestNewtonStillStartsTheFinerGrids) {
   EXPECT_LT((r.states - alone.states).cwiseAbs().maxCoeff(), 1e-7);
   const auto grids = RowsPerGrid(r);
   ASSERT_EQ(grids.size(), 3u);
+  EXPECT_EQ(grids[0].first, 100);
+  EXPECT_EQ(grids[1].first, 200);
   EXPECT_EQ(grids[2].first, -1);
 }
 
