@@ -114,6 +114,27 @@ IndirectNewtonOptions PolishNewtonOptions(const HamiltonianFamilyOptions& o) {
   return no;
 }
 
+// Newton's outcome in the result: its status and its own stats (prefixed "newton_"), its final
+// residual.
+void RecordNewtonOutcome(const SolveResult& n, SolveResult* r) {
+  auto& stats = r->solver_stats;
+  if (!n.history.empty()) stats["newton_residual_inf"] = n.history.back().primal_inf;
+  for (const auto& [key, value] : n.solver_stats) stats["newton_" + key] = value;
+  r->status = n.status;
+  r->solver_status = n.solver_status;
+}
+
+// Newton's solution as the result's: trajectory, costates, J, and T for a free final time.
+void TakeNewtonSolution(const SolveResult& n, SolveResult* r) {
+  r->controls = n.controls;
+  r->state_grid = n.state_grid;
+  r->states = n.states;
+  r->costates = n.costates;
+  r->objective = n.objective;
+  const auto final_time = n.solver_stats.find("final_time");
+  if (final_time != n.solver_stats.end()) r->solver_stats["final_time"] = final_time->second;
+}
+
 // The polish stage after the descent: fitted costates, Newton on the Euler maximum principle,
 // and on failure more descent and another attempt (polish_attempts). Updates *r and keeps the
 // last attempt's result in *last_newton; true when Newton converged.
@@ -158,10 +179,7 @@ bool Polish(const FamilyRun& run,
     stats["newton_attempts"] = attempt;
     stats["newton_iterations"] = newton_iterations;
     stats["newton_cpu_seconds"] = newton_cpu;
-    if (!n.history.empty()) stats["newton_residual_inf"] = n.history.back().primal_inf;
-    for (const auto& [key, value] : n.solver_stats) stats["newton_" + key] = value;
-    r->status = n.status;
-    r->solver_status = n.solver_status;
+    RecordNewtonOutcome(n, r);
     r->iterations = descent_iterations + newton_iterations;
     r->message += "; Newton " + std::to_string(attempt) + " (Euler maximum principle, fitted " +
                   "costates, after " + std::to_string(descent_iterations) +
@@ -170,13 +188,7 @@ bool Polish(const FamilyRun& run,
                            n.states.cols() == passes->grid().size() &&
                            n.controls.nu() == problem.nu();
     if (converged) {
-      r->controls = n.controls;
-      r->state_grid = n.state_grid;
-      r->states = n.states;
-      r->costates = n.costates;
-      r->objective = n.objective;
-      const auto final_time = n.solver_stats.find("final_time");
-      if (final_time != n.solver_stats.end()) stats["final_time"] = final_time->second;
+      TakeNewtonSolution(n, r);
       return true;
     }
     // The result keeps the descent's iterate; continue the descent (its budget doubles) unless
@@ -373,23 +385,13 @@ SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, in
   SolveResult r;
   if (finer.converged) {
     r = std::move(coarse.result);
-    const SolveResult& n = finer.last;
-    auto& stats = r.solver_stats;
-    r.controls = n.controls;
-    r.state_grid = n.state_grid;
-    r.states = n.states;
-    r.costates = n.costates;
-    r.objective = n.objective;
-    r.status = n.status;
-    r.solver_status = n.solver_status;
+    RecordNewtonOutcome(finer.last, &r);
+    TakeNewtonSolution(finer.last, &r);
     r.iterations += finer.newton_iterations;
     r.message = "grid sequencing, " + coarse_message;
+    auto& stats = r.solver_stats;
     stats["newton_iterations"] += finer.newton_iterations;
     stats["newton_cpu_seconds"] += finer.newton_cpu_seconds;
-    if (!n.history.empty()) stats["newton_residual_inf"] = n.history.back().primal_inf;
-    for (const auto& [key, value] : n.solver_stats) stats["newton_" + key] = value;
-    const auto final_time = n.solver_stats.find("final_time");
-    if (final_time != n.solver_stats.end()) stats["final_time"] = final_time->second;
     stats["coarse_fallback"] = 0;
   } else if (clock.cpu() >= run.o.max_cpu_seconds) {
     // No time left for the request's grid alone: the coarsest grid's controls (Newton's where
