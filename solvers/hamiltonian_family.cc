@@ -338,7 +338,7 @@ SolveResult ResultOf(GridSolve g) {
 // (NewtonOnFinerGrids); where that fails, the request's grid is solved as without sequencing
 // and the record says so. The finer grids start from the coarsest grid's last Newton iterate
 // even when that Newton did not converge: it fails mostly in its line search at a kink of the
-// semismooth residual close to the solution (comm-path2d, N = 100, ||F||_inf 1e-5 .. 1e-2 where
+// semismooth residual close to the solution (comm-path2d, N = 100, ||F||_inf 1.4e-5 .. 0.1 where
 // it started at 1.5), which is a different kink, or none, on the finer grid
 // (solvers/README-family.md).
 SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, int levels) {
@@ -394,13 +394,21 @@ SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, in
     stats["newton_cpu_seconds"] += finer.newton_cpu_seconds;
     stats["coarse_fallback"] = 0;
   } else if (clock.cpu() >= run.o.max_cpu_seconds) {
-    // No time left for the request's grid alone: the coarsest grid's controls (Newton's where
-    // it converged, else the descent's), judged on the request's grid, where they are piecewise
-    // constant too (its nodes include the coarse ones).
-    r = std::move(coarse.result);
+    // No time left for the request's grid alone: the finest grid's solution the sequence
+    // reached (a finer grid's Newton solution, else the coarsest grid's: Newton's where it
+    // converged, else the descent's), judged on the request's grid, where its controls are
+    // piecewise constant too: each of its intervals is 2^l of the request's.
+    const bool finer_solved = finer.last.status == SolveStatus::kConverged;
+    const SolveResult& best = finer_solved ? finer.last : coarse.result;
+    const Mat& Ub = best.controls.values();
+    const int N = request.grid.intervals();
+    Mat U(Ub.rows(), N);
+    for (int k = 0; k < N; ++k) U.col(k) = Ub.col(k / (N / static_cast<int>(Ub.cols())));
     TimeGrid grid = request.grid;
-    if (r.state_grid.tf() != grid.tf()) grid = grid.StretchedTo(r.state_grid.tf());
-    const Mat U = r.controls.SampleIntervals(grid);
+    if (best.state_grid.tf() != grid.tf()) grid = grid.StretchedTo(best.state_grid.tf());
+    const std::string from =
+        std::to_string(best.state_grid.intervals()) + "-interval grid's controls";
+    r = std::move(coarse.result);
     Mat X;
     r.objective =
         DiscreteOcp(*run.target.ocp, grid, request.integrator, request.terminal).Simulate(U, &X);
@@ -412,9 +420,15 @@ SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, in
     r.solver_status = "max_cpu_seconds";
     r.iterations += finer.newton_iterations;
     r.message =
-        "grid sequencing stopped by max_cpu_seconds = " + MessageNumber(run.o.max_cpu_seconds) +
-        ", " + coarse_message + "; the controls are the coarsest grid's, on the request's grid";
-    r.solver_stats["coarse_fallback"] = 0;
+        "grid sequencing ended at max_cpu_seconds = " + MessageNumber(run.o.max_cpu_seconds) +
+        ", " + coarse_message + "; the " + from + " on the request's grid";
+    auto& stats = r.solver_stats;
+    stats["newton_iterations"] += finer.newton_iterations;
+    stats["newton_cpu_seconds"] += finer.newton_cpu_seconds;
+    if (finer_solved && best.solver_stats.count("final_time")) {
+      stats["final_time"] = best.solver_stats.at("final_time");
+    }
+    stats["coarse_fallback"] = 0;
   } else {
     // The request's grid as without sequencing, after the failed sequence (whose rows stay in
     // the history, first, and whose steps count in `iterations`).

@@ -112,8 +112,9 @@ struct HamiltonianFamilyOptions {
   /// steps from the interpolated N = 200 solution; solvers/README-family.md). Where Newton on a
   /// finer grid fails (or the coarsest grid's polish leaves no finite iterate), the request's
   /// grid is solved as without sequencing (all polish_attempts), after the failed sequence, and
-  /// the record says so; when max_cpu_seconds is reached first, the result is the coarsest
-  /// grid's controls on the request's grid (status kMaxTime). L is the largest level <=
+  /// the record says so; when max_cpu_seconds is reached first, the result is the controls of
+  /// the finest grid the sequence solved (else the coarsest grid's) on the request's grid
+  /// (status kMaxTime; newton_iterations then counts every grid's steps). L is the largest level <=
   /// polish_coarse_levels at which every grid has an even number of intervals to halve and the
   /// coarsest keeps at least polish_coarse_min_intervals: with the defaults (2, 100) N = 400 ->
   /// 200 -> 100, N = 200 -> 100, N = 300 -> 150, and no sequencing for N < 200, odd N, or

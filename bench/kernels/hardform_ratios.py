@@ -8,7 +8,8 @@
 
 Per case (method, gamma, seed) the median of the repetitions' `cpu_s` counter (each solve's own
 CPU time); per gamma the ratio Ipopt / polish of those medians on every seed, then their median
-and minimum. Also per gamma: the polish's Newton steps, fallbacks of its grid sequence, its
+and minimum. Also per gamma: the polish's Newton steps (every grid's, a failed grid sequence's
+included), fallbacks of its grid sequence, its
 largest terminal violation, its J relative to Ipopt's (both judged by the common evaluator on the
 Euler grid: J without penalty) and how many Ipopt solves converged.
 """
@@ -58,8 +59,12 @@ def main(path, polish="FamilyPolish", ipopt="IpoptEuler"):
             ratios.append(ic / pc)
             p_cpu.append(pc)
             i_cpu.append(ic)
-            steps.append(int(p[0].get("newton_iterations", -1)))
-            fallbacks += int(p[0].get("coarse_fallback", 0))
+            # After a fallback newton_iterations counts the request grid's solve only: add the
+            # failed sequence's steps.
+            fallback = int(p[0].get("coarse_fallback", 0))
+            failed = p[0].get("coarse_newton_iterations", 0) + p[0].get("fine_newton_iterations", 0)
+            steps.append(int(p[0].get("newton_iterations", -1) + (failed if fallback else 0)))
+            fallbacks += fallback
             rel.append((p[0]["J"] - i[0]["J"]) / abs(i[0]["J"]))
             term.append(max(r["terminal"] for r in p))
             ipopt_ok += int(all(r["converged"] == 1 for r in i))

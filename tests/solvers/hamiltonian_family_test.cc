@@ -701,7 +701,8 @@ TEST(Polish, GridSequencingStopsAtTheCpuLimitWithTheCoarseControlsOnTheRequestsG
   const SolveResult r = HamiltonianFamily(HamiltonianFamily::Preset::kPolish).Solve(*ocp, request);
   EXPECT_EQ(r.status, SolveStatus::kMaxTime) << r.message;
   EXPECT_EQ(r.solver_status, "max_cpu_seconds");
-  EXPECT_NE(r.message.find("stopped by max_cpu_seconds"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("ended at max_cpu_seconds"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("the 100-interval grid's controls"), std::string::npos) << r.message;
   EXPECT_EQ(Stat(r, "coarse_fallback"), 0.0);
   EXPECT_EQ(Stat(r, "fine_newton_iterations"), 0.0);
   ASSERT_EQ(r.state_grid.intervals(), 400);
@@ -712,6 +713,9 @@ TEST(Polish, GridSequencingStopsAtTheCpuLimitWithTheCoarseControlsOnTheRequestsG
       DiscreteOcp(*ocp, r.state_grid, Integrator::kEuler, TerminalMode::kHard).Simulate(U, &X);
   EXPECT_EQ(r.objective, J);
   EXPECT_EQ((r.states - X).cwiseAbs().maxCoeff(), 0.0);
+  // The coarsest grid's controls: constant over each run of four request intervals.
+  for (int k = 0; k < 400; ++k) EXPECT_EQ(U.col(k), U.col(k - k % 4)) << k;
+  ASSERT_FALSE(r.history.empty());
   for (const IterationRecord& row : r.history) EXPECT_EQ(row.intervals, 100);
 }
 
@@ -729,7 +733,7 @@ TEST(Polish, UnconvergedCoarsestNewtonStillStartsTheFinerGrids) {
   EXPECT_EQ(Stat(r, "coarse_fallback"), 0.0) << r.message;
   EXPECT_NE(r.message.find("its last iterate starts the finer grids"), std::string::npos)
       << r.message;
-  EXPECT_EQ(Stat(r, "coarse_newton_iterations"), 5.0);
+  EXPECT_LE(Stat(r, "coarse_newton_iterations"), 5.0);
   // The optimum of the polish alone on the request's grid (with Newton's default limits).
   SolveRequest alone_request = FamilyRequest(*ocp, 400, TerminalMode::kHard);
   alone_request.options.Set("polish_coarse_levels", 0);
