@@ -80,10 +80,18 @@ def convergence(records, outdir, styles):
             h = [e for e in r["history"] if e.get("J") is not None and e.get("cpu_seconds") is not None]
             if not h:
                 continue
-            gaps = [max(abs(e["J"] - best) / abs(best), 1e-16) for e in h]
             style = styles[r["method_label"]]
-            axes[0].plot([e["iteration"] for e in h], gaps, label=r["method_label"], **style)
-            axes[1].plot([max(e["cpu_seconds"], 1e-6) for e in h], gaps, label=r["method_label"], **style)
+            # A grid-sequenced solve's iterates on a coarser grid (rows with `intervals`) come
+            # first and carry that grid's J, another discrete problem's: drawn faded.
+            for on_request_grid in (False, True):
+                part = [e for e in h if (e.get("intervals") is None) == on_request_grid]
+                if not part:
+                    continue
+                gaps = [max(abs(e["J"] - best) / abs(best), 1e-16) for e in part]
+                label = r["method_label"] if on_request_grid else None
+                drawn = style if on_request_grid else dict(style, alpha=0.3)
+                axes[0].plot([e["iteration"] for e in part], gaps, label=label, **drawn)
+                axes[1].plot([max(e["cpu_seconds"], 1e-6) for e in part], gaps, label=label, **drawn)
         for ax, xlabel in zip(axes, ["iteration", "CPU seconds"]):
             ax.axhline(TARGET, color="k", ls="--", lw=0.8)
             ax.set_yscale("log")
@@ -92,8 +100,9 @@ def convergence(records, outdir, styles):
             ax.grid(True, which="both", alpha=0.3)
         axes[1].set_xscale("log")
         axes[0].legend(fontsize=7)
-        fig.suptitle("%s, %s form, seed %s: each method's own objective per iterate; target = best "
-                     "final J fine = %.6g" % (section, terminal, seed, best), fontsize=10)
+        fig.suptitle("%s, %s form, seed %s: each method's own objective per iterate (faded: on a "
+                     "coarser grid)\ntarget = best final J fine = %.6g"
+                     % (section, terminal, seed, best), fontsize=10)
         fig.tight_layout()
         path = os.path.join(outdir, "convergence-%s-%s.png" % (slug(section), terminal))
         save_figure(fig, path, dpi=110)
