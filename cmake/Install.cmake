@@ -6,7 +6,7 @@
 #   target_link_libraries(my_ocpbench PRIVATE OCPBench::cli)   # the whole command line
 #
 # and include "core/autodiff_ocp.h", "problems/registry.h", "solvers/registry.h",
-# "bench/cli/main.h" (ocpb::Main), ... (see problems/user_example/). Layout under the prefix:
+# "bench/cli/main.h" (ocpb::Main), ... (see examples/user_example/). Layout under the prefix:
 #   include/ocpbench/{core,transcriptions,solvers,problems,drivers,bench}/**.h
 #   lib/libocpb_*.a
 #   lib/cmake/OCPBench/{OCPBenchConfig,OCPBenchConfigVersion,OCPBenchTargets}.cmake

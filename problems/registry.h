@@ -88,7 +88,7 @@ struct ProblemInfo {
 const std::vector<ProblemInfo>& Problems();
 /// The problem called `name`; throws std::invalid_argument listing the valid names.
 const ProblemInfo& FindProblem(const std::string& name);
-/// Adds a problem defined outside OCPBench (see problems/user_example/) to the registry, after
+/// Adds a problem defined outside OCPBench (see examples/user_example/) to the registry, after
 /// the built-in ones. Throws std::invalid_argument when the name is empty or taken, or `make` is
 /// empty. Call it before any solving starts (it is not synchronized with concurrent lookups);
 /// it invalidates references previously returned by Problems() and FindProblem().

@@ -45,7 +45,7 @@ struct SolverInfo {
 const std::vector<SolverInfo>& Solvers();
 /// Throw std::invalid_argument listing the valid names when `name` is unknown.
 const SolverInfo& FindSolver(const std::string& name);
-/// Adds a solver defined outside OCPBench (see problems/user_example/). Throws
+/// Adds a solver defined outside OCPBench (see examples/user_example/). Throws
 /// std::invalid_argument when the name is empty or taken or `make` is empty. Call it at
 /// start-up, before any solving (it invalidates references returned by Solvers() and
 /// FindSolver()).

@@ -1,7 +1,7 @@
 // OCPBench's command line as a library entry point (the gtest_main / benchmark_main
 // convention): a program that registers its own problems and solvers and then calls
 // ocpb::Main is a complete `ocpbench` (list, describe, solve, run, merge, channel, online),
-// with the registered entries beside the built-in ones. See problems/user_example/.
+// with the registered entries beside the built-in ones. See examples/user_example/.
 #pragma once
 
 namespace ocpb {
