@@ -2,8 +2,11 @@
 # A private single-node Slurm cluster (Debian's slurm-wlm with munge) living in one folder: for
 # trying OCPBench's Slurm path on one machine, for its tests and for its throughput benchmark.
 # Needs root (munged runs as the munge user) and no systemd. Everything is under STATE: its own
-# munge key and socket, its own free ports, pid files, spool, controller state and logs, so it
-# never touches a system Slurm or munge and two of them can run side by side.
+# munge key, its own free ports, pid files, controller state and logs, so it
+# never touches a system Slurm or munge and two of them can run side by side. Its Unix sockets
+# (munge's, and the job steps' in slurmd's spool) live in a short private folder under /tmp
+# (mktemp; its path is in STATE/runtime-dir), since a socket's path may not exceed 107 bytes and
+# STATE may be deep in a clone; stop removes it with STATE.
 #
 #   source bench/cluster/local-slurm.sh
 #   local_slurm_start STATE   # exports SLURM_CONF; returns when the node is idle (or fails)
@@ -81,16 +84,21 @@ local_slurm_start() {
   done
   state=$(realpath -m "$state")
   rm -rf "$state"
-  mkdir -p "$state"/{munge,munge-socket,ctld,spool,tmp}
+  mkdir -p "$state"/{munge,ctld,tmp}
   chmod 0755 "$state"
+  local runtime
+  runtime=$(mktemp -d /tmp/ocpb-slurm.XXXXXX) || return 1
+  echo "$runtime" >"$state/runtime-dir"
+  mkdir -p "$runtime"/{munge-socket,spool}
+  chmod 0755 "$runtime"
   # munged refuses a key that others could read and a socket folder that others cannot enter.
-  chown munge:munge "$state/munge" "$state/munge-socket"
+  chown munge:munge "$state/munge" "$runtime/munge-socket"
   chmod 0700 "$state/munge"
-  chmod 0755 "$state/munge-socket"
+  chmod 0755 "$runtime/munge-socket"
   dd if=/dev/urandom of="$state/munge/munge.key" bs=1024 count=1 status=none
   chown munge:munge "$state/munge/munge.key"
   chmod 0400 "$state/munge/munge.key"
-  local socket="$state/munge-socket/munge.socket"
+  local socket="$runtime/munge-socket/munge.socket"
   setpriv --reuid=munge --regid=munge --init-groups \
     munged -F --socket="$socket" --key-file="$state/munge/munge.key" \
     --pid-file="$state/munge/munged.pid" --log-file="$state/munge/munged.log" \
@@ -120,7 +128,7 @@ AuthInfo=socket=$socket
 SlurmUser=root
 SlurmdUser=root
 StateSaveLocation=$state/ctld
-SlurmdSpoolDir=$state/spool
+SlurmdSpoolDir=$runtime/spool
 TmpFS=$state/tmp
 SlurmctldPidFile=$state/slurmctld.pid.conf
 SlurmdPidFile=$state/slurmd.pid.conf
@@ -192,6 +200,12 @@ local_slurm_stop() {
   local pid
   for pid in $(_local_slurm_leftover_pids "$conf"); do kill -KILL "$pid" 2>/dev/null || true; done
   _local_slurm_stop_pid_file "$state/munged.pid" 5
+  # The private socket folder: only one that start made (its name's pattern, under /tmp).
+  local runtime
+  runtime=$(cat "$state/runtime-dir" 2>/dev/null || true)
+  case "$runtime" in
+    /tmp/ocpb-slurm.??????) rm -rf "$runtime" ;;
+  esac
   rm -rf "$state"
 }
 
