@@ -1,12 +1,21 @@
-# CTest script: install OCPBench from the build tree into a fresh prefix, configure and build the
-# user example (problems/user_example/) as an outside project against that install, and run:
+# CTest script: install OCPBench into a fresh prefix, configure and build the user example
+# (examples/user_example/) as an outside project against that install, and run:
 #  - my_problem (exits non-zero when a method misses the known optimum);
 #  - my_ocpbench, a full `ocpbench` with the example's problem and solver registered: its solver
 #    is listed and described, a bad option of it is refused like a built-in's (exit 2, the valid
 #    keys listed), and the example suite mixing it with built-in methods runs, with its rows in
 #    summary.md and every record valid against results/record.schema.json.
-#   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DCXX=... -DFLAGS=... [-DLINK_FLAGS=...] -P this
-foreach(var BUILD_DIR SOURCE_DIR WORK_DIR CXX)
+# The install comes from BUILD_DIR, or with PLAIN=ON from a build made here the way the user
+# guide documents it (no preset, the default generator and compiler, Release, warnings not
+# errors): the path a user takes, which the presets' builds do not cover (their unity batches
+# and flags differ).
+#   cmake -DSOURCE_DIR=... -DWORK_DIR=... (-DBUILD_DIR=... -DCXX=... | -DPLAIN=ON [-DJOBS=n])
+#         [-DFLAGS=...] [-DLINK_FLAGS=...] -P this
+set(required SOURCE_DIR WORK_DIR)
+if(NOT PLAIN)
+  list(APPEND required BUILD_DIR CXX)
+endif()
+foreach(var ${required})
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "user_example_installed: ${var} is not set")
   endif()
@@ -18,9 +27,22 @@ function(run)
     message(FATAL_ERROR "user_example_installed: '${ARGN}' failed (${rc})")
   endif()
 endfunction()
+set(example_compiler)
+if(PLAIN)
+  # The user guide's install, word for word (examples/user_example/README.md, section 1).
+  if(NOT JOBS)
+    set(JOBS 2)
+  endif()
+  set(BUILD_DIR ${WORK_DIR}/ocpbench-build)
+  run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BUILD_DIR} -DCMAKE_BUILD_TYPE=Release
+      -DOCPB_BUILD_TESTS=OFF -DOCPB_BUILD_BENCHMARKS=OFF)
+  run(${CMAKE_COMMAND} --build ${BUILD_DIR} --parallel ${JOBS})
+else()
+  set(example_compiler -DCMAKE_CXX_COMPILER=${CXX})
+endif()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
-run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/problems/user_example -B ${WORK_DIR}/build
-    -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_CXX_COMPILER=${CXX}
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/user_example -B ${WORK_DIR}/build
+    -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix ${example_compiler}
     -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS=${FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${FLAGS} ${LINK_FLAGS}")
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/my_problem)
@@ -42,7 +64,7 @@ expect_output("bad option" "projected-gradient: unknown option 'stepsize' (valid
 if(NOT last_rc EQUAL 2)
   message(FATAL_ERROR "user_example_installed: a bad option exited ${last_rc}, not 2")
 endif()
-run(${cli} run ${SOURCE_DIR}/problems/user_example/my_suite.json --out ${WORK_DIR}/results)
+run(${cli} run ${SOURCE_DIR}/examples/user_example/my_suite.json --out ${WORK_DIR}/results)
 file(READ ${WORK_DIR}/results/summary.md summary)
 foreach(row "| projected-gradient, penalty, N=50 | 1 | 1 converged |"
             "| hamiltonian, penalty, N=50 |" "| ipopt + euler, penalty, N=50 |")
