@@ -87,7 +87,9 @@ def main(argv):
             current = None
         if current != text:
             print(f'{out} is stale: it differs from what `ocpbench describe` prints now.\n'
-                  f'Regenerate it from the source folder with:\n  {REGENERATE}',
+                  f'Regenerate it from the source folder with:\n  {REGENERATE}\n'
+                  f'or with the program this check ran:\n'
+                  f'  /usr/bin/python3 docs/gen_options.py {ocpbench} docs/options.md',
                   file=sys.stderr)
             return 1
         print(f'{out} is up to date')
