@@ -2,6 +2,7 @@
 // first and second derivative the Ocp interface asks for by forward-mode AD (core/jet.h).
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -15,7 +16,7 @@ namespace ocpb {
 ///   template <class T> void EvalDynamics(double t, const VecT<T, NX>& x, const VecT<T, NU>& u,
 ///                                        VecT<T, NX>* f) const;
 ///   template <class T> T EvalRunningCost(double t, const VecT<T, NX>& x,
-///                                        const VecT<T, NU>& u) const;
+///                                        const VecT<T, NU>& u) const;        // optional
 ///   template <class T> T EvalTerminalCost(const VecT<T, NX>& x) const;            // optional
 ///   template <class T> void EvalTerminalConstraints(const VecT<T, NX>& x,
 ///                                                   VecT<T, NPSI>* psi) const;   // if NPSI > 0
@@ -26,6 +27,14 @@ namespace ocpb {
 /// Derivatives with respect to z = (x, u) use Jet1<NX+NU> (first order) and
 /// Jet2<NX+NU> (Hessians); terminal functions use Jet1<NX> / Jet2<NX>.
 /// A problem may still override any virtual with hand-written derivatives.
+///
+/// Mayer problems: a problem that declares no EvalRunningCost has L = 0 (DefinesRunningCost()
+/// is false): RunningCost returns 0, RunningCostGradient zeros, PointHessian skips the AD pass
+/// over L, and RunningCostLowerBound is 0. The test is at compile time, on the name: a Derived
+/// that declares EvalRunningCost in any form, even a wrong or private one, has its running cost
+/// called exactly as before (and a wrong one fails to compile there, as it always did); only a
+/// Derived that declares none gets L = 0. (A misspelt name therefore means no running cost, as a
+/// misspelt EvalTerminalCost means phi = 0.)
 ///
 /// Dimensions are stated once, by the template arguments: the constructor sets nx = NX, nu = NU,
 /// npsi = NPSI, nc = NC (with Ocp::SetDimensions' defaults for x0, weights and U), so a problem
@@ -60,6 +69,13 @@ class AutoDiffOcp : public Ocp {
     static_assert(NC == 0, "a problem with NC > 0 must define EvalPathConstraints");
   }
 
+  /// False when Derived declares no EvalRunningCost (a Mayer problem: L = 0). The base's
+  /// EvalRunningCost(NoRunningCost) is found by name lookup only when Derived declares none
+  /// of its own, which hides it whatever its signature or access.
+  static constexpr bool DefinesRunningCost() {
+    return !requires { Derived::EvalRunningCost(NoRunningCost{}); };
+  }
+
   // ---- values -------------------------------------------------------------------
   void Dynamics(double t, ConstVecRef x, ConstVecRef u, VecRef f) const override {
     VecT<double, NX> fx;
@@ -67,7 +83,11 @@ class AutoDiffOcp : public Ocp {
     CopyTo(fx, f);
   }
   double RunningCost(double t, ConstVecRef x, ConstVecRef u) const override {
-    return self().EvalRunningCost(t, VecT<double, NX>(x), VecT<double, NU>(u));
+    if constexpr (DefinesRunningCost()) {
+      return self().EvalRunningCost(t, VecT<double, NX>(x), VecT<double, NU>(u));
+    } else {
+      return 0.0;
+    }
   }
   double TerminalCost(ConstVecRef x) const override {
     return self().EvalTerminalCost(VecT<double, NX>(x));
@@ -103,13 +123,19 @@ class AutoDiffOcp : public Ocp {
   }
   void RunningCostGradient(
       double t, ConstVecRef x, ConstVecRef u, double* L, VecRef Lx, VecRef Lu) const override {
-    VecT<Z1, NX> xz;
-    VecT<Z1, NU> uz;
-    Seed(x, u, &xz, &uz);
-    const Z1 out = self().EvalRunningCost(t, xz, uz);
-    *L = out.a;
-    Lx = out.g.template head<NX>();
-    Lu = out.g.template tail<NU>();
+    if constexpr (DefinesRunningCost()) {
+      VecT<Z1, NX> xz;
+      VecT<Z1, NU> uz;
+      Seed(x, u, &xz, &uz);
+      const Z1 out = self().EvalRunningCost(t, xz, uz);
+      *L = out.a;
+      Lx = out.g.template head<NX>();
+      Lu = out.g.template tail<NU>();
+    } else {
+      *L = 0.0;
+      Lx.setZero();
+      Lu.setZero();
+    }
   }
   void TerminalCostGradient(ConstVecRef x, double* phi, VecRef phix) const override {
     const X1 out = self().EvalTerminalCost(SeedX<X1>(x));
@@ -154,7 +180,9 @@ class AutoDiffOcp : public Ocp {
     VecT<Z2, NU> uz;
     Seed(x, u, &xz, &uz);
     Eigen::Matrix<double, kNz, kNz> h = Eigen::Matrix<double, kNz, kNz>::Zero();
-    if (sigma != 0.0) h += sigma * self().EvalRunningCost(t, xz, uz).h;
+    if constexpr (DefinesRunningCost()) {
+      if (sigma != 0.0) h += sigma * self().EvalRunningCost(t, xz, uz).h;
+    }
     // Affine dynamics (Ocp::HasAffineDynamics) have f'' = 0: the Jet2 pass over f is skipped.
     if (lambda.size() > 0 && lambda.any() && !self().HasAffineDynamics()) {
       VecT<Z2, NX> f;
@@ -182,6 +210,16 @@ class AutoDiffOcp : public Ocp {
     CopyTo(h, hess);
   }
 
+  /// L = 0 is a lower bound of a Mayer problem's running cost; a problem with a running cost
+  /// gets Ocp's answer (none) unless it overrides this itself.
+  std::optional<double> RunningCostLowerBound() const override {
+    if constexpr (DefinesRunningCost()) {
+      return Ocp::RunningCostLowerBound();
+    } else {
+      return 0.0;
+    }
+  }
+
  protected:
   /// Checks (nx, nu, npsi, nc) against the template arguments, which already set them: a
   /// second statement of the dimensions may only agree with the first.
@@ -193,6 +231,11 @@ class AutoDiffOcp : public Ocp {
   }
 
  private:
+  // The default of the optional running cost: a name that only a Derived without its own
+  // EvalRunningCost inherits (see DefinesRunningCost); declared, never defined or called.
+  struct NoRunningCost {};
+  static void EvalRunningCost(NoRunningCost);
+
   void CheckDimension(const char* what, int given, int declared) const {
     if (given != declared) {
       throw std::invalid_argument("problem dimensions: SetDimensions gives " + std::string(what) +
