@@ -14,6 +14,16 @@
 
 #include "core/jet.h"
 
+// Written as a problem outside namespace ocpb is: qualified names, one template for doubles and
+// jets alike.
+template <class T>
+T UserWrittenFunction(const T& a, const T& b) {
+  return ocpb::atan2(a, b) + ocpb::hypot(a, 1.5) * ocpb::tanh(b) + ocpb::log1p(b * b) -
+         ocpb::expm1(0.5 * a) + ocpb::asin(0.5 * b) * ocpb::acos(0.3 * a) +
+         ocpb::sinh(a) * ocpb::cosh(b) + ocpb::SmoothMax(a, b, 0.1) + ocpb::SmoothMin(a, 0.2, 0.1) +
+         ocpb::atan2(0.7, b) + ocpb::hypot(-0.4, a);
+}
+
 namespace ocpb {
 namespace {
 
@@ -153,6 +163,13 @@ TEST(JetFunctions, SmoothMaxAndMinMatchCentralDifferences) {
            {0.4, -0.9}, {-0.9, 0.4}, {0.25, 0.25}, {-1.5, -1.4}, {2.0, 2.1}}) {
     CheckBinaryForms(smax, a, b, "SmoothMax");
     CheckBinaryForms(smin, a, b, "SmoothMin");
+  }
+}
+
+TEST(JetFunctions, AProblemOutsideTheNamespaceCallsThemQualified) {
+  const auto fn = [](const auto& a, const auto& b) { return UserWrittenFunction(a, b); };
+  for (const auto& [a, b] : std::vector<std::pair<double, double>>{{0.4, -0.9}, {-0.6, 0.5}}) {
+    ExpectAccurate(CheckTwoVariableFunction(fn, a, b), "a user's function");
   }
 }
 
