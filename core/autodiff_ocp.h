@@ -31,10 +31,10 @@ namespace ocpb {
 /// Mayer problems: a problem that declares no EvalRunningCost has L = 0 (DefinesRunningCost()
 /// is false): RunningCost returns 0, RunningCostGradient zeros, PointHessian skips the AD pass
 /// over L, and RunningCostLowerBound is 0. The test is at compile time, on the name: a Derived
-/// that declares EvalRunningCost in any form, even a wrong or private one, has its running cost
-/// called exactly as before (and a wrong one fails to compile there, as it always did); only a
-/// Derived that declares none gets L = 0. (A misspelt name therefore means no running cost, as a
-/// misspelt EvalTerminalCost means phi = 0.)
+/// that declares EvalRunningCost (itself or in a base between it and AutoDiffOcp) has it called
+/// by the same code as before, in any form: a private or ill-formed one still fails to compile
+/// rather than becoming L = 0. Only a Derived that declares none gets L = 0 (so a misspelt name
+/// means no running cost, as a misspelt EvalTerminalCost means phi = 0).
 ///
 /// Dimensions are stated once, by the template arguments: the constructor sets nx = NX, nu = NU,
 /// npsi = NPSI, nc = NC (with Ocp::SetDimensions' defaults for x0, weights and U), so a problem
