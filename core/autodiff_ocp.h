@@ -132,9 +132,9 @@ class AutoDiffOcp : public Ocp {
       Lx = out.g.template head<NX>();
       Lu = out.g.template tail<NU>();
     } else {
-      *L = 0.0;
-      Lx.setZero();
-      Lu.setZero();
+      *L = 0.0;  // element by element: GCC 12 warns falsely on setZero of a size-1 Ref
+      for (int i = 0; i < NX; ++i) Lx[i] = 0.0;
+      for (int j = 0; j < NU; ++j) Lu[j] = 0.0;
     }
   }
   void TerminalCostGradient(ConstVecRef x, double* phi, VecRef phix) const override {
