@@ -1,0 +1,97 @@
+// The Newton step of the stagewise interior-point solver (riccati-ip): an equality-constrained
+// QP with the stage structure of an optimal-control problem, solved by a backward Riccati
+// recursion and a forward sweep.
+#pragma once
+
+#include <vector>
+
+#include "core/types.h"
+
+namespace ocpb {
+
+/// One stage k = 0..N-1 of the QP below: the stage Hessian Q (order (x_k, u_k)), its gradient q,
+/// and the linearized transition dx_{k+1} = A dx_k + B du_k + b. Dimensions may differ from stage
+/// to stage (nx_k = A.cols(), nu_k = B.cols(), nx_{k+1} = A.rows()).
+struct RiccatiStage {
+  Mat Q;  ///< (nx_k + nu_k) square, symmetric
+  Vec q;  ///< nx_k + nu_k
+  Mat A;  ///< nx_{k+1} x nx_k
+  Mat B;  ///< nx_{k+1} x nu_k
+  Vec b;  ///< nx_{k+1}
+};
+
+/// The QP
+///
+///   minimize    sum_k 1/2 w_k^T (Q_k + dw I) w_k + q_k^T w_k + 1/2 x_N^T (Q_N + dw I) x_N + q_N^T
+///   x_N subject to  x_{k+1} = A_k x_k + B_k u_k + b_k     (k = 0..N-1, multiplier lambda_k),
+///               C x_N + c - dc nu = 0                   (terminal rows, multiplier nu),
+///               x_0 = x0 (given, not a variable),
+///
+/// with w_k = (x_k, u_k), dw >= 0 the primal regularization (Ipopt's delta_w) and dc >= 0 the
+/// terminal rows' dual regularization (Ipopt's delta_c, on those rows only: the dynamics rows
+/// always have full rank). Multipliers follow the convention of core/nlp.h for the rows
+/// x_{k+1} - A_k x_k - B_k u_k - b_k = 0 and C x_N + c = 0: the Lagrangian is the objective plus
+/// lambda_k^T (x_{k+1} - A_k x_k - B_k u_k - b_k) plus nu^T (C x_N + c).
+struct RiccatiProblem {
+  std::vector<RiccatiStage> stages;
+  Mat QN;  ///< nx_N square
+  Vec qN;
+  Mat C;  ///< npsi x nx_N (npsi may be 0)
+  Vec c;
+  Vec x0;  ///< nx_0 (often 0: the initial state is fixed and not a variable)
+};
+
+struct RiccatiSolution {
+  std::vector<Vec> x;       ///< N + 1 entries (x[0] = x0)
+  std::vector<Vec> u;       ///< N entries
+  std::vector<Vec> lambda;  ///< N entries, the multipliers of the transitions
+  Vec nu;                   ///< npsi
+};
+
+/// How a factorization went.
+enum class RiccatiOutcome {
+  kSolved,
+  /// The reduced Hessian of stage `failed_stage`, H_uu = R + B^T P B (+ dw I), is not positive
+  /// definite (Cholesky failed): the KKT matrix may not have the inertia of a descent step
+  /// (n positive, m negative eigenvalues); regularize (larger dw) and retry.
+  kNotPositiveDefinite,
+  /// The terminal rows' Schur complement -(G_0 - dc I) is not positive definite: the terminal
+  /// rows are (numerically) dependent or not reachable; retry with dc > 0.
+  kTerminalRowsDegenerate,
+};
+
+/// The backward Riccati recursion with the terminal rows carried as a parameter: the cost-to-go
+/// of stage k is V_k(x, nu) = 1/2 x^T P_k x + x^T (p_k + E_k nu) + nu^T e_k + 1/2 nu^T G_k nu,
+/// started from P_N = Q_N + dw I, p_N = q_N, E_N = C^T, e_N = c, G_N = 0. Each stage eliminates
+/// u_k = K_k x_k + k_k + M_k nu through a Cholesky factorization of H_uu (the inertia test: every
+/// H_uu positive definite means the Hessian is positive definite on the null space of the
+/// transitions, a sufficient condition for the inertia a descent step needs). At stage 0 the
+/// terminal multiplier solves (G_0 - dc I) nu = -(e_0 + E_0^T x0), the final Schur complement
+/// of the terminal rows, and a forward sweep gives x, u and lambda_k = -(P_{k+1} x_{k+1} +
+/// p_{k+1} + E_{k+1} nu). O(N (nx + nu)^3) work and memory O(N (nx + nu)^2), no fill-in, no
+/// pivoting. The workspace is reused across calls (sizes adapt).
+class RiccatiSolver {
+ public:
+  /// Solves the QP; on kNotPositiveDefinite `failed_stage()` says which stage failed. The
+  /// solution is only written on kSolved.
+  RiccatiOutcome Solve(const RiccatiProblem& problem,
+                       double dw,
+                       double dc,
+                       RiccatiSolution* solution);
+  int failed_stage() const { return failed_stage_; }
+
+ private:
+  struct StageFactor {
+    Mat K, M;  // nu x nx, nu x npsi
+    Vec k;     // nu
+  };
+  struct ValueFunction {
+    Mat P, E;
+    Vec p;
+  };
+  std::vector<StageFactor> factors_;
+  std::vector<ValueFunction> values_;  // V_1 .. V_N (index k+1 -> values_[k])
+  int failed_stage_ = -1;
+};
+
+}  // namespace ocpb
