@@ -9,6 +9,7 @@
 #include "solvers/indirect_newton.h"
 #include "solvers/ipopt_solver.h"
 #include "solvers/nlopt_solver.h"
+#include "solvers/riccati_ip_solver.h"
 
 namespace ocpb {
 namespace {
@@ -83,6 +84,25 @@ std::vector<SolverInfo> BuildSolvers() {
         "complementarity) <= tol; at large N the discretization error falls below what tol "
         "resolves and tol, not the grid, limits the accuracy (brachistochrone-free-time, "
         "Hermite-Simpson, N = 1000: |T - T*| = 5.0e-6 at tol = 1e-8, 3.9e-9 at tol = 1e-12)";
+    list.push_back(std::move(s));
+  }
+  {
+    SolverInfo s;
+    s.name = "riccati-ip";
+    s.description =
+        "primal-dual interior point (filter line search) whose Newton step is a stagewise "
+        "Riccati recursion; euler transcription only (solvers/README-riccati-ip.md)";
+    s.make = [] { return std::make_unique<RiccatiIpSolver>(); };
+    s.uses_transcription = true;
+    s.options = RiccatiIpOptions::Schema();
+    s.check_options = [](const OptionMap& resolved) {
+      RiccatiIpOptions::Apply(resolved, RiccatiIpOptions());
+    };
+    s.accuracy_option = "tol";
+    s.accuracy_note =
+        "stops when Ipopt's scaled KKT error (dual infeasibility, constraint violation, "
+        "complementarity) <= tol, with the objective scaled by Ipopt's gradient-based rule and "
+        "the constraint rows unscaled";
     list.push_back(std::move(s));
   }
   {

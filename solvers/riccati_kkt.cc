@@ -1,5 +1,7 @@
 #include "solvers/riccati_kkt.h"
 
+#include <algorithm>
+
 #include <Eigen/Cholesky>
 
 namespace ocpb {
@@ -11,6 +13,7 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
   const int N = static_cast<int>(problem.stages.size());
   const int npsi = static_cast<int>(problem.C.rows());
   failed_stage_ = -1;
+  negative_ = 0;
   factors_.resize(N);
   values_.resize(N);
 
@@ -49,13 +52,32 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
     StageFactor& f = factors_[k];
     if (nu > 0) {
       llt.compute(Huu);
-      if (llt.info() != Eigen::Success) {
-        failed_stage_ = k;
-        return RiccatiOutcome::kNotPositiveDefinite;
+      if (llt.info() == Eigen::Success) {
+        // (Eigen's triangular solve must not see a right-hand side without columns.)
+        f.K = nx > 0 ? Mat(-llt.solve(Hux)) : Mat(nu, 0);
+        f.k = -llt.solve(gu);
+        f.M = npsi > 0 ? Mat(-llt.solve(BE)) : Mat(nu, 0);
+      } else {
+        // H_uu is not positive definite. With terminal rows that may still be the right
+        // inertia (a direction of negative curvature the terminal rows remove): count the
+        // negative eigenvalues and go on with the symmetric eigendecomposition, unless H_uu is
+        // singular or more negative directions appear than there are terminal rows.
+        eig_.compute(Huu);
+        const Vec& lam = eig_.eigenvalues();
+        const double scale = std::max(1.0, lam.cwiseAbs().maxCoeff());
+        const int neg = static_cast<int>((lam.array() < 0.0).count());
+        negative_ += neg;
+        if (eig_.info() != Eigen::Success || lam.cwiseAbs().minCoeff() <= 1e-12 * scale ||
+            negative_ > npsi) {
+          failed_stage_ = k;
+          return RiccatiOutcome::kNotPositiveDefinite;
+        }
+        const Mat& V = eig_.eigenvectors();
+        const Mat Hinv = V * lam.cwiseInverse().asDiagonal() * V.transpose();
+        f.K = -Hinv * Hux;
+        f.k = -Hinv * gu;
+        f.M = -Hinv * BE;
       }
-      f.K = -llt.solve(Hux);
-      f.k = -llt.solve(gu);
-      f.M = -llt.solve(BE);
     } else {
       f.K = Mat::Zero(0, nx);
       f.k = Vec::Zero(0);
@@ -75,11 +97,23 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
   if (npsi > 0) {
     Mat S = -(G + G.transpose()) * 0.5;
     S.diagonal().array() += dc;
-    llt.compute(S);
-    if (llt.info() != Eigen::Success) return RiccatiOutcome::kTerminalRowsDegenerate;
+    // The inertia of the whole KKT matrix is that of the dynamics pairs, plus the H_uu's, plus
+    // that of G_0 - dc I (Haynsworth): it is right when -(G_0 - dc I) has exactly as many
+    // negative eigenvalues as the H_uu's had, and no zero one.
+    eig_.compute(S);
+    const Vec& lam = eig_.eigenvalues();
+    const double scale = std::max(1.0, lam.cwiseAbs().maxCoeff());
+    if (eig_.info() != Eigen::Success || lam.cwiseAbs().minCoeff() <= 1e-13 * scale) {
+      return RiccatiOutcome::kTerminalRowsDegenerate;
+    }
+    if (static_cast<int>((lam.array() < 0.0).count()) != negative_) {
+      failed_stage_ = N;
+      return RiccatiOutcome::kNotPositiveDefinite;
+    }
+    const Mat& V = eig_.eigenvectors();
     Vec rhs = e;
     if (problem.x0.size() > 0) rhs += E.transpose() * problem.x0;
-    nu = llt.solve(rhs);  // (G - dc I) nu = -rhs  <=>  S nu = rhs
+    nu = V * (V.transpose() * rhs).cwiseQuotient(lam);  // (G - dc I) nu = -rhs <=> S nu = rhs
   }
 
   // Forward sweep.

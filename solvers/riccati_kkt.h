@@ -5,6 +5,8 @@
 
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
 #include "core/types.h"
 
 namespace ocpb {
@@ -51,9 +53,11 @@ struct RiccatiSolution {
 /// How a factorization went.
 enum class RiccatiOutcome {
   kSolved,
-  /// The reduced Hessian of stage `failed_stage`, H_uu = R + B^T P B (+ dw I), is not positive
-  /// definite (Cholesky failed): the KKT matrix may not have the inertia of a descent step
-  /// (n positive, m negative eigenvalues); regularize (larger dw) and retry.
+  /// The KKT matrix does not have the inertia of a descent step (n positive, m negative
+  /// eigenvalues): a stage's H_uu = R + B^T P B (+ dw I) is singular, or the H_uu's have more
+  /// negative eigenvalues than the terminal rows can remove (failed_stage() is that stage), or
+  /// the final Schur complement does not remove them all (failed_stage() == N). Regularize
+  /// (larger dw) and retry.
   kNotPositiveDefinite,
   /// The terminal rows' Schur complement -(G_0 - dc I) is not positive definite: the terminal
   /// rows are (numerically) dependent or not reachable; retry with dc > 0.
@@ -63,9 +67,12 @@ enum class RiccatiOutcome {
 /// The backward Riccati recursion with the terminal rows carried as a parameter: the cost-to-go
 /// of stage k is V_k(x, nu) = 1/2 x^T P_k x + x^T (p_k + E_k nu) + nu^T e_k + 1/2 nu^T G_k nu,
 /// started from P_N = Q_N + dw I, p_N = q_N, E_N = C^T, e_N = c, G_N = 0. Each stage eliminates
-/// u_k = K_k x_k + k_k + M_k nu through a Cholesky factorization of H_uu (the inertia test: every
-/// H_uu positive definite means the Hessian is positive definite on the null space of the
-/// transitions, a sufficient condition for the inertia a descent step needs). At stage 0 the
+/// u_k = K_k x_k + k_k + M_k nu through a Cholesky factorization of H_uu, or, where that fails,
+/// its symmetric eigendecomposition. The inertia test is exact: by Haynsworth's inertia
+/// additivity the KKT matrix has the inertia of a descent step (n positive, m negative
+/// eigenvalues) iff no H_uu is singular and the final Schur complement -(G_0 - dc I) has exactly
+/// as many negative eigenvalues as all H_uu together (each negative curvature direction removed
+/// by a terminal row); without terminal rows, iff every H_uu is positive definite. At stage 0 the
 /// terminal multiplier solves (G_0 - dc I) nu = -(e_0 + E_0^T x0), the final Schur complement
 /// of the terminal rows, and a forward sweep gives x, u and lambda_k = -(P_{k+1} x_{k+1} +
 /// p_{k+1} + E_{k+1} nu). O(N (nx + nu)^3) work and memory O(N (nx + nu)^2), no fill-in, no
@@ -92,6 +99,8 @@ class RiccatiSolver {
   std::vector<StageFactor> factors_;
   std::vector<ValueFunction> values_;  // V_1 .. V_N (index k+1 -> values_[k])
   int failed_stage_ = -1;
+  int negative_ = 0;  // negative eigenvalues of the H_uu's so far
+  Eigen::SelfAdjointEigenSolver<Mat> eig_;
 };
 
 }  // namespace ocpb

@@ -1,0 +1,1335 @@
+#include "solvers/riccati_ip_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "core/option_binding.h"
+#include "core/timer.h"
+#include "solvers/riccati_kkt.h"
+#include "transcriptions/collocation_nlp.h"
+#include "transcriptions/registry.h"
+
+namespace ocpb {
+
+// ---- options ----------------------------------------------------------------------------------
+
+namespace {
+
+const OptionBinding<RiccatiIpOptions>& RiccatiIpBinding() {
+  static const OptionBinding<RiccatiIpOptions> table = [] {
+    using O = RiccatiIpOptions;
+    OptionBinding<O> t("riccati-ip");
+    t.Number("tol",
+             &O::tol,
+             "convergence tolerance on the scaled KKT error (Ipopt's E_0)",
+             OptionBounds::Above(0));
+    t.Number("dual_inf_tol",
+             &O::dual_inf_tol,
+             "unscaled dual infeasibility a converged point must also meet",
+             OptionBounds::Above(0));
+    t.Number("constr_viol_tol",
+             &O::constr_viol_tol,
+             "unscaled constraint violation a converged point must also meet",
+             OptionBounds::Above(0));
+    t.Number("compl_inf_tol",
+             &O::compl_inf_tol,
+             "unscaled complementarity a converged point must also meet",
+             OptionBounds::Above(0));
+    t.Integer("max_iter", &O::max_iter, "iteration limit", OptionBounds::AtLeast(0));
+    t.Number("max_cpu_time", &O::max_cpu_time, "CPU time limit, s", OptionBounds::Above(0));
+    t.Number("mu_init", &O::mu_init, "first barrier parameter", OptionBounds::Above(0));
+    t.Number("bound_push",
+             &O::bound_push,
+             "absolute push of starting controls and slacks into their bounds",
+             OptionBounds::Above(0));
+    t.Number("bound_frac",
+             &O::bound_frac,
+             "relative push of starting controls into their bounds' interval",
+             OptionBounds::OpenClosed(0, 0.5));
+    t.Number("bound_relax_factor",
+             &O::bound_relax_factor,
+             "inequalities and control bounds relaxed by this times max(1, |bound|) (Ipopt's)",
+             OptionBounds::AtLeast(0));
+    t.Text("nlp_scaling_method",
+           &O::nlp_scaling_method,
+           "objective scaling: gradient-based (Ipopt's rule, objective only) or none",
+           {"none", "gradient-based"});
+    t.Number("nlp_scaling_max_gradient",
+             &O::nlp_scaling_max_gradient,
+             "largest gradient max-norm gradient-based scaling leaves alone",
+             OptionBounds::Above(0));
+    t.Integer("print_level",
+              &O::print_level,
+              "0 silent, 1 one line per iteration on stderr",
+              OptionBounds::Closed(0, 1));
+    return t;
+  }();
+  return table;
+}
+
+constexpr double kRipInfBound = 1e19;
+constexpr double kRipInf = std::numeric_limits<double>::infinity();
+constexpr double kRipEps = std::numeric_limits<double>::epsilon();
+
+bool RipFinite(double v) { return std::isfinite(v); }
+
+}  // namespace
+
+const OptionSchema& RiccatiIpOptions::Schema() { return RiccatiIpBinding().schema(); }
+
+RiccatiIpOptions RiccatiIpOptions::Apply(const OptionMap& options, RiccatiIpOptions base) {
+  return RiccatiIpBinding().Apply(options, std::move(base));
+}
+
+// ---- the Euler NLP, stage by stage ------------------------------------------------------------
+
+namespace {
+
+// The Euler NLP of one CollocationNlp read as stages: x_{k+1} = x_k + h_k f(t_k, x_k, u_k),
+// stage k < N with variables (x_k, u_k) (x_0 fixed), stage N with x_N and, when there are path
+// constraints, a copy v = u_{N-1} (the NLP's path constraint at t_N reads u_{N-1}, which the
+// copy turns into a stage-N function; the copy row v - u_{N-1} = 0 is linear).
+class EulerStages {
+ public:
+  // nullptr with the reason when `nlp` is not an Euler NLP of the supported class.
+  static std::unique_ptr<EulerStages> From(const TranscribedNlp& nlp, std::string* why_not);
+
+  explicit EulerStages(const CollocationNlp& n) : ocp(n.ocp()), nlp(n) {}
+
+  const Ocp& ocp;
+  const CollocationNlp& nlp;
+  int N = 0, nx = 0, nu = 0, nc = 0, npsi = 0, nball = 0;
+  bool hard = false;
+  bool copy = false;  // path constraints at t_N: stage N carries v = u_{N-1}
+  std::vector<double> t, h;
+  Vec lb, ub;  // per control component, +-inf where unbounded (balls: none)
+  std::vector<ControlSet::Block> balls;
+  std::vector<int> state_off, control_off;
+  // Ipopt's bound_relax_factor: the inequality rows are c - relax_path <= 0 and
+  // |u - c|^2 - r^2 - relax_ball[b] <= 0 (lb and ub are relaxed by Relax()).
+  double relax_path = 0.0;
+  std::vector<double> relax_ball;
+
+  // Relaxes every inequality by factor * max(1, |bound|), as Ipopt does.
+  void Relax(double factor) {
+    relax_path = factor;
+    relax_ball.assign(nball, 0.0);
+    for (int b = 0; b < nball; ++b) {
+      relax_ball[b] = factor * std::max(1.0, balls[b].radius * balls[b].radius);
+    }
+    for (int j = 0; j < nu; ++j) {
+      if (RipFinite(lb[j])) lb[j] -= factor * std::max(1.0, std::abs(lb[j]));
+      if (RipFinite(ub[j])) ub[j] += factor * std::max(1.0, std::abs(ub[j]));
+    }
+  }
+
+  int ni(int k) const { return k < N ? nc + nball : (copy ? nc : 0); }
+
+  struct Iterate {
+    Mat X, U;  // nx x (N+1), nu x N
+    Vec V;     // nu (copy) or empty
+    std::vector<Vec> s, y, v;
+    Mat zl, zu;  // nu x N (0 where no bound)
+    Mat lam;     // nx x N, defect multipliers (NLP convention, scaled problem)
+    Vec lamV, nu;
+  };
+  struct StageEval {
+    Vec f;
+    Mat fx, fu;
+    double L = 0.0;
+    Vec Lx, Lu;
+    Vec c;       // ni rows: path, then balls (|u - c|^2 - r^2)
+    Mat cx, cu;  // ni x nx, ni x nu
+    Mat H;       // (nx + nu)^2 Hessian of the stage Lagrangian (filled by Hessians())
+  };
+  struct TerminalEval {
+    double Phi = 0.0;  // terminal objective (penalty included)
+    Vec grad;          // nx
+    Vec psi;           // npsi (hard form)
+    Mat psix;
+    Mat H;  // nx x nx Hessian of sigma Phi + nu^T psi
+  };
+  struct Values {  // what a line-search trial needs
+    double f = 0.0;
+    std::vector<Vec> c;
+    Mat defects;  // nx x N: x_{k+1} - x_k - h f
+    Vec psi, copy_row;
+    bool ok = false;
+  };
+
+  // u at stage k, or v at stage N (for evaluations at t_N).
+  Eigen::Ref<const Vec> StageControl(const Iterate& it, int k) const {
+    return k < N ? Eigen::Ref<const Vec>(it.U.col(k)) : Eigen::Ref<const Vec>(it.V);
+  }
+
+  Values EvalValues(const Iterate& it) const;
+  // First derivatives at every node; false when one is not finite.
+  bool EvalDerivatives(const Iterate& it, std::vector<StageEval>* st, TerminalEval* te) const;
+  // Lagrangian Hessians with the multipliers of `it` (sigma: objective scale).
+  bool EvalHessians(const Iterate& it,
+                    double sigma,
+                    std::vector<StageEval>* st,
+                    TerminalEval* te) const;
+  // Gradient of sigma f + equality and inequality multiplier terms (no bound terms): per stage
+  // (rx_k, ru_k), rx of stage 0 being the x_0 part; plus the copy's rv.
+  void LagrangianGradient(const Iterate& it,
+                          double sigma,
+                          const std::vector<StageEval>& st,
+                          const TerminalEval& te,
+                          Mat* rx,
+                          Mat* ru,
+                          Vec* rv) const;
+
+  void ToIterate(const Vec& z, Iterate* it) const;
+  Vec ToNlp(const Iterate& it) const;
+};
+
+std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::string* why_not) {
+  const auto* nlp = dynamic_cast<const CollocationNlp*>(&tnlp);
+  if (nlp == nullptr) {
+    *why_not = "riccati-ip takes the Euler transcription's NLP only (not a collocation NLP)";
+    return nullptr;
+  }
+  if (tnlp.HasFinalTimeVariable()) {
+    *why_not = "riccati-ip keeps the horizon fixed (the final time is a variable of this NLP)";
+    return nullptr;
+  }
+  auto st = std::make_unique<EulerStages>(*nlp);
+  const CollocationLayout& lay = nlp->layout();
+  const Ocp& ocp = nlp->ocp();
+  st->nx = ocp.nx();
+  st->nu = ocp.nu();
+  st->nc = ocp.num_path();
+  st->hard = nlp->terminal_mode() == TerminalMode::kHard;
+  st->npsi = st->hard ? ocp.num_terminal() : 0;
+  const int N = static_cast<int>(lay.controls.size());
+  st->N = N;
+  // The Euler shape: N + 1 node states, N controls, defect k = x_{k+1} - x_k - h_k f(point k),
+  // point k = (t_k, x_k, u_k) with weight h_k, and (path constraints) point N = (t_N, x_N,
+  // u_{N-1}).
+  bool euler = N >= 1 && static_cast<int>(lay.states.size()) == N + 1 &&
+               static_cast<int>(lay.defects.size()) == N &&
+               static_cast<int>(lay.points.size()) == N + (st->nc > 0 ? 1 : 0);
+  for (int k = 0; euler && k < N; ++k) {
+    const auto& d = lay.defects[k];
+    const auto& e = lay.points[k];
+    euler = d.states.size() == 2 && d.states[0].index == k && d.states[0].coeff == -1.0 &&
+            d.states[1].index == k + 1 && d.states[1].coeff == 1.0 && d.dynamics.size() == 1 &&
+            d.dynamics[0].index == k && e.state == k && e.control == k &&
+            d.dynamics[0].coeff == e.cost_weight && e.cost_weight > 0.0 && e.path == (st->nc > 0);
+    if (euler) {
+      st->t.push_back(e.t);
+      st->h.push_back(e.cost_weight);
+    }
+  }
+  if (euler && st->nc > 0) {
+    const auto& e = lay.points[N];
+    euler = e.state == N && e.control == N - 1 && e.cost_weight == 0.0 && e.path;
+    st->t.push_back(e.t);
+  } else if (euler) {
+    st->t.push_back(lay.states[N].t);
+  }
+  if (!euler) {
+    *why_not =
+        "riccati-ip takes the Euler transcription's NLP only (this layout is another scheme)";
+    return nullptr;
+  }
+  for (const auto& s : lay.states) st->state_off.push_back(s.offset);
+  for (const auto& c : lay.controls) st->control_off.push_back(c.offset);
+  st->lb = Vec::Constant(st->nu, -kRipInf);
+  st->ub = Vec::Constant(st->nu, kRipInf);
+  for (const auto& b : ocp.control_set().blocks()) {
+    if (b.kind == ControlSet::Kind::kBall) {
+      st->balls.push_back(b);
+      continue;
+    }
+    for (int i = 0; i < b.size; ++i) {
+      const double lo = b.lower[i], hi = b.upper[i];
+      st->lb[b.offset + i] = lo <= -kRipInfBound ? -kRipInf : lo;
+      st->ub[b.offset + i] = hi >= kRipInfBound ? kRipInf : hi;
+      if (RipFinite(lo) && RipFinite(hi) && !(lo < hi)) {
+        *why_not = "riccati-ip needs lower < upper for every bounded control (component " +
+                   std::to_string(b.offset + i) + " is fixed)";
+        return nullptr;
+      }
+    }
+  }
+  st->nball = static_cast<int>(st->balls.size());
+  st->relax_ball.assign(st->nball, 0.0);
+  st->copy = st->nc > 0;
+  return st;
+}
+
+void EulerStages::ToIterate(const Vec& z, Iterate* it) const {
+  it->X.resize(nx, N + 1);
+  it->U.resize(nu, N);
+  for (int k = 0; k <= N; ++k) it->X.col(k) = z.segment(state_off[k], nx);
+  for (int k = 0; k < N; ++k) it->U.col(k) = z.segment(control_off[k], nu);
+  it->V = copy ? Vec(it->U.col(N - 1)) : Vec();
+}
+
+Vec EulerStages::ToNlp(const Iterate& it) const {
+  Vec z = Vec::Zero(nlp.num_variables());
+  for (int k = 0; k <= N; ++k) z.segment(state_off[k], nx) = it.X.col(k);
+  for (int k = 0; k < N; ++k) z.segment(control_off[k], nu) = it.U.col(k);
+  return z;
+}
+
+EulerStages::Values EulerStages::EvalValues(const Iterate& it) const {
+  Values v;
+  v.c.resize(N + 1);
+  v.defects.resize(nx, N);
+  Vec f(nx);
+  double J = 0.0;
+  for (int k = 0; k < N; ++k) {
+    const auto x = it.X.col(k);
+    const auto u = it.U.col(k);
+    ocp.Dynamics(t[k], x, u, f);
+    J += h[k] * ocp.RunningCost(t[k], x, u);
+    v.defects.col(k) = it.X.col(k + 1) - x - h[k] * f;
+    Vec& c = v.c[k];
+    c.resize(ni(k));
+    if (nc > 0) {
+      ocp.PathConstraints(t[k], x, u, c.head(nc));
+      c.head(nc).array() -= relax_path;
+    }
+    for (int b = 0; b < nball; ++b) {
+      const auto& B = balls[b];
+      c[nc + b] = (u.segment(B.offset, B.size) - B.center).squaredNorm() - B.radius * B.radius -
+                  relax_ball[b];
+    }
+  }
+  v.c[N].resize(ni(N));
+  if (copy) {
+    ocp.PathConstraints(t[N], it.X.col(N), it.V, v.c[N]);
+    v.c[N].array() -= relax_path;
+    v.copy_row = it.V - it.U.col(N - 1);
+  }
+  J += ocp.TerminalObjective(it.X.col(N), hard ? TerminalMode::kHard : TerminalMode::kPenalty);
+  if (hard) {
+    v.psi.resize(npsi);
+    ocp.TerminalConstraints(it.X.col(N), v.psi);
+  }
+  v.f = J;
+  v.ok = RipFinite(J) && v.defects.allFinite() && v.psi.allFinite() && v.copy_row.allFinite();
+  for (const Vec& c : v.c) v.ok = v.ok && c.allFinite();
+  return v;
+}
+
+bool EulerStages::EvalDerivatives(const Iterate& it,
+                                  std::vector<StageEval>* stv,
+                                  TerminalEval* te) const {
+  auto& st = *stv;
+  st.resize(N + 1);
+  bool ok = true;
+  for (int k = 0; k <= N; ++k) {
+    StageEval& s = st[k];
+    const auto x = it.X.col(k);
+    const auto u = StageControl(it, k);
+    const int m = ni(k);
+    s.c.resize(m);
+    s.cx.setZero(m, nx);
+    s.cu.setZero(m, nu);
+    if (k < N) {
+      s.f.resize(nx);
+      s.fx.resize(nx, nx);
+      s.fu.resize(nx, nu);
+      s.Lx.resize(nx);
+      s.Lu.resize(nu);
+      ocp.DynamicsJacobian(t[k], x, u, s.f, s.fx, s.fu);
+      ocp.RunningCostGradient(t[k], x, u, &s.L, s.Lx, s.Lu);
+      if (nc > 0) {
+        ocp.PathConstraintsJacobian(t[k], x, u, s.c.head(nc), s.cx.topRows(nc), s.cu.topRows(nc));
+        s.c.head(nc).array() -= relax_path;
+      }
+      for (int b = 0; b < nball; ++b) {
+        const auto& B = balls[b];
+        const Vec d = u.segment(B.offset, B.size) - B.center;
+        s.c[nc + b] = d.squaredNorm() - B.radius * B.radius - relax_ball[b];
+        s.cu.block(nc + b, B.offset, 1, B.size) = 2.0 * d.transpose();
+      }
+      ok = ok && s.f.allFinite() && s.fx.allFinite() && s.fu.allFinite() && RipFinite(s.L) &&
+           s.Lx.allFinite() && s.Lu.allFinite();
+    } else if (copy) {
+      ocp.PathConstraintsJacobian(t[k], x, u, s.c, s.cx, s.cu);
+      s.c.array() -= relax_path;
+    }
+    ok = ok && s.c.allFinite() && s.cx.allFinite() && s.cu.allFinite();
+  }
+  const auto xN = it.X.col(N);
+  te->grad.resize(nx);
+  ocp.TerminalCostGradient(xN, &te->Phi, te->grad);
+  if (ocp.num_terminal() > 0) {
+    te->psi.resize(ocp.num_terminal());
+    te->psix.resize(ocp.num_terminal(), nx);
+    ocp.TerminalConstraintsJacobian(xN, te->psi, te->psix);
+    if (!hard) {
+      const Vec& w = ocp.terminal_weights();
+      te->Phi += w.dot(te->psi.cwiseAbs2());
+      te->grad += 2.0 * te->psix.transpose() * w.cwiseProduct(te->psi);
+    }
+  }
+  ok = ok && RipFinite(te->Phi) && te->grad.allFinite() && te->psi.allFinite() &&
+       te->psix.allFinite();
+  return ok;
+}
+
+bool EulerStages::EvalHessians(const Iterate& it,
+                               double sigma,
+                               std::vector<StageEval>* stv,
+                               TerminalEval* te) const {
+  auto& st = *stv;
+  bool ok = true;
+  const Vec none;
+  for (int k = 0; k <= N; ++k) {
+    StageEval& s = st[k];
+    if (k == N && !copy) break;
+    s.H.resize(nx + nu, nx + nu);
+    const auto x = it.X.col(k);
+    const auto u = StageControl(it, k);
+    const Vec mu_path = nc > 0 ? Vec(it.y[k].head(nc)) : Vec::Zero(0);
+    if (k < N) {
+      const Vec lam_f = -h[k] * it.lam.col(k);
+      ocp.PointHessian(t[k], x, u, sigma * h[k], lam_f, mu_path, s.H);
+      for (int b = 0; b < nball; ++b) {
+        const auto& B = balls[b];
+        s.H.diagonal().segment(nx + B.offset, B.size).array() += 2.0 * it.y[k][nc + b];
+      }
+    } else {
+      ocp.PointHessian(t[k], x, u, 0.0, Vec::Zero(nx), mu_path, s.H);
+    }
+    ok = ok && s.H.allFinite();
+  }
+  te->H.resize(nx, nx);
+  const auto xN = it.X.col(N);
+  Vec nu_terms = Vec::Zero(ocp.num_terminal());
+  if (hard) nu_terms = it.nu;
+  if (!hard && ocp.num_terminal() > 0) {
+    nu_terms = sigma * 2.0 * ocp.terminal_weights().cwiseProduct(te->psi);
+  }
+  ocp.TerminalHessian(xN, sigma, nu_terms, te->H);
+  if (!hard && ocp.num_terminal() > 0) {
+    te->H += 2.0 * sigma * te->psix.transpose() * ocp.terminal_weights().asDiagonal() * te->psix;
+  }
+  return ok && te->H.allFinite();
+}
+
+void EulerStages::LagrangianGradient(const Iterate& it,
+                                     double sigma,
+                                     const std::vector<StageEval>& st,
+                                     const TerminalEval& te,
+                                     Mat* rx,
+                                     Mat* ru,
+                                     Vec* rv) const {
+  rx->resize(nx, N + 1);
+  ru->resize(nu, N);
+  for (int k = 0; k < N; ++k) {
+    const StageEval& s = st[k];
+    const auto lam = it.lam.col(k);
+    auto gx = rx->col(k);
+    gx = sigma * h[k] * s.Lx - lam - h[k] * s.fx.transpose() * lam;
+    if (k > 0) gx += it.lam.col(k - 1);
+    auto gu = ru->col(k);
+    gu = sigma * h[k] * s.Lu - h[k] * s.fu.transpose() * lam;
+    if (ni(k) > 0) {
+      gx.noalias() += s.cx.transpose() * it.y[k];
+      gu.noalias() += s.cu.transpose() * it.y[k];
+    }
+  }
+  auto gN = rx->col(N);
+  gN = sigma * te.grad + it.lam.col(N - 1);
+  if (hard && npsi > 0) gN.noalias() += te.psix.transpose() * it.nu;
+  if (copy) {
+    gN.noalias() += st[N].cx.transpose() * it.y[N];
+    *rv = st[N].cu.transpose() * it.y[N] + it.lamV;
+    ru->col(N - 1) -= it.lamV;
+  } else {
+    rv->resize(0);
+  }
+}
+
+}  // namespace
+
+// ---- the interior-point method ------------------------------------------------------------------
+
+namespace {
+
+// Ipopt's constants (Wächter & Biegler, Math. Prog. 106, 2006, Sec. 2 and 3).
+constexpr double kKappaEps = 10.0;  // barrier problem solved when E_mu <= kappa_eps mu
+constexpr double kKappaMu = 0.2, kThetaMu = 1.5;
+constexpr double kSMax = 100.0;
+constexpr double kKappaSigma = 1e10;
+constexpr double kGammaTheta = 1e-5, kGammaPhi = 1e-8, kDeltaSwitch = 1.0;
+constexpr double kSTheta = 1.1, kSPhi = 2.3, kEtaPhi = 1e-8, kGammaAlpha = 0.05;
+constexpr double kDeltaW0 = 1e-4, kDeltaWMin = 1e-20, kDeltaWMax = 1e40;
+constexpr double kKappaWMinus = 1.0 / 3.0, kKappaWPlus = 8.0, kKappaWPlusFirst = 100.0;
+
+using Iterate = EulerStages::Iterate;
+using StageEval = EulerStages::StageEval;
+using TerminalEval = EulerStages::TerminalEval;
+using Values = EulerStages::Values;
+
+struct Direction {
+  Mat dX, dU;  // dX col 0 = 0
+  Vec dV;
+  std::vector<Vec> ds, dy, dv;
+  Mat dzl, dzu;
+  Mat lam;  // new values
+  Vec lamV, nu;
+};
+
+class RiccatiInteriorPoint {
+ public:
+  RiccatiInteriorPoint(const EulerStages& S, const RiccatiIpOptions& o) : S_(S), o_(o) {}
+  NlpSolution Run(const Vec& z0);
+
+ private:
+  bool HasLb(int j) const { return RipFinite(S_.lb[j]); }
+  bool HasUb(int j) const { return RipFinite(S_.ub[j]); }
+  double Theta(const Values& v, const std::vector<Vec>& s) const;
+  double BarrierObjective(const Values& v, const Iterate& it) const;
+  void Measure(double mu);
+  bool BuildAndSolve(double mu, Direction* d, std::string* failure);
+  void LeastSquaresMultipliers();
+  NlpSolution Finish(SolveStatus status, const std::string& solver_status, std::string message);
+
+  const EulerStages& S_;
+  const RiccatiIpOptions& o_;
+  Iterate it_;
+  std::vector<StageEval> st_;
+  TerminalEval te_;
+  Values vals_;  // values at it_
+  double sigma_ = 1.0;
+  // Measures at it_ (Measure()).
+  double dual_inf_ = 0, constr_viol_ = 0, compl_ = 0, compl_mu_ = 0, s_d_ = 1, s_c_ = 1;
+  double E0_ = 0, Emu_ = 0;
+  Mat rx_, ru_;
+  Vec rv_;
+  RiccatiProblem qp_;
+  RiccatiSolver riccati_;
+  RiccatiSolution sol_;
+  double delta_last_ = 0.0;
+  int iterations_ = 0, regularizations_ = 0, factorizations_ = 0, trials_ = 0;
+  double kkt_cpu_ = 0.0, callback_cpu_ = 0.0, mu_ = 0.1;
+  std::vector<IterationRecord> history_;
+  Stopwatch watch_;
+};
+
+double RiccatiInteriorPoint::Theta(const Values& v, const std::vector<Vec>& s) const {
+  double th = v.defects.lpNorm<1>() + v.psi.lpNorm<1>() + v.copy_row.lpNorm<1>();
+  for (int k = 0; k <= S_.N; ++k) {
+    if (s[k].size() > 0) th += (v.c[k] + s[k]).lpNorm<1>();
+  }
+  return th;
+}
+
+double RiccatiInteriorPoint::BarrierObjective(const Values& v, const Iterate& it) const {
+  double phi = sigma_ * v.f;
+  for (int k = 0; k <= S_.N; ++k) {
+    for (int i = 0; i < it.s[k].size(); ++i) phi -= mu_ * std::log(it.s[k][i]);
+  }
+  for (int k = 0; k < S_.N; ++k) {
+    for (int j = 0; j < S_.nu; ++j) {
+      if (HasLb(j)) phi -= mu_ * std::log(it.U(j, k) - S_.lb[j]);
+      if (HasUb(j)) phi -= mu_ * std::log(S_.ub[j] - it.U(j, k));
+    }
+  }
+  return phi;
+}
+
+void RiccatiInteriorPoint::Measure(double mu) {
+  const int N = S_.N;
+  S_.LagrangianGradient(it_, sigma_, st_, te_, &rx_, &ru_, &rv_);
+  ru_ -= it_.zl;
+  ru_ += it_.zu;
+  double dual = rx_.rightCols(N).lpNorm<Eigen::Infinity>();
+  dual = std::max(dual, ru_.lpNorm<Eigen::Infinity>());
+  if (rv_.size() > 0) dual = std::max(dual, rv_.lpNorm<Eigen::Infinity>());
+  double cv = std::max(vals_.defects.lpNorm<Eigen::Infinity>(),
+                       vals_.psi.size() > 0 ? vals_.psi.lpNorm<Eigen::Infinity>() : 0.0);
+  if (vals_.copy_row.size() > 0) cv = std::max(cv, vals_.copy_row.lpNorm<Eigen::Infinity>());
+  double compl0 = 0.0, complmu = 0.0;
+  double mult_sum = it_.lam.lpNorm<1>() + it_.lamV.lpNorm<1>() + it_.nu.lpNorm<1>();
+  double bound_sum = 0.0;
+  int m = N * S_.nx + static_cast<int>(it_.lamV.size() + it_.nu.size());
+  int nb = 0;
+  for (int k = 0; k <= N; ++k) {
+    const Vec& s = it_.s[k];
+    if (s.size() == 0) continue;
+    dual = std::max(dual, (it_.y[k] - it_.v[k]).lpNorm<Eigen::Infinity>());
+    cv = std::max(cv, (vals_.c[k] + s).lpNorm<Eigen::Infinity>());
+    const Vec sv = s.cwiseProduct(it_.v[k]);
+    compl0 = std::max(compl0, sv.lpNorm<Eigen::Infinity>());
+    complmu = std::max(complmu, (sv.array() - mu).abs().maxCoeff());
+    mult_sum += it_.y[k].lpNorm<1>() + it_.v[k].lpNorm<1>();
+    bound_sum += it_.v[k].lpNorm<1>();
+    m += static_cast<int>(s.size());
+    nb += static_cast<int>(s.size());
+  }
+  for (int k = 0; k < N; ++k) {
+    for (int j = 0; j < S_.nu; ++j) {
+      const double u = it_.U(j, k);
+      if (HasLb(j)) {
+        const double c = (u - S_.lb[j]) * it_.zl(j, k);
+        compl0 = std::max(compl0, std::abs(c));
+        complmu = std::max(complmu, std::abs(c - mu));
+        bound_sum += it_.zl(j, k);
+        ++nb;
+      }
+      if (HasUb(j)) {
+        const double c = (S_.ub[j] - u) * it_.zu(j, k);
+        compl0 = std::max(compl0, std::abs(c));
+        complmu = std::max(complmu, std::abs(c - mu));
+        bound_sum += it_.zu(j, k);
+        ++nb;
+      }
+    }
+  }
+  mult_sum += it_.zl.lpNorm<1>() + it_.zu.lpNorm<1>();
+  const int n = N * (S_.nx + S_.nu) + static_cast<int>(it_.V.size()) + nb;  // slacks count too
+  s_d_ = std::max(kSMax, mult_sum / std::max(1, m + n)) / kSMax;
+  s_c_ = std::max(kSMax, bound_sum / std::max(1, n)) / kSMax;
+  dual_inf_ = dual;
+  constr_viol_ = cv;
+  compl_ = compl0;
+  compl_mu_ = complmu;
+  E0_ = std::max({dual / s_d_, cv, compl0 / s_c_});
+  Emu_ = std::max({dual / s_d_, cv, complmu / s_c_});
+}
+
+// Builds the condensed stagewise KKT system at it_ for barrier parameter mu and solves it with
+// inertia correction; fills the full direction.
+bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* failure) {
+  const int N = S_.N, nx = S_.nx, nu = S_.nu;
+  const double cpu0 = CpuSeconds();
+  qp_.stages.resize(N);
+  for (int k = 0; k < N; ++k) {
+    const StageEval& e = st_[k];
+    RiccatiStage& q = qp_.stages[k];
+    Mat H = e.H;
+    Vec g(nx + nu);
+    g.head(nx) = sigma_ * S_.h[k] * e.Lx;
+    g.tail(nu) = sigma_ * S_.h[k] * e.Lu;
+    const Vec& s = it_.s[k];
+    if (s.size() > 0) {
+      Mat J(s.size(), nx + nu);
+      J << e.cx, e.cu;
+      const Vec sig = it_.v[k].cwiseQuotient(s);
+      const Vec rc = vals_.c[k] + s;
+      H.noalias() += J.transpose() * sig.asDiagonal() * J;
+      g.noalias() += J.transpose() * (mu * s.cwiseInverse() + sig.cwiseProduct(rc));
+    }
+    for (int j = 0; j < nu; ++j) {
+      const double u = it_.U(j, k);
+      if (HasLb(j)) {
+        const double dl = u - S_.lb[j];
+        H(nx + j, nx + j) += it_.zl(j, k) / dl;
+        g[nx + j] -= mu / dl;
+      }
+      if (HasUb(j)) {
+        const double du = S_.ub[j] - u;
+        H(nx + j, nx + j) += it_.zu(j, k) / du;
+        g[nx + j] += mu / du;
+      }
+    }
+    const bool last_copy = S_.copy && k == N - 1;
+    const int rows = nx + (last_copy ? nu : 0);
+    if (k == 0) {
+      q.Q = H.bottomRightCorner(nu, nu);
+      q.q = g.tail(nu);
+      q.A.setZero(rows, 0);
+    } else {
+      q.Q = H;
+      q.q = g;
+      q.A.setZero(rows, nx);
+      q.A.topRows(nx) = S_.h[k] * e.fx;
+      q.A.topRows(nx).diagonal().array() += 1.0;
+    }
+    q.B.setZero(rows, nu);
+    q.B.topRows(nx) = S_.h[k] * e.fu;
+    q.b.resize(rows);
+    q.b.head(nx) = -vals_.defects.col(k);
+    if (last_copy) {
+      q.B.bottomRows(nu).setIdentity();
+      q.b.tail(nu) = -vals_.copy_row;
+    }
+  }
+  const int nxN = nx + (S_.copy ? nu : 0);
+  qp_.QN.setZero(nxN, nxN);
+  qp_.qN.setZero(nxN);
+  qp_.QN.topLeftCorner(nx, nx) = te_.H;
+  qp_.qN.head(nx) = sigma_ * te_.grad;
+  if (S_.copy) {
+    const StageEval& e = st_[N];
+    const Vec& s = it_.s[N];
+    Mat J(s.size(), nx + nu);
+    J << e.cx, e.cu;
+    const Vec sig = it_.v[N].cwiseQuotient(s);
+    const Vec rc = vals_.c[N] + s;
+    qp_.QN += e.H + J.transpose() * sig.asDiagonal() * J;
+    qp_.qN += J.transpose() * (mu * s.cwiseInverse() + sig.cwiseProduct(rc));
+  }
+  qp_.C.setZero(S_.npsi, nxN);
+  qp_.c.resize(S_.npsi);
+  if (S_.npsi > 0) {
+    qp_.C.leftCols(nx) = te_.psix;
+    qp_.c = vals_.psi;
+  }
+  qp_.x0.resize(0);
+
+  // Inertia correction (Ipopt's rule, Wächter & Biegler Sec. 3.1, on the Riccati recursion).
+  double dw = 0.0, dc = 0.0;
+  bool regularized = false;
+  for (;;) {
+    ++factorizations_;
+    const RiccatiOutcome out = riccati_.Solve(qp_, dw, dc, &sol_);
+    if (out == RiccatiOutcome::kSolved) break;
+    if (out == RiccatiOutcome::kTerminalRowsDegenerate && dc == 0.0) {
+      dc = 1e-8 * std::pow(mu, 0.25);
+      continue;
+    }
+    if (dw == 0.0) {
+      dw = delta_last_ == 0.0 ? kDeltaW0 : std::max(kDeltaWMin, kKappaWMinus * delta_last_);
+    } else {
+      dw *= delta_last_ == 0.0 ? kKappaWPlusFirst : kKappaWPlus;
+    }
+    regularized = true;
+    if (dw > kDeltaWMax) {
+      *failure = "the inertia correction exceeded delta_w = 1e40";
+      kkt_cpu_ += CpuSeconds() - cpu0;
+      return false;
+    }
+  }
+  if (regularized) {
+    ++regularizations_;
+    delta_last_ = dw;
+  }
+
+  // The full direction.
+  d->dX.setZero(nx, N + 1);
+  d->dU.resize(nu, N);
+  d->lam.resize(nx, N);
+  for (int k = 0; k < N; ++k) {
+    d->dU.col(k) = sol_.u[k];
+    d->dX.col(k + 1) = sol_.x[k + 1].head(nx);
+    d->lam.col(k) = sol_.lambda[k].head(nx);
+  }
+  if (S_.copy) {
+    d->dV = sol_.x[N].tail(nu);
+    d->lamV = sol_.lambda[N - 1].tail(nu);
+  } else {
+    d->dV.resize(0);
+    d->lamV.resize(0);
+  }
+  d->nu = sol_.nu;
+  d->ds.resize(N + 1);
+  d->dy.resize(N + 1);
+  d->dv.resize(N + 1);
+  for (int k = 0; k <= N; ++k) {
+    const Vec& s = it_.s[k];
+    if (s.size() == 0) {
+      d->ds[k].resize(0);
+      d->dy[k].resize(0);
+      d->dv[k].resize(0);
+      continue;
+    }
+    const StageEval& e = st_[k];
+    const Vec du = k < N ? Vec(d->dU.col(k)) : d->dV;
+    const Vec Jd = e.cx * d->dX.col(k) + e.cu * du;
+    const Vec rc = vals_.c[k] + s;
+    const Vec sig = it_.v[k].cwiseQuotient(s);
+    const Vec mu_s = mu * s.cwiseInverse();
+    d->ds[k] = -rc - Jd;
+    d->dy[k] = mu_s - it_.y[k] + sig.cwiseProduct(rc + Jd);
+    d->dv[k] = mu_s - it_.v[k] - sig.cwiseProduct(d->ds[k]);
+  }
+  d->dzl.setZero(nu, N);
+  d->dzu.setZero(nu, N);
+  for (int k = 0; k < N; ++k) {
+    for (int j = 0; j < nu; ++j) {
+      const double u = it_.U(j, k), du = d->dU(j, k);
+      if (HasLb(j)) {
+        const double dl = u - S_.lb[j];
+        d->dzl(j, k) = mu / dl - it_.zl(j, k) - it_.zl(j, k) / dl * du;
+      }
+      if (HasUb(j)) {
+        const double dh = S_.ub[j] - u;
+        d->dzu(j, k) = mu / dh - it_.zu(j, k) + it_.zu(j, k) / dh * du;
+      }
+    }
+  }
+  kkt_cpu_ += CpuSeconds() - cpu0;
+  return true;
+}
+
+// Ipopt's starting equality multipliers: the least-squares solution of the dual
+// infeasibility at the start (Wächter & Biegler, Sec. 3.6), i.e. the augmented system with the
+// identity in place of the Hessian, solved by the same recursion: with the slacks eliminated
+// (y = J_c w + v) it is the stage QP with Q_k = I + J_c^T J_c, q_k = grad f - z_l + z_u +
+// J_c^T v, no transition or terminal residuals. Discarded (zero) when its largest entry exceeds
+// 1000 (Ipopt's constr_mult_init_max) or the recursion fails.
+void RiccatiInteriorPoint::LeastSquaresMultipliers() {
+  const int N = S_.N, nx = S_.nx, nu = S_.nu;
+  const double cpu0 = CpuSeconds();
+  qp_.stages.resize(N);
+  for (int k = 0; k < N; ++k) {
+    const StageEval& e = st_[k];
+    RiccatiStage& q = qp_.stages[k];
+    Mat H = Mat::Identity(nx + nu, nx + nu);
+    Vec g(nx + nu);
+    g.head(nx) = sigma_ * S_.h[k] * e.Lx;
+    g.tail(nu) = sigma_ * S_.h[k] * e.Lu - it_.zl.col(k) + it_.zu.col(k);
+    Mat J(S_.ni(k), nx + nu);
+    if (S_.ni(k) > 0) {
+      J << e.cx, e.cu;
+      H.noalias() += J.transpose() * J;
+      g.noalias() += J.transpose() * it_.v[k];
+    }
+    const bool last_copy = S_.copy && k == N - 1;
+    const int rows = nx + (last_copy ? nu : 0);
+    if (k == 0) {
+      q.Q = H.bottomRightCorner(nu, nu);
+      q.q = g.tail(nu);
+      q.A.setZero(rows, 0);
+    } else {
+      q.Q = H;
+      q.q = g;
+      q.A.setZero(rows, nx);
+      q.A.topRows(nx) = S_.h[k] * e.fx;
+      q.A.topRows(nx).diagonal().array() += 1.0;
+    }
+    q.B.setZero(rows, nu);
+    q.B.topRows(nx) = S_.h[k] * e.fu;
+    if (last_copy) q.B.bottomRows(nu).setIdentity();
+    q.b.setZero(rows);
+  }
+  const int nxN = nx + (S_.copy ? nu : 0);
+  qp_.QN = Mat::Identity(nxN, nxN);
+  qp_.qN.setZero(nxN);
+  qp_.qN.head(nx) = sigma_ * te_.grad;
+  Mat JN(S_.ni(N), nxN);
+  if (S_.copy) {
+    JN << st_[N].cx, st_[N].cu;
+    qp_.QN.noalias() += JN.transpose() * JN;
+    qp_.qN.noalias() += JN.transpose() * it_.v[N];
+  }
+  qp_.C.setZero(S_.npsi, nxN);
+  if (S_.npsi > 0) qp_.C.leftCols(nx) = te_.psix;
+  qp_.c.setZero(S_.npsi);
+  qp_.x0.resize(0);
+  ++factorizations_;
+  if (riccati_.Solve(qp_, 0.0, 0.0, &sol_) == RiccatiOutcome::kSolved) {
+    Iterate trial = it_;
+    double largest = 0.0;
+    for (int k = 0; k < N; ++k) {
+      trial.lam.col(k) = sol_.lambda[k].head(nx);
+      largest = std::max(largest, trial.lam.col(k).lpNorm<Eigen::Infinity>());
+    }
+    if (S_.copy) trial.lamV = sol_.lambda[N - 1].tail(nu);
+    trial.nu = sol_.nu;
+    if (S_.npsi > 0) largest = std::max(largest, trial.nu.lpNorm<Eigen::Infinity>());
+    for (int k = 0; k <= N; ++k) {
+      if (S_.ni(k) == 0) continue;
+      const StageEval& e = st_[k];
+      const Vec du = k < N ? Vec(sol_.u[k]) : Vec(sol_.x[N].tail(nu));
+      const Vec dx = k == 0 ? Vec::Zero(nx) : Vec(sol_.x[k].head(nx));
+      trial.y[k] = e.cx * dx + e.cu * du + it_.v[k];
+      largest = std::max(largest, trial.y[k].lpNorm<Eigen::Infinity>());
+    }
+    if (largest <= 1000.0) it_ = std::move(trial);
+  }
+  kkt_cpu_ += CpuSeconds() - cpu0;
+}
+
+NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
+  const int N = S_.N, nx = S_.nx, nu = S_.nu;
+  S_.ToIterate(z0, &it_);
+  // Controls pushed into their bounds (Ipopt's bound_push, bound_frac).
+  for (int k = 0; k < N; ++k) {
+    for (int j = 0; j < nu; ++j) {
+      const double lo = S_.lb[j], hi = S_.ub[j];
+      double& u = it_.U(j, k);
+      const double width = HasLb(j) && HasUb(j) ? hi - lo : kRipInf;
+      if (HasLb(j)) {
+        u = std::max(
+            u, lo + std::min(o_.bound_push * std::max(1.0, std::abs(lo)), o_.bound_frac * width));
+      }
+      if (HasUb(j)) {
+        u = std::min(
+            u, hi - std::min(o_.bound_push * std::max(1.0, std::abs(hi)), o_.bound_frac * width));
+      }
+    }
+  }
+  if (S_.copy) it_.V = it_.U.col(N - 1);
+  double cpu0 = CpuSeconds();
+  vals_ = S_.EvalValues(it_);
+  callback_cpu_ += CpuSeconds() - cpu0;
+  if (!vals_.ok) {
+    return Finish(SolveStatus::kNumericalFailure,
+                  "Invalid_Number_Detected",
+                  "a value at the starting point is not finite");
+  }
+  it_.s.resize(N + 1);
+  it_.y.resize(N + 1);
+  it_.v.resize(N + 1);
+  for (int k = 0; k <= N; ++k) {
+    it_.s[k] = (-vals_.c[k]).cwiseMax(o_.bound_push);
+    it_.y[k] = Vec::Zero(S_.ni(k));
+    it_.v[k] = Vec::Ones(S_.ni(k));
+  }
+  it_.zl.setZero(nu, N);
+  it_.zu.setZero(nu, N);
+  for (int j = 0; j < nu; ++j) {
+    if (HasLb(j)) it_.zl.row(j).setOnes();
+    if (HasUb(j)) it_.zu.row(j).setOnes();
+  }
+  it_.lam.setZero(nx, N);
+  it_.lamV.setZero(S_.copy ? nu : 0);
+  it_.nu.setZero(S_.npsi);
+
+  cpu0 = CpuSeconds();
+  bool ok = S_.EvalDerivatives(it_, &st_, &te_);
+  callback_cpu_ += CpuSeconds() - cpu0;
+  if (!ok) {
+    return Finish(SolveStatus::kNumericalFailure,
+                  "Invalid_Number_Detected",
+                  "a derivative at the starting point is not finite");
+  }
+  // Objective scaling (Ipopt's gradient-based rule, on the objective only).
+  sigma_ = 1.0;
+  if (o_.nlp_scaling_method == "gradient-based") {
+    double gmax = (S_.h.size() > 0) ? 0.0 : 0.0;
+    for (int k = 0; k < N; ++k) {
+      if (k > 0) gmax = std::max(gmax, S_.h[k] * st_[k].Lx.lpNorm<Eigen::Infinity>());
+      gmax = std::max(gmax, S_.h[k] * st_[k].Lu.lpNorm<Eigen::Infinity>());
+    }
+    gmax = std::max(gmax, te_.grad.lpNorm<Eigen::Infinity>());
+    if (gmax > o_.nlp_scaling_max_gradient) sigma_ = o_.nlp_scaling_max_gradient / gmax;
+  }
+  LeastSquaresMultipliers();
+  mu_ = o_.mu_init;
+  double tau = std::max(0.99, 1.0 - mu_);
+  const double theta0 = Theta(vals_, it_.s);
+  const double theta_max = 1e4 * std::max(1.0, theta0);
+  const double theta_min = 1e-4 * std::max(1.0, theta0);
+  std::vector<std::pair<double, double>> filter;
+  Direction d;
+  Iterate trial;
+
+  for (;;) {
+    cpu0 = CpuSeconds();
+    ok = S_.EvalHessians(it_, sigma_, &st_, &te_);
+    callback_cpu_ += CpuSeconds() - cpu0;
+    if (!ok) {
+      return Finish(SolveStatus::kNumericalFailure,
+                    "Invalid_Number_Detected",
+                    "a Hessian entry is not finite");
+    }
+    Measure(mu_);
+    {
+      IterationRecord rec;
+      rec.iteration = iterations_;
+      rec.J = vals_.f;
+      rec.primal_inf = constr_viol_;
+      rec.dual_inf = dual_inf_;
+      rec.cpu_seconds = watch_.cpu();
+      history_.push_back(rec);
+      if (o_.print_level >= 1) {
+        std::fprintf(stderr,
+                     "riccati-ip %4d  f %+.10e  inf_pr %.2e  inf_du %.2e  mu %.1e  E0 %.2e\n",
+                     iterations_,
+                     vals_.f,
+                     constr_viol_,
+                     dual_inf_,
+                     mu_,
+                     E0_);
+      }
+    }
+    if (E0_ <= o_.tol && dual_inf_ / sigma_ <= o_.dual_inf_tol &&
+        constr_viol_ <= o_.constr_viol_tol && compl_ <= o_.compl_inf_tol) {
+      return Finish(SolveStatus::kConverged, "Solve_Succeeded", "");
+    }
+    if (iterations_ >= o_.max_iter) {
+      return Finish(SolveStatus::kMaxIterations, "Maximum_Iterations_Exceeded", "");
+    }
+    if (watch_.cpu() >= o_.max_cpu_time) {
+      return Finish(SolveStatus::kMaxTime, "Maximum_CpuTime_Exceeded", "");
+    }
+    // Monotone (Fiacco-McCormick) barrier update.
+    const double mu_min = o_.tol / 10.0;
+    bool mu_changed = false;
+    while (Emu_ <= kKappaEps * mu_ && mu_ > mu_min) {
+      mu_ = std::max(mu_min, std::min(kKappaMu * mu_, std::pow(mu_, kThetaMu)));
+      tau = std::max(0.99, 1.0 - mu_);
+      Measure(mu_);
+      mu_changed = true;
+    }
+    if (mu_changed) filter.clear();
+
+    std::string failure;
+    if (!BuildAndSolve(mu_, &d, &failure)) {
+      return Finish(SolveStatus::kNumericalFailure, "Error_In_Step_Computation", failure);
+    }
+    // Fraction to the boundary.
+    double alpha_max = 1.0, alpha_z = 1.0;
+    auto ftb = [&](double value, double step, double* alpha) {
+      if (step < 0.0) *alpha = std::min(*alpha, -tau * value / step);
+    };
+    for (int k = 0; k <= N; ++k) {
+      for (int i = 0; i < it_.s[k].size(); ++i) {
+        ftb(it_.s[k][i], d.ds[k][i], &alpha_max);
+        ftb(it_.v[k][i], d.dv[k][i], &alpha_z);
+      }
+    }
+    for (int k = 0; k < N; ++k) {
+      for (int j = 0; j < nu; ++j) {
+        if (HasLb(j)) {
+          ftb(it_.U(j, k) - S_.lb[j], d.dU(j, k), &alpha_max);
+          ftb(it_.zl(j, k), d.dzl(j, k), &alpha_z);
+        }
+        if (HasUb(j)) {
+          ftb(S_.ub[j] - it_.U(j, k), -d.dU(j, k), &alpha_max);
+          ftb(it_.zu(j, k), d.dzu(j, k), &alpha_z);
+        }
+      }
+    }
+    // Directional derivative of the barrier objective.
+    double gphi = 0.0;
+    for (int k = 0; k < N; ++k) {
+      const StageEval& e = st_[k];
+      gphi += sigma_ * S_.h[k] * (e.Lx.dot(d.dX.col(k)) + e.Lu.dot(d.dU.col(k)));
+      for (int j = 0; j < nu; ++j) {
+        if (HasLb(j)) gphi -= mu_ * d.dU(j, k) / (it_.U(j, k) - S_.lb[j]);
+        if (HasUb(j)) gphi += mu_ * d.dU(j, k) / (S_.ub[j] - it_.U(j, k));
+      }
+    }
+    gphi += sigma_ * te_.grad.dot(d.dX.col(N));
+    for (int k = 0; k <= N; ++k) {
+      if (it_.s[k].size() > 0) gphi -= mu_ * d.ds[k].cwiseQuotient(it_.s[k]).sum();
+    }
+    const double theta = Theta(vals_, it_.s);
+    const double phi = BarrierObjective(vals_, it_);
+    // A tiny step (Ipopt's tiny_step_tol): taken in full, no line search.
+    double rel = 0.0;
+    for (int k = 0; k < N; ++k) {
+      rel = std::max(rel,
+                     (d.dU.col(k).array().abs() / (1.0 + it_.U.col(k).array().abs())).maxCoeff());
+      rel = std::max(
+          rel, (d.dX.col(k + 1).array().abs() / (1.0 + it_.X.col(k + 1).array().abs())).maxCoeff());
+    }
+    const bool tiny = rel < 10.0 * kRipEps && theta < 1e-4;
+
+    double alpha = alpha_max;
+    Values tv;
+    bool accepted = false, f_type = false;
+    for (int backtracks = 0;; ++backtracks) {
+      ++trials_;
+      trial = it_;
+      trial.X += alpha * d.dX;
+      trial.U += alpha * d.dU;
+      if (S_.copy) trial.V += alpha * d.dV;
+      for (int k = 0; k <= N; ++k) trial.s[k] += alpha * d.ds[k];
+      cpu0 = CpuSeconds();
+      tv = S_.EvalValues(trial);
+      callback_cpu_ += CpuSeconds() - cpu0;
+      if (tiny) {
+        accepted = tv.ok;
+        f_type = true;
+        if (accepted) break;
+      }
+      if (tv.ok) {
+        const double th_t = Theta(tv, trial.s);
+        const double phi_t = BarrierObjective(tv, trial);
+        bool in_filter = th_t <= theta_max && RipFinite(phi_t);
+        for (const auto& [fth, fphi] : filter) {
+          if (th_t >= fth && phi_t >= fphi) in_filter = false;
+        }
+        if (in_filter) {
+          const bool switching = gphi < 0.0 && alpha * std::pow(-gphi, kSPhi) >
+                                                   kDeltaSwitch * std::pow(theta, kSTheta);
+          if (theta <= theta_min && switching) {
+            f_type = true;
+            accepted = phi_t <= phi + kEtaPhi * alpha * gphi;
+          } else {
+            f_type = false;
+            accepted = th_t <= (1.0 - kGammaTheta) * theta || phi_t <= phi - kGammaPhi * theta;
+          }
+        }
+      }
+      if (accepted) break;
+      double alpha_min = kGammaTheta;
+      if (gphi < 0.0) {
+        alpha_min = std::min(kGammaTheta, kGammaPhi * theta / -gphi);
+        if (theta <= theta_min) {
+          alpha_min =
+              std::min(alpha_min, kDeltaSwitch * std::pow(theta, kSTheta) / std::pow(-gphi, kSPhi));
+        }
+      }
+      alpha_min *= kGammaAlpha;
+      alpha *= 0.5;
+      if (alpha < alpha_min || alpha < 1e-16) {
+        return Finish(SolveStatus::kStepTooSmall,
+                      "Restoration_Needed",
+                      "the filter line search reached its minimal step size; this version has "
+                      "no restoration phase");
+      }
+    }
+    if (!f_type) filter.emplace_back((1.0 - kGammaTheta) * theta, phi - kGammaPhi * theta);
+
+    // Accept: primal and equality multipliers with alpha, bound multipliers with alpha_z.
+    it_.X = trial.X;
+    it_.U = trial.U;
+    it_.V = trial.V;
+    it_.s = trial.s;
+    it_.lam += alpha * (d.lam - it_.lam);
+    if (S_.copy) it_.lamV += alpha * (d.lamV - it_.lamV);
+    if (S_.npsi > 0) it_.nu += alpha * (d.nu - it_.nu);
+    for (int k = 0; k <= N; ++k) {
+      if (it_.s[k].size() == 0) continue;
+      it_.y[k] += alpha * d.dy[k];
+      it_.v[k] += alpha_z * d.dv[k];
+      for (int i = 0; i < it_.s[k].size(); ++i) {
+        const double s = it_.s[k][i];
+        it_.v[k][i] = std::clamp(it_.v[k][i], mu_ / (kKappaSigma * s), kKappaSigma * mu_ / s);
+      }
+    }
+    it_.zl += alpha_z * d.dzl;
+    it_.zu += alpha_z * d.dzu;
+    for (int k = 0; k < N; ++k) {
+      for (int j = 0; j < nu; ++j) {
+        if (HasLb(j)) {
+          const double s = it_.U(j, k) - S_.lb[j];
+          it_.zl(j, k) = std::clamp(it_.zl(j, k), mu_ / (kKappaSigma * s), kKappaSigma * mu_ / s);
+        }
+        if (HasUb(j)) {
+          const double s = S_.ub[j] - it_.U(j, k);
+          it_.zu(j, k) = std::clamp(it_.zu(j, k), mu_ / (kKappaSigma * s), kKappaSigma * mu_ / s);
+        }
+      }
+    }
+    vals_ = std::move(tv);
+    ++iterations_;
+    cpu0 = CpuSeconds();
+    ok = S_.EvalDerivatives(it_, &st_, &te_);
+    callback_cpu_ += CpuSeconds() - cpu0;
+    if (!ok) {
+      return Finish(SolveStatus::kNumericalFailure,
+                    "Invalid_Number_Detected",
+                    "a derivative at an iterate is not finite");
+    }
+  }
+}
+
+NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
+                                         const std::string& solver_status,
+                                         std::string message) {
+  const int N = S_.N, nx = S_.nx, nu = S_.nu, nc = S_.nc;
+  NlpSolution out;
+  out.status = status;
+  out.solver_status = solver_status;
+  out.message = std::move(message);
+  out.iterations = iterations_;
+  out.history = std::move(history_);
+  if (it_.X.size() == 0) return out;
+  out.z = S_.ToNlp(it_);
+  out.has_iterate = true;
+  out.objective = vals_.f;
+  const double inv = 1.0 / sigma_;
+  if (static_cast<int>(it_.s.size()) == N + 1 && it_.lam.cols() == N) {
+    Vec lambda = Vec::Zero(S_.nlp.num_constraints());
+    for (int k = 0; k < N; ++k) lambda.segment(S_.nlp.defect_row(k), nx) = inv * it_.lam.col(k);
+    for (int k = 0; k <= N && nc > 0; ++k) {
+      lambda.segment(S_.nlp.path_row_begin() + k * nc, nc) = inv * it_.y[k].head(nc);
+    }
+    for (int k = 0; k < N; ++k) {
+      for (int b = 0; b < S_.nball; ++b) {
+        lambda[S_.nlp.ball_row_begin() + k * S_.nball + b] = inv * it_.y[k][nc + b];
+      }
+    }
+    if (S_.npsi > 0) lambda.segment(S_.nlp.terminal_row_begin(), S_.npsi) = inv * it_.nu;
+    out.lambda = lambda;
+    const int n = S_.nlp.num_variables();
+    out.z_lower = Vec::Zero(n);
+    out.z_upper = Vec::Zero(n);
+    for (int k = 0; k < N; ++k) {
+      out.z_lower.segment(S_.control_off[k], nu) = inv * it_.zl.col(k);
+      out.z_upper.segment(S_.control_off[k], nu) = inv * it_.zu.col(k);
+    }
+    if (rx_.cols() == N + 1) {  // x_0's bound multipliers from stationarity in x_0
+      const Vec r = inv * rx_.col(0);
+      out.z_lower.segment(S_.state_off[0], nx) = r.cwiseMax(0.0);
+      out.z_upper.segment(S_.state_off[0], nx) = (-r).cwiseMax(0.0);
+    }
+  }
+  out.stats["riccati_ip_iterations"] = iterations_;
+  out.stats["riccati_ip_regularizations"] = regularizations_;
+  out.stats["riccati_ip_factorizations"] = factorizations_;
+  out.stats["riccati_ip_line_search_trials"] = trials_;
+  out.stats["riccati_ip_kkt_cpu_seconds"] = kkt_cpu_;
+  out.stats["riccati_ip_callback_cpu_seconds"] = callback_cpu_;
+  out.stats["riccati_ip_cpu_seconds"] = watch_.cpu();
+  out.stats["riccati_ip_kkt_error"] = E0_;
+  out.stats["riccati_ip_dual_inf"] = dual_inf_ * inv;
+  out.stats["riccati_ip_constr_viol"] = constr_viol_;
+  out.stats["riccati_ip_complementarity"] = compl_ * inv;
+  out.stats["riccati_ip_mu"] = mu_;
+  out.stats["riccati_ip_objective_scale"] = sigma_;
+  return out;
+}
+
+NlpSolution NotApplicableSolution(const std::string& why) {
+  NlpSolution out;
+  out.status = SolveStatus::kNotApplicable;
+  out.solver_status = "not_applicable";
+  out.message = why;
+  out.iterations = 0;
+  return out;
+}
+
+}  // namespace
+
+NlpSolution SolveEulerNlpWithRiccatiIp(const TranscribedNlp& nlp, const RiccatiIpOptions& options) {
+  std::string why;
+  const std::unique_ptr<EulerStages> stages = EulerStages::From(nlp, &why);
+  if (!stages) return NotApplicableSolution(why);
+  stages->Relax(options.bound_relax_factor);
+  RiccatiInteriorPoint ip(*stages, options);
+  NlpSolution out = ip.Run(nlp.StartingPoint());
+  if (out.z.size() != nlp.num_variables()) out.z = nlp.StartingPoint();
+  return out;
+}
+
+std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) {
+  if (request.transcription.empty()) return "";
+  const TranscriptionInfo& info = FindTranscription(request.transcription);  // throws if unknown
+  if (info.name != "euler") {
+    return "riccati-ip solves the euler transcription only in this version (not '" + info.name +
+           "'); use ipopt for the others";
+  }
+  if (ocp.free_final_time()) {
+    return "problem '" + ocp.name() +
+           "' has a free final time, which riccati-ip does not take (it keeps the horizon fixed); "
+           "ipopt on a collocation transcription solves it";
+  }
+  const TranscriptionOptions options = TranscriptionOptionsFor(request);
+  if (!options.scaling.IsIdentity()) {
+    return "riccati-ip works in the problem's units: the transcription options objective_scale, "
+           "state_scale and control_scale must be left at 1";
+  }
+  if (options.mesh.enabled()) return "riccati-ip does not run mesh refinement";
+  for (const auto& b : ocp.control_set().blocks()) {
+    if (b.kind != ControlSet::Kind::kBox) continue;
+    for (int i = 0; i < b.size; ++i) {
+      if (!(b.lower[i] < b.upper[i])) {
+        return "riccati-ip needs lower < upper for every bounded control (component " +
+               std::to_string(b.offset + i) + " is fixed)";
+      }
+    }
+  }
+  return "";
+}
+
+SolveResult RiccatiIpSolver::Solve(const Ocp& ocp, const SolveRequest& request) const {
+  const RiccatiIpOptions options = RiccatiIpOptions::Apply(request.options, RiccatiIpOptions());
+  const std::string why = RiccatiIpNotApplicable(ocp, request);
+  if (!why.empty()) {
+    SolveResult r;
+    r.solver = name();
+    r.status = SolveStatus::kNotApplicable;
+    r.solver_status = "not_applicable";
+    r.message = why;
+    r.iterations = 0;
+    r.cpu_seconds = 0.0;
+    r.wall_seconds = 0.0;
+    return r;
+  }
+  return SolveTranscribed(
+      name(), ocp, request, [&](const TranscribedNlp& nlp, const Vec&, const NlpMultipliers&) {
+        return SolveEulerNlpWithRiccatiIp(nlp, options);
+      });
+}
+
+bool EulerStageLagrangian(const TranscribedNlp& nlp,
+                          const Vec& z,
+                          const Vec& lambda,
+                          double* value,
+                          Vec* gradient,
+                          Mat* hessian) {
+  std::string why;
+  const std::unique_ptr<EulerStages> S = EulerStages::From(nlp, &why);
+  if (!S || z.size() != nlp.num_variables() || lambda.size() != nlp.num_constraints()) {
+    return false;
+  }
+  const int N = S->N, nx = S->nx, nu = S->nu, nc = S->nc;
+  Iterate it;
+  S->ToIterate(z, &it);
+  it.lam.resize(nx, N);
+  for (int k = 0; k < N; ++k) it.lam.col(k) = lambda.segment(S->nlp.defect_row(k), nx);
+  it.y.resize(N + 1);
+  for (int k = 0; k <= N; ++k) {
+    it.y[k] = Vec::Zero(S->ni(k));
+    if (nc > 0 && S->ni(k) > 0)
+      it.y[k].head(nc) = lambda.segment(S->nlp.path_row_begin() + k * nc, nc);
+    for (int b = 0; k < N && b < S->nball; ++b) {
+      it.y[k][nc + b] = lambda[S->nlp.ball_row_begin() + k * S->nball + b];
+    }
+  }
+  it.nu = S->npsi > 0 ? Vec(lambda.segment(S->nlp.terminal_row_begin(), S->npsi)) : Vec();
+  it.lamV = Vec::Zero(S->copy ? nu : 0);
+  const Values v = S->EvalValues(it);
+  std::vector<StageEval> st;
+  TerminalEval te;
+  if (!v.ok || !S->EvalDerivatives(it, &st, &te) || !S->EvalHessians(it, 1.0, &st, &te)) {
+    return false;
+  }
+  // The NLP's constraint rows with their right-hand sides (balls: |u - c|^2 - r^2 + r^2).
+  double L = v.f;
+  for (int k = 0; k < N; ++k) L += lambda.segment(S->nlp.defect_row(k), nx).dot(v.defects.col(k));
+  for (int k = 0; k <= N; ++k) {
+    if (S->ni(k) > 0) L += it.y[k].dot(v.c[k]);
+    for (int b = 0; k < N && b < S->nball; ++b) {
+      L += it.y[k][nc + b] * S->balls[b].radius * S->balls[b].radius;
+    }
+  }
+  if (S->npsi > 0) L += it.nu.dot(v.psi);
+  *value = L;
+  // Gradient; with the copy v = u_{N-1} at a point where it holds, its multiplier drops out:
+  // the copy's stationarity gives lamV = -cu_N^T y_N, so u_{N-1} gains cu_N^T y_N.
+  Mat rx, ru;
+  Vec rv;
+  if (S->copy) it.lamV = -st[N].cu.transpose() * it.y[N];
+  S->LagrangianGradient(it, 1.0, st, te, &rx, &ru, &rv);
+  Vec g = Vec::Zero(nlp.num_variables());
+  for (int k = 0; k <= N; ++k) g.segment(S->state_off[k], nx) = rx.col(k);
+  for (int k = 0; k < N; ++k) g.segment(S->control_off[k], nu) = ru.col(k);
+  *gradient = g;
+  // Hessian: stage blocks, the terminal block, and the t_N path block on (x_N, u_{N-1}).
+  Mat H = Mat::Zero(nlp.num_variables(), nlp.num_variables());
+  for (int k = 0; k < N; ++k) {
+    const int xo = S->state_off[k], uo = S->control_off[k];
+    const Mat& Hk = st[k].H;
+    H.block(xo, xo, nx, nx) += Hk.topLeftCorner(nx, nx);
+    H.block(xo, uo, nx, nu) += Hk.topRightCorner(nx, nu);
+    H.block(uo, xo, nu, nx) += Hk.bottomLeftCorner(nu, nx);
+    H.block(uo, uo, nu, nu) += Hk.bottomRightCorner(nu, nu);
+  }
+  const int xN = S->state_off[N];
+  H.block(xN, xN, nx, nx) += te.H;
+  if (S->copy) {
+    const int uo = S->control_off[N - 1];
+    const Mat& Hk = st[N].H;
+    H.block(xN, xN, nx, nx) += Hk.topLeftCorner(nx, nx);
+    H.block(xN, uo, nx, nu) += Hk.topRightCorner(nx, nu);
+    H.block(uo, xN, nu, nx) += Hk.bottomLeftCorner(nu, nx);
+    H.block(uo, uo, nu, nu) += Hk.bottomRightCorner(nu, nu);
+  }
+  *hessian = H;
+  return true;
+}
+
+}  // namespace ocpb

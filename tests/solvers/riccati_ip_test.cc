@@ -1,0 +1,415 @@
+// riccati-ip: the stagewise KKT solve against a dense solve, the stage derivatives against finite
+// differences and the NLP's own callbacks, the optimum against Ipopt's on the same Euler NLP, and
+// the requests it refuses.
+#include "solvers/riccati_ip_solver.h"
+
+#include <cmath>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <Eigen/Dense>
+
+#include "problems/registry.h"
+#include "solvers/ipopt_adapter.h"
+#include "solvers/nlp_solve.h"
+#include "solvers/registry.h"
+#include "solvers/riccati_kkt.h"
+
+namespace ocpb {
+namespace riccati_ip_test {
+namespace {
+
+// ---- the Riccati recursion against a dense KKT solve ---------------------------------------
+
+Mat RandomMatrix(std::mt19937* rng, int rows, int cols) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  Mat M(rows, cols);
+  for (int j = 0; j < cols; ++j) {
+    for (int i = 0; i < rows; ++i) M(i, j) = n(*rng);
+  }
+  return M;
+}
+
+// Symmetric; positive definite when `definite`, else with eigenvalues of both signs.
+Mat RandomSymmetric(std::mt19937* rng, int n, bool definite) {
+  const Mat R = RandomMatrix(rng, n, n);
+  if (definite) return R * R.transpose() + 0.5 * Mat::Identity(n, n);
+  return 0.5 * (R + R.transpose());
+}
+
+// Stage state dimensions nx_0..nx_N (nx_0 = 0: fixed initial state, and a last stage one wider,
+// like riccati-ip's copy of u_{N-1}) and control dimensions nu_0..nu_{N-1}.
+RiccatiProblem RandomProblem(std::mt19937* rng,
+                             const std::vector<int>& nx,
+                             const std::vector<int>& nu,
+                             int npsi,
+                             bool definite) {
+  RiccatiProblem p;
+  const int N = static_cast<int>(nu.size());
+  for (int k = 0; k < N; ++k) {
+    RiccatiStage s;
+    s.Q = RandomSymmetric(rng, nx[k] + nu[k], definite);
+    s.q = RandomMatrix(rng, nx[k] + nu[k], 1);
+    s.A = RandomMatrix(rng, nx[k + 1], nx[k]);
+    s.B = RandomMatrix(rng, nx[k + 1], nu[k]);
+    s.b = RandomMatrix(rng, nx[k + 1], 1);
+    p.stages.push_back(s);
+  }
+  p.QN = RandomSymmetric(rng, nx[N], definite);
+  p.qN = RandomMatrix(rng, nx[N], 1);
+  p.C = RandomMatrix(rng, npsi, nx[N]);
+  p.c = RandomMatrix(rng, npsi, 1);
+  p.x0 = RandomMatrix(rng, nx[0], 1);
+  return p;
+}
+
+// The same QP's KKT system, assembled densely and solved by LU: variables (x_0, u_0, x_1, ...,
+// x_N), rows (x_0 = x0, then x_{k+1} - A x_k - B u_k = b_k, then C x_N - dc nu = -c).
+RiccatiSolution DenseSolve(const RiccatiProblem& p, double dw, double dc) {
+  const int N = static_cast<int>(p.stages.size());
+  std::vector<int> xo(N + 1), uo(N);
+  int n = 0;
+  for (int k = 0; k < N; ++k) {
+    xo[k] = n;
+    n += static_cast<int>(p.stages[k].A.cols());
+    uo[k] = n;
+    n += static_cast<int>(p.stages[k].B.cols());
+  }
+  xo[N] = n;
+  n += static_cast<int>(p.QN.rows());
+  const int nx0 = static_cast<int>(p.x0.size());
+  const int npsi = static_cast<int>(p.C.rows());
+  std::vector<int> ro(N);
+  int m = nx0;
+  for (int k = 0; k < N; ++k) {
+    ro[k] = m;
+    m += static_cast<int>(p.stages[k].A.rows());
+  }
+  const int rt = m;
+  m += npsi;
+  Mat K = Mat::Zero(n + m, n + m);
+  Vec r = Vec::Zero(n + m);
+  for (int k = 0; k < N; ++k) {
+    const RiccatiStage& s = p.stages[k];
+    const int w = static_cast<int>(s.Q.rows());
+    K.block(xo[k], xo[k], w, w) = s.Q;  // x_k and u_k are adjacent
+    r.segment(xo[k], w) = -s.q;
+    const int rows = static_cast<int>(s.A.rows());
+    K.block(n + ro[k], xo[k + 1], rows, rows) = Mat::Identity(rows, rows);
+    K.block(n + ro[k], xo[k], rows, s.A.cols()) = -s.A;
+    K.block(n + ro[k], uo[k], rows, s.B.cols()) = -s.B;
+    r.segment(n + ro[k], rows) = s.b;
+  }
+  K.block(xo[N], xo[N], p.QN.rows(), p.QN.rows()) = p.QN;
+  r.segment(xo[N], p.QN.rows()) = -p.qN;
+  for (int i = 0; i < n; ++i) K(i, i) += dw;
+  K.block(n, 0, nx0, nx0) = Mat::Identity(nx0, nx0);
+  r.segment(n, nx0) = p.x0;
+  K.block(n + rt, xo[N], npsi, p.QN.rows()) = p.C;
+  K.block(n + rt, n + rt, npsi, npsi) = -dc * Mat::Identity(npsi, npsi);
+  r.segment(n + rt, npsi) = -p.c;
+  K.topRightCorner(n, m) = K.bottomLeftCorner(m, n).transpose();
+  const Vec sol = K.fullPivLu().solve(r);
+  RiccatiSolution out;
+  for (int k = 0; k <= N; ++k) {
+    const int nxk = k < N ? static_cast<int>(p.stages[k].A.cols()) : static_cast<int>(p.QN.rows());
+    out.x.push_back(sol.segment(xo[k], nxk));
+    if (k < N) {
+      out.u.push_back(sol.segment(uo[k], p.stages[k].B.cols()));
+      out.lambda.push_back(sol.segment(n + ro[k], p.stages[k].A.rows()));
+    }
+  }
+  out.nu = sol.segment(n + rt, npsi);
+  return out;
+}
+
+double MaxDifference(const RiccatiSolution& a, const RiccatiSolution& b) {
+  double d = (a.nu - b.nu).lpNorm<Eigen::Infinity>();
+  for (size_t k = 0; k < a.x.size(); ++k) {
+    if (a.x[k].size() > 0) d = std::max(d, (a.x[k] - b.x[k]).lpNorm<Eigen::Infinity>());
+  }
+  for (size_t k = 0; k < a.u.size(); ++k) {
+    d = std::max(d, (a.u[k] - b.u[k]).lpNorm<Eigen::Infinity>());
+    d = std::max(d, (a.lambda[k] - b.lambda[k]).lpNorm<Eigen::Infinity>());
+  }
+  return d;
+}
+
+double Scale(const RiccatiSolution& a) {
+  double s = 1.0 + a.nu.lpNorm<Eigen::Infinity>();
+  for (const Vec& v : a.x) s = std::max(s, v.size() > 0 ? v.lpNorm<Eigen::Infinity>() : 0.0);
+  for (const Vec& v : a.u) s = std::max(s, v.lpNorm<Eigen::Infinity>());
+  for (const Vec& v : a.lambda) s = std::max(s, v.lpNorm<Eigen::Infinity>());
+  return s;
+}
+
+struct KktCase {
+  std::vector<int> nx, nu;
+  int npsi;
+};
+
+TEST(RiccatiKkt, MatchesDenseSolve) {
+  std::mt19937 rng(7);
+  const std::vector<KktCase> cases = {
+      {{0, 3, 3, 3, 3, 3}, {2, 2, 2, 2, 2}, 0},  // fixed x0
+      {{0, 3, 3, 3, 3, 3}, {2, 2, 2, 2, 2}, 2},  // terminal rows
+      {{2, 4, 4, 4, 6}, {1, 2, 2, 2}, 3},        // given x0, a wider last stage
+      {{0, 1}, {1}, 1},                          // one stage
+      {{0, 2, 2, 2, 2, 2, 2, 2}, {3, 3, 3, 3, 3, 3, 3}, 2},
+  };
+  for (const KktCase& c : cases) {
+    for (int trial = 0; trial < 5; ++trial) {
+      const RiccatiProblem p = RandomProblem(&rng, c.nx, c.nu, c.npsi, true);
+      RiccatiSolver solver;
+      RiccatiSolution r;
+      ASSERT_EQ(solver.Solve(p, 0.0, 0.0, &r), RiccatiOutcome::kSolved);
+      const RiccatiSolution d = DenseSolve(p, 0.0, 0.0);
+      EXPECT_LT(MaxDifference(r, d), 1e-10 * Scale(d)) << "npsi " << c.npsi;
+      // With both regularizations on.
+      ASSERT_EQ(solver.Solve(p, 0.3, 1e-3, &r), RiccatiOutcome::kSolved);
+      EXPECT_LT(MaxDifference(r, DenseSolve(p, 0.3, 1e-3)), 1e-10 * Scale(r));
+    }
+  }
+}
+
+TEST(RiccatiKkt, DetectsIndefiniteStagesAndMatchesOnceRegularized) {
+  std::mt19937 rng(11);
+  int detected = 0;
+  for (int trial = 0; trial < 10; ++trial) {
+    const RiccatiProblem p = RandomProblem(&rng, {0, 3, 3, 3, 3}, {2, 2, 2, 2}, 1, false);
+    RiccatiSolver solver;
+    RiccatiSolution r;
+    if (solver.Solve(p, 0.0, 0.0, &r) == RiccatiOutcome::kNotPositiveDefinite) {
+      ++detected;
+      EXPECT_GE(solver.failed_stage(), 0);
+    }
+    // Large enough a shift makes every stage definite; the result is the regularized system's.
+    double dw = 1.0;
+    while (solver.Solve(p, dw, 0.0, &r) != RiccatiOutcome::kSolved) dw *= 2.0;
+    EXPECT_LT(MaxDifference(r, DenseSolve(p, dw, 0.0)), 1e-10 * Scale(r)) << "dw " << dw;
+  }
+  EXPECT_GT(detected, 5);
+}
+
+TEST(RiccatiKkt, DependentTerminalRowsNeedTheDualRegularization) {
+  std::mt19937 rng(3);
+  RiccatiProblem p = RandomProblem(&rng, {0, 2, 2, 2}, {1, 1, 1}, 2, true);
+  p.C.row(1) = p.C.row(0);
+  p.c[1] = p.c[0];
+  RiccatiSolver solver;
+  RiccatiSolution r;
+  EXPECT_EQ(solver.Solve(p, 0.0, 0.0, &r), RiccatiOutcome::kTerminalRowsDegenerate);
+  ASSERT_EQ(solver.Solve(p, 0.0, 1e-6, &r), RiccatiOutcome::kSolved);
+  const RiccatiSolution d = DenseSolve(p, 0.0, 1e-6);
+  EXPECT_LT(MaxDifference(r, d), 1e-8 * Scale(d));
+}
+
+// ---- the stage derivatives ---------------------------------------------------------------
+
+struct ProblemCase {
+  std::string name;
+  std::vector<std::string> params;
+  TerminalMode terminal;
+};
+
+std::unique_ptr<TranscribedNlp> EulerNlp(const Ocp& ocp, int N, TerminalMode terminal) {
+  SolveRequest request;
+  request.grid = TimeGrid::Uniform(ocp.t0(), ocp.tf(), N);
+  request.terminal = terminal;
+  request.transcription = "euler";
+  return TranscribeRequest(ocp, request);
+}
+
+Mat DenseJacobian(const Nlp& nlp, const Vec& z) {
+  Vec v(nlp.jacobian_rows().size());
+  EXPECT_TRUE(nlp.JacobianValues(z, v));
+  Mat J = Mat::Zero(nlp.num_constraints(), nlp.num_variables());
+  for (Eigen::Index k = 0; k < v.size(); ++k)
+    J(nlp.jacobian_rows()[k], nlp.jacobian_cols()[k]) += v[k];
+  return J;
+}
+
+Mat DenseHessian(const Nlp& nlp, const Vec& z, const Vec& lambda) {
+  Vec v(nlp.hessian_rows().size());
+  EXPECT_TRUE(nlp.HessianValues(z, 1.0, lambda, v));
+  Mat H = Mat::Zero(nlp.num_variables(), nlp.num_variables());
+  for (Eigen::Index k = 0; k < v.size(); ++k) {
+    const int i = nlp.hessian_rows()[k], j = nlp.hessian_cols()[k];
+    H(i, j) += v[k];
+    if (i != j) H(j, i) += v[k];
+  }
+  return H;
+}
+
+TEST(RiccatiIpStages, LagrangianDerivativesMatchFiniteDifferencesAndTheNlp) {
+  const std::vector<ProblemCase> cases = {
+      {"bryson-denham", {}, TerminalMode::kHard},           // path constraint (also at t_N)
+      {"double-integrator", {}, TerminalMode::kPenalty},    // penalty terminal form
+      {"comm-path2d", {"channel=0"}, TerminalMode::kHard},  // a ball of controls
+      {"goddard", {}, TerminalMode::kHard},
+  };
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (const ProblemCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    const auto ocp = MakeProblem(c.name, c.params, 1);
+    const auto nlp = EulerNlp(*ocp, 4, c.terminal);
+    Vec z = nlp->StartingPoint();
+    for (int i = 0; i < z.size(); ++i) z[i] += 0.05 * noise(rng) * (1.0 + std::abs(z[i]));
+    Vec lambda(nlp->num_constraints());
+    for (int i = 0; i < lambda.size(); ++i) lambda[i] = noise(rng);
+    double L = 0.0;
+    Vec g;
+    Mat H;
+    ASSERT_TRUE(EulerStageLagrangian(*nlp, z, lambda, &L, &g, &H));
+    // Against the NLP's own callbacks (value, gradient, Hessian of f + lambda^T g).
+    double f = 0.0;
+    ASSERT_TRUE(nlp->Objective(z, &f));
+    Vec gv(nlp->num_constraints());
+    ASSERT_TRUE(nlp->Constraints(z, gv));
+    Vec grad(nlp->num_variables());
+    ASSERT_TRUE(nlp->Gradient(z, grad));
+    EXPECT_NEAR(L, f + lambda.dot(gv), 1e-10 * (1.0 + std::abs(L)));
+    const Vec nlp_grad = grad + DenseJacobian(*nlp, z).transpose() * lambda;
+    EXPECT_LT((g - nlp_grad).lpNorm<Eigen::Infinity>(), 1e-10 * (1.0 + nlp_grad.norm()));
+    const Mat nlp_hess = DenseHessian(*nlp, z, lambda);
+    EXPECT_LT((H - nlp_hess).lpNorm<Eigen::Infinity>(), 1e-10 * (1.0 + nlp_hess.norm()));
+    // Against central differences of the value and of the gradient.
+    const double step = 1e-6;
+    Vec fd_g(z.size());
+    Mat fd_H(z.size(), z.size());
+    for (int i = 0; i < z.size(); ++i) {
+      Vec zp = z, zm = z;
+      zp[i] += step;
+      zm[i] -= step;
+      double Lp = 0.0, Lm = 0.0;
+      Vec gp, gm;
+      Mat Hp;
+      ASSERT_TRUE(EulerStageLagrangian(*nlp, zp, lambda, &Lp, &gp, &Hp));
+      ASSERT_TRUE(EulerStageLagrangian(*nlp, zm, lambda, &Lm, &gm, &Hp));
+      fd_g[i] = (Lp - Lm) / (2 * step);
+      fd_H.col(i) = (gp - gm) / (2 * step);
+    }
+    EXPECT_LT((g - fd_g).lpNorm<Eigen::Infinity>(), 1e-6 * (1.0 + g.norm()));
+    EXPECT_LT((H - fd_H).lpNorm<Eigen::Infinity>(), 1e-6 * (1.0 + H.norm()));
+  }
+}
+
+// ---- the optimum against Ipopt's ------------------------------------------------------------
+
+struct AgreementCase {
+  std::string name;
+  std::vector<std::string> params;
+  int N;
+  double z_tolerance = 1e-6;  // on every variable (states and controls)
+};
+
+TEST(RiccatiIpSolver, ReachesIpoptsOptimumOnTheEulerNlp) {
+  const std::vector<AgreementCase> cases = {
+      {"lqr", {}, 20},
+      // Both stop within tol = 1e-8 at points 1.6e-6 apart, in the controls on the
+      // state-constrained arc, where u_k is a second difference of x1 over h^2 (the objectives
+      // agree to 1e-10; tighter tol does not close it: 1.9e-6 at 1e-12).
+      {"bryson-denham", {}, 20, 5e-6},
+      {"double-integrator-bounded", {}, 20},
+      {"vanderpol", {}, 20},
+      // 2.0e-6 apart in x_N at tol = 1e-8 (objectives 1e-11); 1.6e-10 at tol = 1e-12.
+      {"rayleigh", {}, 20, 5e-6},
+      {"robot-arm", {}, 20},
+      {"goddard", {}, 20},
+      {"catmix", {}, 20},
+      {"comm-path2d", {"channel=0"}, 20},
+  };
+  for (const AgreementCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    const auto ocp = MakeProblem(c.name, c.params, 1);
+    const auto nlp = EulerNlp(*ocp, c.N, TerminalMode::kHard);
+    const IpoptOptions ipopt_options;
+    const RiccatiIpOptions rip_options;
+    const NlpSolution ip = SolveNlpWithIpopt(*nlp, nlp->StartingPoint(), ipopt_options);
+    ASSERT_EQ(ip.status, SolveStatus::kConverged) << ip.solver_status;
+    const NlpSolution rip = SolveEulerNlpWithRiccatiIp(*nlp, rip_options);
+    ASSERT_EQ(rip.status, SolveStatus::kConverged) << rip.solver_status << " " << rip.message;
+    double f_ip = 0.0, f_rip = 0.0;
+    ASSERT_TRUE(nlp->Objective(ip.z, &f_ip));
+    ASSERT_TRUE(nlp->Objective(rip.z, &f_rip));
+    EXPECT_LE(std::abs(f_rip - f_ip), 1e-8 * std::max(1.0, std::abs(f_ip)));
+    const double dz = (ip.z - rip.z).lpNorm<Eigen::Infinity>();
+    EXPECT_LE(dz, c.z_tolerance);
+    EXPECT_LT(NlpViolation(*nlp, rip.z), 1e-8);
+    std::cout << "[ riccati-ip ] " << c.name << " N=" << c.N << ": iterations " << rip.iterations
+              << " (Ipopt " << ip.iterations << "), |df|/|f| "
+              << std::abs(f_rip - f_ip) / std::max(1.0, std::abs(f_ip)) << ", max |dz| " << dz
+              << ", regularizations " << rip.stats.at("riccati_ip_regularizations") << ", f "
+              << f_rip << " (Ipopt " << f_ip << ")\n";
+  }
+}
+
+TEST(RiccatiIpSolver, PenaltyFormThroughTheRegistry) {
+  const auto ocp = MakeProblem("double-integrator", {}, 1);
+  SolveRequest request;
+  request.grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 20);
+  request.transcription = "euler";
+  request.terminal = TerminalMode::kPenalty;
+  const SolveResult rip = FindSolver("riccati-ip").make()->Solve(*ocp, request);
+  const SolveResult ip = FindSolver("ipopt").make()->Solve(*ocp, request);
+  ASSERT_EQ(rip.status, SolveStatus::kConverged) << rip.message;
+  ASSERT_EQ(ip.status, SolveStatus::kConverged);
+  EXPECT_NEAR(rip.objective, ip.objective, 1e-8 * std::max(1.0, std::abs(ip.objective)));
+  EXPECT_LT((rip.states - ip.states).lpNorm<Eigen::Infinity>(), 1e-6);
+  ASSERT_EQ(rip.costates.cols(), ip.costates.cols());
+  EXPECT_LT((rip.costates - ip.costates).lpNorm<Eigen::Infinity>(), 1e-5);
+  EXPECT_GT(rip.solver_stats.at("riccati_ip_kkt_cpu_seconds"), 0.0);
+  EXPECT_TRUE(FindSolver("riccati-ip").uses_transcription);
+}
+
+TEST(RiccatiIpSolver, IterationLimitIsReported) {
+  const auto ocp = MakeProblem("vanderpol", {}, 1);
+  const auto nlp = EulerNlp(*ocp, 10, TerminalMode::kHard);
+  RiccatiIpOptions options;
+  options.max_iter = 2;
+  const NlpSolution rip = SolveEulerNlpWithRiccatiIp(*nlp, options);
+  EXPECT_EQ(rip.status, SolveStatus::kMaxIterations);
+  EXPECT_EQ(rip.solver_status, "Maximum_Iterations_Exceeded");
+  EXPECT_EQ(rip.iterations, 2);
+}
+
+// ---- what it refuses ----------------------------------------------------------------------
+
+TEST(RiccatiIpSolver, NotApplicableOutsideItsClass) {
+  const auto solver = FindSolver("riccati-ip").make();
+  const auto lqr = MakeProblem("lqr", {}, 1);
+  SolveRequest request;
+  request.grid = TimeGrid::Uniform(lqr->t0(), lqr->tf(), 10);
+  request.terminal = TerminalMode::kHard;
+  for (const std::string t : {"trapezoid", "hermite-simpson", "lgr", "single-shooting"}) {
+    request.transcription = t;
+    const SolveResult r = solver->Solve(*lqr, request);
+    EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << t;
+    EXPECT_EQ(r.solver_status, "not_applicable");
+    EXPECT_NE(r.message.find("euler"), std::string::npos) << r.message;
+  }
+  request.transcription = "euler";
+  request.transcription_options = {{"objective_scale", 2.0}};
+  EXPECT_EQ(solver->Solve(*lqr, request).status, SolveStatus::kNotApplicable);
+  request.transcription_options = OptionMap();
+
+  const auto free_time = MakeProblem("double-integrator-free-time", {}, 1);
+  request.grid = TimeGrid::Uniform(free_time->t0(), free_time->tf(), 10);
+  const SolveResult r = solver->Solve(*free_time, request);
+  EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(r.message.find("free final time"), std::string::npos) << r.message;
+
+  request.transcription = "no-such-scheme";
+  EXPECT_THROW(solver->Solve(*lqr, request), std::invalid_argument);
+  request.transcription = "euler";
+  request.options = {{"no_such_option", 1.0}};
+  EXPECT_THROW(solver->Solve(*lqr, request), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace riccati_ip_test
+}  // namespace ocpb
