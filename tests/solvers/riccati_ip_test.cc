@@ -317,7 +317,7 @@ TEST(RiccatiIpSolver, ReachesIpoptsOptimumOnTheEulerNlp) {
       {"double-integrator-bounded", {}, 20},
       {"vanderpol", {}, 20},
       // The same 17 iterations as Ipopt, but the two stop within tol = 1e-8 at points 5.8e-6
-      // apart (the objectives 4e-11): the optimum is flat along that direction.
+      // apart (in x_N; the objectives agree to 4e-11). Not investigated further yet.
       {"rayleigh", {}, 20, 1e-5},
       {"robot-arm", {}, 20},
       {"goddard", {}, 20},
