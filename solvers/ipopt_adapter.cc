@@ -459,6 +459,9 @@ std::vector<IpoptOptionSpec> TableWithIpoptsRanges() {
     if (s.type == IpoptOptionType::kString) continue;
     Ipopt::SmartPtr<const Ipopt::RegisteredOption> opt = reg->GetOption(s.name);
     if (!Ipopt::IsValid(opt)) continue;  // reported by IpoptOptionTableMatchesIpopt
+    s.default_value = s.type == IpoptOptionType::kNumber
+                          ? opt->DefaultNumber()
+                          : static_cast<double>(opt->DefaultInteger());
     if (s.type == IpoptOptionType::kNumber) {
       if (opt->HasLower()) {
         s.bounds.min = opt->LowerNumber();
@@ -474,6 +477,43 @@ std::vector<IpoptOptionSpec> TableWithIpoptsRanges() {
     }
   }
   return table;
+}
+
+bool IpoptRegistryAccepts(const IpoptOptionValue& v, std::string* error) {
+  // One registry, made once: Ipopt's own answer for a value, as SetXValue would give it when
+  // the solve starts.
+  static const Ipopt::SmartPtr<Ipopt::RegisteredOptions> reg = [] {
+    Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+    return app->RegOptions();
+  }();
+  Ipopt::SmartPtr<const Ipopt::RegisteredOption> opt = reg->GetOption(v.name);
+  bool ok = Ipopt::IsValid(opt);
+  if (ok) {
+    switch (v.type) {
+      case IpoptOptionType::kNumber:
+        ok = opt->Type() == Ipopt::OT_Number && opt->IsValidNumberSetting(v.number);
+        break;
+      case IpoptOptionType::kInteger:
+        ok = opt->Type() == Ipopt::OT_Integer && opt->IsValidIntegerSetting(v.integer);
+        break;
+      case IpoptOptionType::kString:
+        ok = opt->Type() == Ipopt::OT_String && opt->IsValidStringSetting(v.text);
+        break;
+    }
+  }
+  if (!ok && error) {
+    *error = "ipopt option '" + v.name + "': the linked Ipopt refuses the value" +
+             (v.type == IpoptOptionType::kString ? " '" + v.text + "'" : std::string());
+  }
+  return ok;
+}
+
+const std::vector<IpoptOrderedPair>& IpoptOrderedPairs() {
+  static const std::vector<IpoptOrderedPair> pairs = {
+      {"mumps_pivtol", "mumps_pivtolmax"},
+      {"min_refinement_steps", "max_refinement_steps"},
+  };
+  return pairs;
 }
 
 const std::vector<IpoptOptionSpec>& IpoptOptionTable() {

@@ -2,6 +2,7 @@
 // Ipopt's headers is ipopt_adapter.cc.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,7 +30,27 @@ struct IpoptOptionSpec {
   /// from its registry, so that a value Ipopt would refuse at solve time is refused when the
   /// options are checked, before any work).
   OptionBounds bounds;
+  /// Number and integer options: the linked Ipopt's default (NaN when it registers none).
+  double default_value = std::numeric_limits<double>::quiet_NaN();
 };
+
+/// A rule of Ipopt that ties two options: `low` may not exceed `high` (mumps_pivtol <=
+/// mumps_pivtolmax, min_refinement_steps <= max_refinement_steps, ...). Ipopt checks these only
+/// when it builds its algorithm, after the work before the solve; OCPBench checks them with the
+/// options (IpoptOptions::IsValid), an unset option taking Ipopt's default.
+struct IpoptOrderedPair {
+  const char* low;
+  const char* high;
+};
+/// Whether the linked Ipopt's registry accepts `v` (its name, type and value: what Ipopt's
+/// OptionsList would say when the solve starts); false with "ipopt option 'NAME': ..." in
+/// `error` otherwise.
+struct IpoptOptionValue;
+bool IpoptRegistryAccepts(const IpoptOptionValue& v, std::string* error);
+
+/// Every such rule OCPBench knows of Ipopt 3.11 (each tried against the linked Ipopt by the
+/// option tests).
+const std::vector<IpoptOrderedPair>& IpoptOrderedPairs();
 
 /// The pass-through table: the Ipopt options OCPBench lets a request set, with their types.
 /// IpoptOptionTableMatchesIpopt() checks it against Ipopt's own registry.

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 #include <stdexcept>
 
 #include "core/option_binding.h"
@@ -145,6 +146,57 @@ bool IpoptOptions::IsValid(std::string* error) const {
     if (error) *error = "ipopt option 'obj_scaling_factor': must be finite and nonzero";
     return false;
   }
+  // Ipopt's rules that tie two options, with Ipopt's default for an option left unset.
+  auto value_of = [this](const char* name) {
+    for (const IpoptOptionValue& v : extra) {
+      if (v.name != name) continue;
+      return v.type == IpoptOptionType::kNumber ? v.number : static_cast<double>(v.integer);
+    }
+    const IpoptOptionSpec* spec = FindIpoptOption(name);
+    return spec != nullptr ? spec->default_value : std::nan("");
+  };
+  for (const IpoptOrderedPair& pair : IpoptOrderedPairs()) {
+    const double low = value_of(pair.low), high = value_of(pair.high);
+    if (low > high) {
+      if (error) {
+        std::ostringstream text;
+        text << "ipopt option '" << pair.low << "': must be at most " << pair.high << " = " << high
+             << " (Ipopt's rule, checked before any work), got " << low;
+        *error = text.str();
+      }
+      return false;
+    }
+  }
+  // Ipopt's rules for mehrotra_algorithm=yes (IpoptAlgorithm::InitializeImpl and
+  // AlgorithmBuilder::BuildMuUpdate refuse the solve otherwise, after the work before it).
+  auto text_of = [this](const char* name) -> std::string {
+    for (const IpoptOptionValue& v : extra) {
+      if (v.name == name) return v.text;
+    }
+    return "";
+  };
+  if (text_of("mehrotra_algorithm") == "yes") {
+    const std::string strategy =
+        text_of("mu_strategy").empty() ? mu_strategy : text_of("mu_strategy");
+    const struct {
+      const char* name;
+      std::string value;
+      const char* needed;
+    } kMehrotra[] = {
+        {"mu_strategy", strategy, "adaptive"},
+        {"adaptive_mu_globalization", text_of("adaptive_mu_globalization"), "never-monotone-mode"},
+        {"corrector_type", text_of("corrector_type"), "none"},
+    };
+    for (const auto& rule : kMehrotra) {
+      if (rule.value.empty() || rule.value == rule.needed) continue;
+      if (error) {
+        *error = std::string("ipopt option '") + rule.name + "': must be '" + rule.needed +
+                 "' with mehrotra_algorithm=yes (Ipopt's rule, checked before any work), got '" +
+                 rule.value + "'";
+      }
+      return false;
+    }
+  }
   for (const IpoptOptionValue& v : extra) {
     // Ipopt opens (and truncates) its output file only when the solve starts: a place it cannot
     // open would fail the solve after the work before it.
@@ -168,6 +220,8 @@ bool IpoptOptions::IsValid(std::string* error) const {
       if (error) *error = "ipopt: extra option '" + v.name + "' is not in the table with that type";
       return false;
     }
+    // Ipopt's own registry has the last word on a value (a spelling it does not take).
+    if (!IpoptRegistryAccepts(v, error)) return false;
   }
   return true;
 }
