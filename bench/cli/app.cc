@@ -1,7 +1,9 @@
 #include "bench/cli/app.h"
 
+#include <cerrno>
 #include <csignal>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -40,6 +42,34 @@ OptionMap ParseKeyValues(const std::vector<std::string>& items, const std::strin
   }
   return out;
 }
+
+namespace {
+
+// "run " when the command line named a command, else "".
+std::string CommandName(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands()) return sub->get_name() + " ";
+  return "";
+}
+
+// CLI11's "Could not convert: --jobs = abc" with the rule: "--jobs 'abc': must be an integer".
+std::string ConversionRule(const CLI::App& app, const std::string& message) {
+  const std::string lead = "Could not convert: ";
+  const auto eq = message.find(" = ");
+  if (message.rfind(lead, 0) != 0 || eq == std::string::npos) return message;
+  const std::string name = message.substr(lead.size(), eq - lead.size());
+  const std::string value = message.substr(eq + 3);
+  std::string type;
+  for (const CLI::App* sub : app.get_subcommands()) {
+    if (const CLI::Option* option = sub->get_option_no_throw(name)) type = option->get_type_name();
+  }
+  const std::string rule = type == "INT"     ? "must be an integer"
+                           : type == "UINT"  ? "must be an integer >= 0"
+                           : type == "FLOAT" ? "must be a number"
+                                             : "is not a value of this option's type";
+  return name + " '" + value + "': " + rule;
+}
+
+}  // namespace
 
 int Main(int argc, char** argv) {
   g_some_failed = false;
@@ -83,11 +113,21 @@ int Main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // Every message is one line, whatever the input it quotes holds (OneLine escapes newlines).
-    std::cerr << "ocpbench: error: " << OneLine(e.what()) << " (see ocpbench --help)\n";
+    std::cerr << "ocpbench: error: " << OneLine(ConversionRule(app, e.what())) << " (see ocpbench "
+              << CommandName(app) << "--help)\n";
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {
     std::cerr << "ocpbench: error: " << OneLine(e.what()) << "\n";
     return kExitBadInput;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A path the system cannot follow for a reason in the path itself (a loop of symbolic
+    // links, a name longer than the file system allows, a file where a folder should be) is
+    // input at fault, wherever it is met. The commands check their paths before any work
+    // (FilePlan, bench/cli/output_place.h); this is the net under those checks.
+    const int code = e.code().value();
+    std::cerr << "ocpbench: error: " << OneLine(e.what()) << "\n";
+    return code == ELOOP || code == ENAMETOOLONG || code == ENOTDIR ? kExitBadInput
+                                                                    : kExitInternalError;
   } catch (const std::exception& e) {
     std::cerr << "ocpbench: error: " << OneLine(e.what()) << "\n";
     return kExitInternalError;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -249,6 +250,21 @@ void CheckTranscriptionFits(const CaseSpec& spec, int nx, int nu) {
   }
 }
 
+void AddCaseFiles(const CaseSpec& spec, const std::string& where, FilePlan* plan) {
+  const std::string of = where.empty() ? "" : " of " + where;
+  if (!spec.initial_guess.empty()) plan->Input(spec.initial_guess, "--initial-guess" + of);
+  auto outputs = [&](const OptionMap& options, const std::string& flag) {
+    for (const auto& [name, value] : options) {
+      if (!FilePlan::IsOutputFileOption(name) || value.empty()) continue;
+      const std::string path = value.ToText();
+      if (path.empty()) continue;
+      plan->Output(path, flag + " " + name + of, "solver log");
+    }
+  };
+  outputs(spec.options, where.empty() ? "--option" : "option");
+  outputs(spec.replan_options, where.empty() ? "--replan-option" : "replan option");
+}
+
 bool IsFailure(SolveStatus status) {
   return status == SolveStatus::kNumericalFailure || status == SolveStatus::kInfeasible ||
          status == SolveStatus::kError || status == SolveStatus::kInvalidInput;
@@ -270,10 +286,16 @@ double EstimateCaseMemoryBytes(const CaseSpec& spec, int nx, int nu, int interva
     m = FindTranscription(spec.transcription)
             .PointsPerInterval(ResolveMethodOptions(spec).transcription);
   }
+  return EstimateMethodMemoryBytes(spec.solver, m, nx, nu, intervals);
+}
+
+double EstimateMethodMemoryBytes(
+    const std::string& solver, double points_per_interval, int nx, int nu, int intervals) {
+  const double m = points_per_interval;
   const double nodes = static_cast<double>(intervals) * m + 1.0;
   const double w = nx + nu;
   double bytes = 512.0 * w * nodes;
-  if (FindSolver(spec.solver).factorizes_sparse_matrices) {
+  if (FindSolver(solver).factorizes_sparse_matrices) {
     bytes += 320.0 * nodes * w * (w + (m + 1.0) * nx);
   }
   return bytes;
@@ -281,17 +303,57 @@ double EstimateCaseMemoryBytes(const CaseSpec& spec, int nx, int nu, int interva
 
 double CaseMemoryBudgetBytes() { return MemoryBudgetBytes(); }
 
-double EstimateRecordBytes(const CaseSpec& spec, int nx, int nu, int intervals) {
-  double bytes = 4096.0 + 16.0 * 8.0 * 1000.0;
-  if (spec.keep_trajectory) {
-    bytes += 16.0 * (intervals + 1.0) * (1.0 + nx + nu);
-    bytes += 16.0 * kMaxFieldSamplePoints;
+double EstimateRecordBytes(const CaseSpec& spec, int /*nx*/, int /*nu*/, int /*intervals*/) {
+  // `run` holds each record's SummaryPart (bench/cli/run_outputs.h): its fields and its
+  // history, one row (an IterationRecord, 56 bytes, and the vector's slack) per iteration, at
+  // most the iteration limit the case's options give, and 1000 rows when they give none.
+  double rows = 1000.0;
+  MethodOptions options;
+  try {
+    options = ResolveMethodOptions(spec);
+  } catch (const std::invalid_argument&) {
+    // refused by ValidateCase with its own message
   }
-  return bytes;
+  for (const char* limit : {"max_iterations", "max_iter"}) {
+    const OptionValue* v = options.solver.Find(limit);
+    if (v != nullptr && v->kind() == OptionValue::Kind::kInteger) {
+      rows = std::min(rows, static_cast<double>(std::max<std::int64_t>(v->integer(), 0)) + 1.0);
+    }
+  }
+  return 2048.0 + 64.0 * rows;
+}
+
+// The horizon must be long enough for its grid: each step of the judge's 10x finer grid a
+// normal double, resolvable next to the horizon's ends (else the grids collapse at solve time,
+// with a message about a "time grid" that names no input).
+void CheckHorizonSteps(double t0, double tf, int N, const std::string& which) {
+  const double fine_step = (tf - t0) / N / 10.0;
+  const double scale = std::max(std::abs(t0), std::abs(tf));
+  if (!(fine_step >= std::numeric_limits<double>::min()) || !(fine_step >= 1e-12 * scale)) {
+    throw std::invalid_argument(fmt::format(
+        "tf: the horizon [t0, tf] = [{:g}, {:g}] is too short for {} = {} intervals: a tenth of "
+        "each step (tf - t0) / N must be a normal number (>= {:g}) and at least 1e-12 "
+        "max(|t0|, |tf|) (choose a larger tf, --set tf=..., or fewer intervals)",
+        t0,
+        tf,
+        which,
+        N,
+        std::numeric_limits<double>::min()));
+  }
 }
 
 CaseEstimate ValidateCase(const CaseSpec& spec) {
   spec.Validate();
+  // A file a solve writes (Ipopt's output_file) must be writable where it is named, checked
+  // here as any output place is (the name's length, the folder, permissions), not when the
+  // solver opens it after the work before the solve.
+  for (const OptionMap* options : {&spec.options, &spec.replan_options}) {
+    for (const auto& [name, value] : *options) {
+      if (FilePlan::IsOutputFileOption(name) && !value.empty() && !value.ToText().empty()) {
+        CheckOutputFile(value.ToText(), "options: " + name);
+      }
+    }
+  }
   if (spec.kind == "online") return ValidateOnlineCase(spec);
   const ProblemInfo& pinfo = FindProblem(spec.problem);
   const SolverInfo& sinfo = FindSolver(spec.solver);
@@ -328,6 +390,7 @@ CaseEstimate ValidateCase(const CaseSpec& spec) {
       which = "mesh_max_nodes";
     }
   }
+  CheckHorizonSteps(ocp->t0(), ocp->tf(), N, which);
   const double need = EstimateCaseMemoryBytes(spec, ocp->nx(), ocp->nu(), N);
   const double budget = CaseMemoryBudgetBytes();
   CaseEstimate estimate;
@@ -344,6 +407,34 @@ CaseEstimate ValidateCase(const CaseSpec& spec) {
         ocp->nu(),
         spec.solver + (spec.transcription.empty() ? "" : " + " + spec.transcription),
         Bytes(budget)));
+  }
+  if (!spec.transcription.empty()) {
+    // h-refinement builds each refined mesh whole (each interval split in up to
+    // 1 + mesh_max_new_points pieces) before comparing it with mesh_max_nodes: that mesh is
+    // sized here, before anything is solved.
+    const MeshRefinementOptions mesh = FindTranscription(spec.transcription)
+                                           .Configure(ResolveMethodOptions(spec).transcription)
+                                           .mesh;
+    const OptionValue* new_points =
+        ResolveMethodOptions(spec).transcription.Find("mesh_max_new_points");
+    if (mesh.enabled() && new_points != nullptr) {
+      if (mesh.max_new_points > mesh.max_nodes) {
+        throw std::invalid_argument(fmt::format(
+            "options: mesh_max_new_points: must be at most mesh_max_nodes = {} (a refined mesh "
+            "has at most that many nodes), got {}",
+            mesh.max_nodes,
+            mesh.max_new_points));
+      }
+      const double refined_points = static_cast<double>(N) * (1.0 + mesh.max_new_points) + 1.0;
+      CheckMemoryEstimate(
+          16.0 * refined_points,
+          "mesh_max_new_points",
+          fmt::format("refined meshes of up to {:.4g} points ({} intervals, each split in up to "
+                      "1 + {} pieces)",
+                      refined_points,
+                      N,
+                      mesh.max_new_points));
+    }
   }
   return estimate;
 }

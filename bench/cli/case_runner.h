@@ -6,6 +6,7 @@
 #include <string>
 
 #include "bench/cli/case_spec.h"
+#include "bench/cli/output_place.h"
 #include "bench/cli/record.h"
 #include "core/solve_result.h"
 
@@ -32,11 +33,11 @@ CaseEstimate ValidateCase(const CaseSpec& spec);
 /// ...". Nothing for a case without a transcription.
 void CheckTranscriptionFits(const CaseSpec& spec, int nx, int nu);
 
-/// The memory one case's record takes while `ocpbench run` holds it for the summary: 4 kB of
-/// fields, 16 bytes per value of its history (8 values a row, one row per iteration bound by
-/// the options when known, else 1000) and, with keep_trajectory, of its trajectory ((N + 1)
-/// (1 + nx + nu) values) and channel map. Deliberately generous (doubles as JSON text are
-/// about 18 bytes, as a Mat 8).
+/// The memory one case's record takes while `ocpbench run` holds it for the summary (its
+/// SummaryPart, bench/cli/run_outputs.h: trajectories and maps are dropped once the record's
+/// line is written): 2 kB of fields and 64 bytes per history row, one row per iteration up to
+/// the iteration limit the options give (max_iterations, max_iter), 1000 rows when they give
+/// none.
 double EstimateRecordBytes(const CaseSpec& spec, int nx, int nu, int intervals);
 
 /// OCPBench's rough, deliberately generous estimate of the memory one case needs, in bytes.
@@ -57,9 +58,22 @@ double EstimateRecordBytes(const CaseSpec& spec, int nx, int nu, int intervals);
 /// (826 MB), ipopt + hermite-simpson N = 1e5 905 MB (2.04 GB): about 2.3 times generous.
 double EstimateCaseMemoryBytes(const CaseSpec& spec, int nx, int nu, int intervals);
 
+/// The same estimate from its parts: the solver's name, the transcription's points per
+/// interval (1 without one), nx, nu and N (online re-plans, whose transcription options are
+/// their scenario's).
+double EstimateMethodMemoryBytes(
+    const std::string& solver, double points_per_interval, int nx, int nu, int intervals);
+
 /// The memory one case may use: half the physical memory (sysconf), 4 GiB when unknown
 /// (MemoryBudgetBytes, core/memory_budget.h).
 double CaseMemoryBudgetBytes();
+
+/// The files a case reads and writes beside its record, added to `plan` with `where` (the
+/// case's place in its suite, or "" for `solve` and `online`) in their names: its
+/// --initial-guess file (an input) and every solver option that names a file the solve writes
+/// (FilePlan::IsOutputFileOption: Ipopt's output_file; of the re-plans too), an output that the
+/// cases of one run may share (each case's log replaces the one before).
+void AddCaseFiles(const CaseSpec& spec, const std::string& where, FilePlan* plan);
 
 /// Statuses that count as failures for the exit code (limits and "not applicable" do not).
 bool IsFailure(SolveStatus status);

@@ -136,7 +136,8 @@ MethodOptions ResolveMethodOptions(const CaseSpec& spec) {
       throw std::invalid_argument(std::string("algorithm: ") + e.what());
     }
   }
-  if (tinfo != nullptr && tinfo->options.Contains("degree")) {
+  if (tinfo != nullptr && tinfo->options.Contains("degree") &&
+      (spec.degree_given || !out.transcription.Has("degree"))) {
     try {
       SetFromField("degree",
                    "degree",
@@ -160,6 +161,15 @@ CaseSpec ResolveCase(CaseSpec spec) {
   const SolverInfo& sinfo = FindSolver(spec.solver);
   if (!spec.transcription.empty()) FindTranscription(spec.transcription);
   const MethodOptions resolved = ResolveMethodOptions(spec);
+  // The transcription's option "degree" given as an option is the case's degree (one key for
+  // `--option degree=4` and `--degree 4`).
+  if (!spec.degree_given && spec.options.Has("degree") && !sinfo.options.Contains("degree")) {
+    if (const OptionValue* degree = resolved.transcription.Find("degree")) {
+      spec.degree = static_cast<int>(degree->integer());
+      spec.degree_given = true;
+      spec.options.Erase("degree");
+    }
+  }
   // Keep the options as the case gave them (algorithm and degree stay case fields), typed.
   OptionMap options;
   for (const auto& [key, value] : spec.options) {
@@ -307,6 +317,7 @@ CaseSpec ParseCaseSpec(const CaseFields& j, const std::string& where) {
   get_int("repeats", 1, 1000, &repeats);
   spec.intervals = static_cast<int>(n);
   spec.degree = static_cast<int>(degree);
+  spec.degree_given = j.Find("degree") != nullptr;
   spec.repeats = static_cast<int>(repeats);
   std::string s;
   if (j.Find("terminal") != nullptr) {

@@ -25,6 +25,10 @@ struct CaseSpec {
   int intervals = 0;  ///< N; 0: the problem's default grid
   /// Sets the transcription's option "degree" (LGR's) when it has one; ignored otherwise.
   int degree = 3;
+  /// Whether `degree` was given (a suite's "degree", `solve --degree`): without it, an option
+  /// "degree" in `options` sets the degree instead (ResolveCase moves it here, so that both
+  /// spellings make one case key); with it, the two must agree.
+  bool degree_given = false;
   TerminalMode terminal = TerminalMode::kPenalty;
   Integrator integrator = Integrator::kEuler;  ///< the method's own integrator (Hamiltonian)
   /// The common evaluator's integrator on the method's grid. Every record also carries the

@@ -1,6 +1,8 @@
 // `ocpbench channel simulate|predict`.
 #include "bench/cli/app.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -189,7 +191,17 @@ std::string Join(const std::string& dir, const std::string& name) {
 
 // The output places, checked and claimed before anything is simulated: the --json file, and
 // the --out folder with the files written there (unless --no-files).
-OutputFolderLock ClaimOutputs(const CommonArgs& a, const std::vector<std::string>& files) {
+OutputFolderLock ClaimOutputs(const CommonArgs& a,
+                              const std::vector<std::string>& files,
+                              const std::string& measurements_csv = "") {
+  // No output may be the --measurements file or another output (FilePlan).
+  FilePlan plan;
+  if (!measurements_csv.empty()) plan.Input(measurements_csv, "--measurements");
+  if (!a.no_files) {
+    for (const std::string& f : files) plan.Output(Join(a.out, f), "--out");
+  }
+  if (!a.json_path.empty()) plan.Output(a.json_path, "--json");
+  plan.Check();
   if (!a.json_path.empty()) CheckOutputFile(a.json_path, "--json");
   if (a.no_files) return {};
   CheckOutputFolder(a.out, "--out");
@@ -222,6 +234,19 @@ void RunSimulate(const CommonArgs& a) {
             << (a.no_files ? "\n" : ", wrote " + Join(a.out, "true_gain_db.npy") + "\n");
 }
 
+/// The most grid-prediction threads `--threads` takes.
+constexpr int kMaxPredictionThreads = 256;
+
+// kMaxPredictionThreads, or less under a process limit (RLIMIT_NPROC) that would refuse them.
+int MostPredictionThreads() {
+  struct rlimit limit {};
+  if (::getrlimit(RLIMIT_NPROC, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
+      limit.rlim_cur < static_cast<rlim_t>(kMaxPredictionThreads)) {
+    return std::max(1, static_cast<int>(limit.rlim_cur));
+  }
+  return kMaxPredictionThreads;
+}
+
 // The channel options of `predict`, every value checked.
 PaperChannelOptions PredictOptions(const CommonArgs& a, const PredictArgs& p) {
   PaperChannelOptions o = ToOptions(a);
@@ -238,6 +263,19 @@ PaperChannelOptions PredictOptions(const CommonArgs& a, const PredictArgs& p) {
                                 "' (valid: local, exact)");
   }
   o.grid_prediction.neighborhood_radius_in_eta = p.radius_eta;
+  // More threads than a process may start would fail in the middle of the prediction: the
+  // count is refused here, before anything is simulated (more threads than cores never speed
+  // the prediction up, and its result does not depend on the count).
+  const int most = MostPredictionThreads();
+  if (p.threads < 0 || p.threads > most) {
+    throw std::invalid_argument(
+        fmt::format("--threads {}: must be from 0 (all cores) to {} ({})",
+                    p.threads,
+                    most,
+                    most == kMaxPredictionThreads
+                        ? "OCPBench's limit: more threads than cores do not speed it up"
+                        : "the process limit RLIMIT_NPROC of this user"));
+  }
   o.grid_prediction.num_threads = p.threads;
   o.predictor.units.noise_dbm = p.noise_dbm;
   o.predictor.units.power_unit_scale = p.power_unit_scale;
@@ -455,7 +493,8 @@ void RunPredict(const CommonArgs& a, const PredictArgs& p) {
                                               "predicted_variance_db2.npy",
                                               "s_map.npy",
                                               "measurements.npy",
-                                              "predict.json"});
+                                              "predict.json"},
+                                             p.measurements_csv);
   const PaperChannel c = BuildChannel(a.seed, o, p, std::move(from_file));
   nlohmann::json j = PredictJson(a, p, o, c);
   if (p.check_points > 0) j["check"] = CheckAgainstExact(a.seed, p.check_points, o, c);

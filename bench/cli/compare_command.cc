@@ -23,35 +23,20 @@ struct CompareArgs {
   OptionMap thresholds;  ///< as given, resolved by CompareThresholdSchema()
 };
 
-// Two names of one file: the same file where both exist, else the same normalized path.
-bool SamePlace(const std::string& a, const std::string& b) {
-  std::error_code ec;
-  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
-  return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
-}
-
 // The files a side is read from: its records and, for a result folder, its suite.json.
-std::vector<std::string> InputsOf(const CompareSide& side) {
-  std::vector<std::string> inputs = {side.records_path};
+void AddInputs(const CompareSide& side, const std::string& what, FilePlan* plan) {
+  plan->Input(side.records_path, what);
   std::error_code ec;
-  if (fs::is_directory(side.path, ec))
-    inputs.push_back((fs::path(side.path) / "suite.json").string());
-  return inputs;
+  if (fs::is_directory(side.path, ec)) {
+    plan->Input((fs::path(side.path) / "suite.json").string(), what);
+  }
 }
 
-// An output file must be writable where it is (checked before the comparison is computed), and
-// must not be one of the files it is computed from.
-void CheckOutput(const std::string& flag,
-                 const std::string& path,
-                 const std::vector<std::string>& inputs) {
+// An output file must be writable where it is (checked before the comparison is computed).
+void CheckOutput(const std::string& flag, const std::string& path) {
   if (path.empty()) return;
   if (fs::is_directory(path)) {
     throw std::invalid_argument(flag + " '" + path + "': is a folder (expected a file name)");
-  }
-  for (const std::string& input : inputs) {
-    if (SamePlace(path, input)) {
-      throw std::invalid_argument(flag + " '" + path + "': is an input of the comparison");
-    }
   }
   CheckOutputFile(path, flag);
 }
@@ -60,17 +45,20 @@ void RunCompare(const CompareArgs& args) {
   CompareOptions options;
   options.thresholds = ResolveCompareThresholds(args.thresholds);
   options.ignore_options = args.ignore_options;
+  // The paths themselves first: an empty one, a loop of links (FilePlan refuses them).
+  FilePlan().Input(args.base, "BASE");
+  FilePlan().Input(args.next, "NEW");
   const CompareSide base = LoadCompareSide(args.base);
   const CompareSide next = LoadCompareSide(args.next);
-  std::vector<std::string> inputs = InputsOf(base);
-  for (const std::string& input : InputsOf(next)) inputs.push_back(input);
-  CheckOutput("--json", args.json_path, inputs);
-  CheckOutput("--markdown", args.markdown_path, inputs);
-  if (!args.json_path.empty() && !args.markdown_path.empty() &&
-      SamePlace(args.json_path, args.markdown_path)) {
-    throw std::invalid_argument("--markdown '" + args.markdown_path +
-                                "': is also the --json file (one would overwrite the other)");
-  }
+  // No output may be an input of the comparison, nor the other output.
+  FilePlan plan;
+  AddInputs(base, "BASE", &plan);
+  AddInputs(next, "NEW", &plan);
+  if (!args.json_path.empty()) plan.Output(args.json_path, "--json");
+  if (!args.markdown_path.empty()) plan.Output(args.markdown_path, "--markdown");
+  plan.Check();
+  CheckOutput("--json", args.json_path);
+  CheckOutput("--markdown", args.markdown_path);
   const Comparison comparison = Compare(base, next, options);
   const std::string markdown = CompareMarkdown(comparison);
   if (!args.json_path.empty()) {

@@ -20,6 +20,7 @@
 #include "bench/cli/shard_coverage.h"
 #include "bench/cli/shard_manifest.h"
 #include "bench/cli/suite.h"
+#include "core/input_file.h"
 
 namespace ocpb {
 namespace {
@@ -43,6 +44,10 @@ struct Sweep {
 };
 
 Sweep ReadSweep(const std::string& command, const MergeArgs& args) {
+  // A folder given by a loop of links (or an over-long path) is refused as such, before any
+  // other test of it.
+  FilePlan().Input(args.dir, command);
+  if (!args.suite_path.empty()) FilePlan().Input(args.suite_path, "--suite");
   if (!fs::is_directory(args.dir)) {
     throw std::invalid_argument(command + ": no such directory " + args.dir);
   }
@@ -107,7 +112,15 @@ void Merge(const MergeArgs& args) {
   const Sweep sweep = ReadSweep("merge", args);
   // The folder's exclusive lock before anything is written (no shard may still be running
   // there); after the sweep is read, so that a refused merge leaves no lock file behind.
-  const OutputFolderLock lock = ClaimMergeFolder(args.dir);
+  // Every file merge reads (the shards, shards.json, --suite) may not be one it writes.
+  FilePlan plan;
+  if (!args.suite_path.empty()) plan.Input(args.suite_path, "--suite");
+  const std::string manifest = ShardManifestPath(args.dir);
+  if (fs::exists(manifest)) plan.Input(manifest, "the shard manifest");
+  for (const auto& [index, path] : sweep.files) {
+    plan.Input(path, fmt::format("the records of shard {}", index));
+  }
+  const OutputFolderLock lock = ClaimMergeFolder(args.dir, std::move(plan));
   const std::vector<std::string> suite_keys = SuiteKeys(sweep.suite);
   std::unordered_map<std::string, size_t> position;
   for (size_t i = 0; i < suite_keys.size(); ++i) position.emplace(suite_keys[i], i);
@@ -127,7 +140,8 @@ void Merge(const MergeArgs& args) {
       const auto it = position.find(file.records[i].key);
       // The first record of a case is kept; duplicates and strangers are reported below.
       if (it != position.end() && !merged[it->second]) {
-        merged[it->second].emplace(std::move(file.records[i]), std::move(file.lines[i]));
+        merged[it->second].emplace(SummaryPart(std::move(file.records[i])),
+                                   std::move(file.lines[i]));
       }
     }
   }
@@ -143,8 +157,18 @@ void Merge(const MergeArgs& args) {
     lines.push_back(std::move(m->second));
   }
   const std::string records_path = args.dir + "/records.jsonl";
-  if (fs::exists(records_path)) fs::rename(records_path, records_path + ".prev");
-  WriteFileAtomically(records_path, JoinLines(lines));
+  const std::string text = JoinLines(lines);
+  // Every earlier version stays (records.jsonl.prev the latest, records.jsonl.1.prev, .2.prev,
+  // ... the older ones): records a resumed unsharded run appended there are never lost. A merge that
+  // changes nothing keeps no copy.
+  std::error_code ec;
+  const bool unchanged = fs::file_size(records_path, ec) == text.size() && !ec &&
+                         ReadInputFile(records_path, text.size(), "records file") == text;
+  if (fs::exists(records_path) && !unchanged) {
+    std::cerr << "ocpbench: merge: previous records kept as " << KeepPreviousVersion(records_path)
+              << "\n";
+  }
+  WriteFileAtomically(records_path, text);
   WriteRunSummaries(args.dir,
                     args.name.empty() ? sweep.suite.name : args.name,
                     records,

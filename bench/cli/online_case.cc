@@ -9,8 +9,11 @@
 
 #include "bench/cli/case_runner.h"
 #include "bench/cli/json_values.h"
+#include "core/memory_budget.h"
 #include "drivers/online/online_scenario.h"
 #include "problems/registry.h"
+#include "solvers/registry.h"
+#include "transcriptions/registry.h"
 
 namespace ocpb {
 namespace {
@@ -155,20 +158,26 @@ CaseEstimate ValidateOnlineCase(const CaseSpec& spec) {
   planned.transcription = s.replanning.transcription;
   CheckTranscriptionFits(planned, ocp->nx(), ocp->nu());
   CaseEstimate estimate;
-  const double n = s.replanning.intervals + 1.0;
-  // Every cycle's fields and plan {t, x}; the executed and offline {t, x, u}; the measurements
-  // and the two s maps (16 bytes a value, as EstimateRecordBytes counts).
-  const double step = s.problem.tf / s.replanning.intervals;
-  const double cycles = std::ceil(s.replanning.intervals /
-                                  std::max(1.0, std::round(s.replanning.update_period / step)));
-  estimate.record_bytes = 4096.0 + cycles * 2048.0;
-  if (spec.keep_trajectory) {
-    const double side = s.problem.workspace / s.smap_resolution + 1.0;
-    const double measurements =
-        s.replanning.initial_measurements + cycles * s.replanning.measurements_per_update;
-    estimate.record_bytes +=
-        16.0 * (cycles * 3.0 * n + 2.0 * 9.0 * n + 3.0 * measurements + 2.0 * side * side);
-  }
+  // The solves' own memory (every re-plan solves on the same grid), before any channel is
+  // simulated or plan solved.
+  const std::string& transcription = s.replanning.transcription;
+  const double m =
+      transcription.empty()
+          ? 1.0
+          : FindTranscription(transcription).PointsPerInterval(s.replanning.transcription_options);
+  estimate.memory_bytes = EstimateMethodMemoryBytes(
+      s.replanning.solver, m, ocp->nx(), ocp->nu(), s.replanning.intervals);
+  CheckMemoryEstimate(
+      estimate.memory_bytes,
+      "N",
+      fmt::format("{} intervals (nx = {}, nu = {}, {})",
+                  s.replanning.intervals,
+                  ocp->nx(),
+                  ocp->nu(),
+                  s.replanning.solver + (transcription.empty() ? "" : " + " + transcription)));
+  // `run` holds each record's SummaryPart (the cycles, paths and maps are dropped once the
+  // line is written): the fields and the resolved settings.
+  estimate.record_bytes = 8192.0;
   return estimate;
 }
 

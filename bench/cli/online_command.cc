@@ -123,7 +123,13 @@ void AddOnlineCommand(CLI::App& app) {
     s.replan_options = ParseKeyValues(*replan, "--replan-option");
     s.seed = ParseSeed(*seed, "--seed");
     // Every input and the output place are checked before anything is simulated or solved.
-    ValidateCase(ResolveCase(s));
+    const CaseSpec resolved = ResolveCase(s);
+    ValidateCase(resolved);
+    // No output (--json, a solver's own output file) may be an input or another output.
+    FilePlan plan;
+    AddCaseFiles(resolved, "", &plan);
+    if (!json_path->empty()) plan.Output(*json_path, "--json");
+    plan.Check();
     if (!json_path->empty()) CheckOutputFile(*json_path, "--json");
     const Record record = RunCase(s);
     PrintOnlineReport(record);

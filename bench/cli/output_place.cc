@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 [[noreturn]] void Refuse(const std::string& flag, const std::string& path, const std::string& why) {
-  throw std::invalid_argument(flag + " " + OneLine(path) + ": " + why);
+  throw std::invalid_argument(flag + " " + (path.empty() ? "''" : OneLine(path)) + ": " + why);
 }
 
 // The nearest folder at or above `dir` that exists ("." for a relative path with none).
@@ -86,7 +86,104 @@ long TryLock(int fd, short type, off_t byte) {
   return -1;
 }
 
+// A path the system cannot follow for a reason in the path itself: refused as input (exit 2).
+[[noreturn]] void RefusePath(const std::string& what, const std::string& path, int error) {
+  if (error == ELOOP) {
+    Refuse(what, path, "a loop of symbolic links (too many levels of links to follow)");
+  }
+  if (error == ENAMETOOLONG) {
+    Refuse(what, path, "the path or one of its names is longer than the system allows");
+  }
+  Refuse(what, path, std::strerror(error));
+}
+
+FilePlan::Place PlaceOf(const std::string& path, const std::string& what, bool output) {
+  FilePlan::Place place;
+  place.path = path;
+  place.what = what;
+  place.output = output;
+  if (path.empty()) Refuse(what, path, "an empty path");
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    place.exists = true;
+    place.write_through = S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode);
+    place.device = static_cast<unsigned long long>(st.st_dev);
+    place.inode = static_cast<unsigned long long>(st.st_ino);
+    return place;
+  }
+  const int error = errno;
+  if (error == ELOOP || error == ENAMETOOLONG) RefusePath(what, path, error);
+  // Not there (yet): the absolute path with every link of the part that exists resolved, so
+  // that "d/../x", "./x" and "link-to-folder/x" are one place.
+  std::error_code ec;
+  fs::path absolute = fs::absolute(path, ec);
+  if (ec) absolute = fs::path(path);
+  fs::path resolved = fs::weakly_canonical(absolute, ec);
+  if (ec) {
+    if (ec.value() == ELOOP || ec.value() == ENAMETOOLONG) RefusePath(what, path, ec.value());
+    resolved = absolute.lexically_normal();
+  }
+  place.resolved = resolved.string();
+  return place;
+}
+
+bool SameFile(const FilePlan::Place& a, const FilePlan::Place& b) {
+  if (a.exists != b.exists) return false;
+  if (a.exists) return a.device == b.device && a.inode == b.inode;
+  return a.resolved == b.resolved;
+}
+
 }  // namespace
+
+void FilePlan::Input(const std::string& path, const std::string& what) {
+  places_.push_back(PlaceOf(path, what, false));
+}
+
+void FilePlan::Output(const std::string& path,
+                      const std::string& what,
+                      const std::string& shared_by) {
+  Place place = PlaceOf(path, what, true);
+  place.shared_by = shared_by;
+  places_.push_back(std::move(place));
+}
+
+void FilePlan::Check() const {
+  for (size_t i = 0; i < places_.size(); ++i) {
+    const Place& out = places_[i];
+    if (!out.output || out.write_through) continue;
+    for (size_t j = 0; j < places_.size(); ++j) {
+      const Place& other = places_[j];
+      if (i == j || !SameFile(out, other)) continue;
+      // Report each pair once, from the output added last when both are outputs.
+      if (other.output && j > i) continue;
+      if (other.output && !out.shared_by.empty() && out.shared_by == other.shared_by) continue;
+      if (other.output && out.path == other.path && out.what == other.what) continue;
+      Refuse(out.what,
+             out.path,
+             "is also " + other.what + " " + OneLine(other.path) +
+                 (other.output ? " (two outputs in one file: one would replace the other)"
+                               : " (an output never replaces an input)"));
+    }
+  }
+}
+
+bool FilePlan::IsOutputFileOption(const std::string& option) { return option == "output_file"; }
+
+std::string KeepPreviousVersion(const std::string& path) {
+  const std::string prev = path + ".prev";
+  std::error_code ec;
+  if (fs::symlink_status(prev, ec).type() != fs::file_type::not_found) {
+    for (int k = 1;; ++k) {
+      // PATH.K.prev: still "*.prev" (the pattern .gitignore and cleanup scripts know).
+      const std::string older = path + "." + std::to_string(k) + ".prev";
+      if (fs::symlink_status(older, ec).type() != fs::file_type::not_found) continue;
+      fs::rename(prev, older);
+      break;
+    }
+  }
+  fs::rename(path, prev);
+  return prev;
+}
 
 void CheckOutputFile(const std::string& path, const std::string& flag) {
   if (path.empty()) Refuse(flag, path, "an empty path");
@@ -171,37 +268,73 @@ const std::vector<std::string>& SummaryFileNames() {
   return names;
 }
 
-OutputFolderLock ClaimRunFolder(const std::string& dir,
-                                const std::string& records_path,
-                                int shard,
-                                int shards) {
-  CheckOutputFolder(dir, "--out");
+namespace {
+
+// Every file of `dir` (when it exists) that a run or a merge of OCPBench writes: the records
+// files of any shard and their previous versions, shards.json, the summaries, the lock.
+std::vector<std::string> FolderFiles(const std::string& dir) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    // records.jsonl, records.shard-I-of-N.jsonl, their earlier versions (.prev, .K.prev).
+    const bool records = name.rfind("records.", 0) == 0 &&
+                         (name.size() > 6 && (name.compare(name.size() - 6, 6, ".jsonl") == 0 ||
+                                              name.compare(name.size() - 5, 5, ".prev") == 0));
+    bool ours = records || name == "shards.json" || name == ".ocpbench.lock";
+    for (const std::string& summary : SummaryFileNames()) ours = ours || name == summary;
+    if (ours) out.push_back(it->path().string());
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> PlanRunFolder(const std::string& dir,
+                                       const std::string& records_path,
+                                       int shards,
+                                       FilePlan* plan) {
+  std::vector<std::string> outputs = {records_path, records_path + ".prev"};
+  if (shards > 1) {
+    outputs.push_back((fs::path(dir) / "shards.json").string());
+  } else {
+    for (const std::string& name : SummaryFileNames()) {
+      outputs.push_back((fs::path(dir) / name).string());
+    }
+  }
+  for (const std::string& path : outputs) plan->Output(path, "--out", "the output folder");
+  for (const std::string& path : FolderFiles(dir)) {
+    plan->Output(path, "--out", "the output folder");
+  }
+  plan->Check();
+  return outputs;
+}
+
+OutputFolderLock ClaimRunFolder(
+    const std::string& dir, const std::string& records_path, int shard, int shards, FilePlan plan) {
   const bool sharded = shards > 1;
+  const std::vector<std::string> outputs = PlanRunFolder(dir, records_path, shards, &plan);
+  CheckOutputFolder(dir, "--out");
   OutputFolderLock lock = OutputFolderLock::Acquire(
       dir, "--out", sharded ? FolderAccess::kShard : FolderAccess::kExclusive, shard, shards);
   CheckOutputFile(records_path, "--out");
   if (ClassifyOutput(records_path).kind == OutputTarget::Kind::kWriteThrough) {
     Refuse("--out", records_path, "is not a regular file (--resume reads a records file back)");
   }
-  CheckOutputFile(records_path + ".prev", "--out");
-  if (sharded) {
-    CheckOutputFile((fs::path(dir) / "shards.json").string(), "--out");
-  } else {
-    for (const std::string& name : SummaryFileNames()) {
-      CheckOutputFile((fs::path(dir) / name).string(), "--out");
-    }
-  }
+  for (const std::string& path : outputs) CheckOutputFile(path, "--out");
   return lock;
 }
 
-OutputFolderLock ClaimMergeFolder(const std::string& dir) {
-  OutputFolderLock lock = OutputFolderLock::Acquire(dir, "merge", FolderAccess::kExclusive);
+OutputFolderLock ClaimMergeFolder(const std::string& dir, FilePlan plan) {
   const std::string records = (fs::path(dir) / "records.jsonl").string();
-  CheckOutputFile(records, "merge");
-  CheckOutputFile(records + ".prev", "merge");
+  std::vector<std::string> outputs = {records, records + ".prev"};
   for (const std::string& name : SummaryFileNames()) {
-    CheckOutputFile((fs::path(dir) / name).string(), "merge");
+    outputs.push_back((fs::path(dir) / name).string());
   }
+  for (const std::string& path : outputs) plan.Output(path, "merge", "the output folder");
+  plan.Check();
+  OutputFolderLock lock = OutputFolderLock::Acquire(dir, "merge", FolderAccess::kExclusive);
+  for (const std::string& path : outputs) CheckOutputFile(path, "merge");
   return lock;
 }
 

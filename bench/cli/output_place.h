@@ -21,6 +21,51 @@ void CheckOutputFile(const std::string& path, const std::string& flag);
 /// rule" unless it is a folder that accepts new files.
 void CheckOutputFolder(const std::string& dir, const std::string& flag);
 
+/// The files one command reads and writes, checked against each other before any work: an
+/// output never names an input or another output (the same file by any spelling: `..`,
+/// symbolic links and hard links are seen through, comparing existing files by device and
+/// inode and new ones by their path with every link of the part that exists resolved). Each
+/// path comes with what names it in messages: "--json", "the suite file", "ipopt option
+/// output_file of groups[0].methods[1]". A symbolic link loop or an over-long path is refused
+/// where it is added (std::invalid_argument, exit 2).
+class FilePlan {
+ public:
+  /// A file the command reads.
+  void Input(const std::string& path, const std::string& what);
+  /// A file the command writes (or replaces, or renames). Outputs with the same non-empty
+  /// `shared_by` tag may name one file (the solver logs of a suite's cases: each case's log
+  /// replaces the one before); a character device or a FIFO (/dev/null) may be named by any
+  /// number of outputs.
+  void Output(const std::string& path, const std::string& what, const std::string& shared_by = "");
+  /// Throws std::invalid_argument "WHAT PATH: is also WHAT2 PATH2 (RULE)" for the first output
+  /// that names an input or another output.
+  void Check() const;
+
+  /// A solver or transcription option that names a file the solve writes (Ipopt's
+  /// `output_file`), by the owner's option name: the one list every command consults.
+  static bool IsOutputFileOption(const std::string& option);
+
+  struct Place {
+    std::string path;  ///< as given
+    std::string what;
+    std::string shared_by;
+    bool output = false;
+    bool exists = false;
+    bool write_through = false;  ///< a character device or a FIFO
+    unsigned long long device = 0, inode = 0;
+    std::string resolved;  ///< when it does not exist: the absolute path, links resolved
+  };
+
+ private:
+  std::vector<Place> places_;
+};
+
+/// Renames `path` (an existing file) out of the way so that nothing is lost: to PATH.prev, the
+/// one there before (if any) first to PATH.K.prev with K the first free number from 1, so that
+/// PATH.prev is always the latest earlier version and PATH.1.prev, PATH.2.prev, ... the older
+/// ones, oldest first (every one matching "*.prev"). Returns the name the file has now.
+std::string KeepPreviousVersion(const std::string& path);
+
 /// Who may write to an output folder at the same time as the lock's holder.
 enum class FolderAccess {
   kExclusive,  ///< nobody: a run without --shard, merge, channel maps (the folder's own files)
@@ -60,19 +105,28 @@ class OutputFolderLock {
 /// (WriteRunSummaries in bench/cli/run_outputs.cc; a file added there belongs here too).
 const std::vector<std::string>& SummaryFileNames();
 
-/// What `ocpbench run` does before solving: CheckOutputFolder(dir), the folder's lock (kShard
-/// for a shard's records file, kExclusive otherwise), and CheckOutputFile for the records file,
-/// its ".prev" (--overwrite keeps the old one there) and, without shards, each summary file
-/// (with shards: the folder's shards.json, bench/cli/shard_manifest.h).
-/// `shard` and `shards` as the records file names them (0 <= shard <= shards).
-OutputFolderLock ClaimRunFolder(const std::string& dir,
-                                const std::string& records_path,
-                                int shard,
-                                int shards);
+/// What `ocpbench run` does before solving: `plan` (holding the run's inputs: the suite file,
+/// the cases' files, AddCaseFiles) gets the run's outputs, the records file, its ".prev" and,
+/// without shards, each summary file (with shards: the folder's shards.json), and every file
+/// of the folder that another run or merge wrote there (records*, shards.json: no case's
+/// solver log may name one), and is checked (FilePlan::Check); then CheckOutputFolder(dir),
+/// the folder's lock (kShard for a shard's records file, kExclusive otherwise), and
+/// CheckOutputFile for each output. `shard` and `shards` as the records file names them
+/// (0 <= shard <= shards).
+/// The first part of ClaimRunFolder, all `run --check` does: the outputs added to `plan`, and
+/// the plan checked. Returns the outputs.
+std::vector<std::string> PlanRunFolder(const std::string& dir,
+                                       const std::string& records_path,
+                                       int shards,
+                                       FilePlan* plan);
 
-/// What `ocpbench merge` does before reading the shards: the folder's exclusive lock (refused
-/// while a shard still runs there) and CheckOutputFile for records.jsonl, its ".prev" and each
-/// summary file.
-OutputFolderLock ClaimMergeFolder(const std::string& dir);
+OutputFolderLock ClaimRunFolder(
+    const std::string& dir, const std::string& records_path, int shard, int shards, FilePlan plan);
+
+/// What `ocpbench merge` does before reading the shards: `plan` (holding the merge's inputs:
+/// the shards' records files, shards.json, --suite) gets records.jsonl, its ".prev" and each
+/// summary file as outputs and is checked; then the folder's exclusive lock (refused while a
+/// shard still runs there) and CheckOutputFile for each output.
+OutputFolderLock ClaimMergeFolder(const std::string& dir, FilePlan plan);
 
 }  // namespace ocpb

@@ -20,6 +20,7 @@
 #include "bench/cli/shard_manifest.h"
 #include "bench/cli/suite.h"
 #include "bench/cli/worker_pool.h"
+#include "core/input_file.h"
 
 namespace ocpb {
 namespace {
@@ -33,7 +34,8 @@ struct RunArgs {
   std::string suite_path;
   std::string out;
   std::string shard;
-  int jobs = 1;
+  bool shard_given = false;  ///< --shard was given (an empty value is refused, not ignored)
+  std::string jobs = "1";
   bool resume = false;
   bool overwrite = false;
   bool check = false;
@@ -75,17 +77,43 @@ void PutInSuiteOrder(const std::string& path,
   WriteFileAtomically(path, JoinLines(lines));
 }
 
+// `--jobs N`: decimal digits only, 1 to kMaxJobs.
+int ParseJobs(const std::string& text) {
+  const std::string rule =
+      fmt::format("must be an integer from 1 to {} (worker processes)", kMaxJobs);
+  if (text.empty() || text.size() > 9 ||
+      text.find_first_not_of("0123456789") != std::string::npos) {
+    throw std::invalid_argument("--jobs '" + OneLine(text) + "': " + rule);
+  }
+  const int jobs = std::stoi(text);
+  if (jobs < 1 || jobs > kMaxJobs)
+    throw std::invalid_argument(fmt::format("--jobs {}: {}", jobs, rule));
+  return jobs;
+}
+
 void Run(const RunArgs& args) {
   // ---- every check before anything is written ----------------------------------------------
   const Suite suite = LoadSuite(args.suite_path);
   const std::string dir = args.out.empty() ? "results/" + suite.name : args.out;
-  const std::optional<Shard> shard =
-      args.shard.empty() ? std::nullopt : std::optional<Shard>(ParseShard(args.shard));
+  const std::optional<Shard> shard = args.shard_given || !args.shard.empty()
+                                         ? std::optional<Shard>(ParseShard(args.shard))
+                                         : std::nullopt;
   if (args.resume && args.overwrite)
     throw std::invalid_argument("--resume and --overwrite exclude each other");
-  if (args.jobs < 1 || args.jobs > kMaxJobs) {
-    throw std::invalid_argument(fmt::format(
-        "--jobs {}: must be an integer from 1 to {} (worker processes)", args.jobs, kMaxJobs));
+  const int jobs_wanted = ParseJobs(args.jobs);
+  const std::string records_path =
+      dir + "/" + (shard ? shard->RecordsFileName() : std::string("records.jsonl"));
+  // Every file the run reads or writes, checked against each other (FilePlan) before anything
+  // else is looked at in the folder.
+  FilePlan plan;
+  plan.Input(args.suite_path, "the suite file");
+  for (size_t i = 0; i < suite.cases.size(); ++i) {
+    if (!shard || shard->Owns(i))
+      AddCaseFiles(suite.cases[i], fmt::format("case {}", i + 1), &plan);
+  }
+  {
+    FilePlan checked = plan;
+    PlanRunFolder(dir, records_path, shard ? shard->count : 1, &checked);
   }
   if (shard) CheckShardManifest(dir, suite, shard->count);
   if (args.check) {
@@ -97,11 +125,9 @@ void Run(const RunArgs& args) {
               : "");
     return;
   }
-  const std::string records_path =
-      dir + "/" + (shard ? shard->RecordsFileName() : std::string("records.jsonl"));
   // Before any work: the folder and its files are usable, and this run is their only writer.
-  const OutputFolderLock lock =
-      ClaimRunFolder(dir, records_path, shard ? shard->index : 0, shard ? shard->count : 1);
+  const OutputFolderLock lock = ClaimRunFolder(
+      dir, records_path, shard ? shard->index : 0, shard ? shard->count : 1, std::move(plan));
 
   std::set<std::string> done;
   std::vector<Record> records;
@@ -135,8 +161,8 @@ void Run(const RunArgs& args) {
 
   // ---- writes ------------------------------------------------------------------------------
   if (has_records && args.overwrite) {
-    fs::rename(records_path, records_path + ".prev");
-    std::cerr << "ocpbench: previous records kept as " << records_path << ".prev\n";
+    // Each earlier version stays (.prev the latest, .1.prev, .2.prev, ... the older ones).
+    std::cerr << "ocpbench: previous records kept as " << KeepPreviousVersion(records_path) << "\n";
   }
   if (previous.dropped_partial) {
     std::cerr << "ocpbench: dropped a partial last record in " << records_path
@@ -150,7 +176,7 @@ void Run(const RunArgs& args) {
   if (previous.dropped_partial || previous.unterminated || duplicates > 0) {
     WriteFileAtomically(records_path, JoinLines(previous.lines));
   }
-  records = std::move(previous.records);
+  for (Record& r : previous.records) records.push_back(SummaryPart(std::move(r)));
   for (const Record& r : records) done.insert(r.key);
   if (shard) WriteShardManifestIfAbsent(dir, suite, args.suite_path, shard->count);
 
@@ -167,7 +193,7 @@ void Run(const RunArgs& args) {
                              total_in_shard);
   }
 
-  const int jobs = std::min<int>(args.jobs, std::max<size_t>(todo.size(), 1));
+  const int jobs = std::min<int>(jobs_wanted, std::max<size_t>(todo.size(), 1));
   RunProgress progress(todo.size(), jobs, shard ? "shard " + shard->Text() + ": " : "");
   int failed = 0;
   // Every finished case, whichever process ran it, is appended here (this process is the file's
@@ -175,7 +201,7 @@ void Run(const RunArgs& args) {
   auto record_done = [&](size_t task, Record record, const std::string& line, size_t running) {
     if (IsFailure(record.status)) ++failed;
     AppendLineDurably(records_path, line);
-    records.push_back(std::move(record));
+    records.push_back(SummaryPart(std::move(record)));
     progress.CaseDone(running, MethodLabel(*todo[task]));
   };
   if (jobs == 1) {
@@ -234,10 +260,11 @@ void AddRunCommand(CLI::App& app) {
   run->add_flag("--resume", args->resume, "skip cases already in the records file");
   run->add_flag(
       "--overwrite", args->overwrite, "start over; the old records file is kept as .prev");
-  run->add_option("--shard",
-                  args->shard,
-                  "run only shard i of n (1 <= i <= n): the suite's cases i, i+n, i+2n, ... "
-                  "into records.shard-i-of-n.jsonl; join them with `ocpbench merge`");
+  CLI::Option* shard_option =
+      run->add_option("--shard",
+                      args->shard,
+                      "run only shard i of n (1 <= i <= n): the suite's cases i, i+n, i+2n, ... "
+                      "into records.shard-i-of-n.jsonl; join them with `ocpbench merge`");
   run->add_option("--jobs",
                   args->jobs,
                   "worker processes running cases at once (default 1); each case's CPU time "
@@ -246,7 +273,10 @@ void AddRunCommand(CLI::App& app) {
                 args->check,
                 "check the suite (every case) and the output folder's shard rules; run and "
                 "write nothing");
-  run->callback([args]() { Run(*args); });
+  run->callback([args, shard_option]() {
+    args->shard_given = shard_option->count() > 0;
+    Run(*args);
+  });
 }
 
 }  // namespace ocpb

@@ -7,6 +7,19 @@
 
 namespace ocpb {
 
+Record SummaryPart(Record record) {
+  record.trajectory.reset();
+  record.costates.reset();
+  record.s_map = nullptr;
+  if (record.online) {
+    record.online->cycles = nlohmann::json::array();
+    record.online->executed = nullptr;
+    record.online->offline = nullptr;
+    record.online->measurements = nullptr;
+  }
+  return record;
+}
+
 void WriteRunSummaries(const std::string& dir,
                        const std::string& suite_name,
                        const std::vector<Record>& records,

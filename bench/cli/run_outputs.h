@@ -10,6 +10,11 @@
 
 namespace ocpb {
 
+/// `record` without the parts the tables never read (trajectories, costates, the channel map,
+/// the online cycles, paths and measurements): what `run` and `merge` hold of each record
+/// once its line is written (EstimateRecordBytes counts this part).
+Record SummaryPart(Record record);
+
 /// Writes the tables of `records` into `dir`, each atomically. `expected_cases`, when > 0, is
 /// the suite's case count: a summary of fewer records says it covers part of the suite.
 void WriteRunSummaries(const std::string& dir,

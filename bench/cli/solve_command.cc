@@ -112,7 +112,9 @@ void AddSolveCommand(CLI::App& app) {
   cmd->add_option("--algorithm", args->spec.algorithm, "NLopt algorithm (LD_SLSQP, LD_MMA, ...)");
   CLI::Option* n_option =
       cmd->add_option("--N", args->spec.intervals, "grid intervals (default: the problem's)");
-  cmd->add_option("--degree", args->spec.degree, "LGR collocation degree")->capture_default_str();
+  CLI::Option* degree_option =
+      cmd->add_option("--degree", args->spec.degree, "LGR collocation degree")
+          ->capture_default_str();
   cmd->add_option("--terminal", args->terminal, "terminal constraints: penalty | hard")
       ->capture_default_str();
   cmd->add_option("--integrator", args->integrator, "Hamiltonian descent integrator: euler | rk4")
@@ -139,8 +141,9 @@ void AddSolveCommand(CLI::App& app) {
                   args->spec.continuation,
                   "penalty: solve the penalty form first and start the hard form from its "
                   "solution (needs --terminal hard)");
-  cmd->callback([args, n_option]() {
+  cmd->callback([args, n_option, degree_option]() {
     CaseSpec spec = args->spec;
+    spec.degree_given = degree_option->count() > 0;
     if (n_option->count() > 0 && spec.intervals < 1) {
       throw std::invalid_argument("N: must be >= 1 (or omitted for the problem's default)");
     }
@@ -156,7 +159,13 @@ void AddSolveCommand(CLI::App& app) {
     spec.options = ParseKeyValues(args->options, "--option");
     if (spec.continuation == "none") spec.continuation.clear();
     // Every input and the output place are checked before anything is solved.
-    ValidateCase(ResolveCase(spec));
+    const CaseSpec resolved = ResolveCase(spec);
+    ValidateCase(resolved);
+    // No output (--json, a solver's own output file) may be an input or another output.
+    FilePlan plan;
+    AddCaseFiles(resolved, "", &plan);
+    if (!args->json_path.empty()) plan.Output(args->json_path, "--json");
+    plan.Check();
     if (!args->json_path.empty()) CheckOutputFile(args->json_path, "--json");
     const Record record = RunCase(spec);
     PrintReport(record);

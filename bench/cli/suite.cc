@@ -161,7 +161,7 @@ Suite ParseSuite(const json& j, const std::string& source, const JsonLines* line
     CheckMemoryEstimate(record_bytes,
                         "groups",
                         std::to_string(suite.cases.size()) +
-                            " records held for the summary (their trajectories and maps)");
+                            " records held for the summary (their fields and iteration histories)");
   } catch (const std::invalid_argument& e) {
     errors.Fail(groups, e.what());
   }

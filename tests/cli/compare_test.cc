@@ -589,14 +589,17 @@ TEST_F(CompareRuns, InvalidInputIsOneLineAndExitTwoAndWritesNothing) {
       {{"base", "again", "--json", "base"}, "--json 'base': is a folder (expected a file name)"},
       // A side's suite.json is an input too (compare reads the suite's name from it).
       {{"base", "again", "--json", "base/suite.json"},
-       "--json 'base/suite.json': is an input of the comparison"},
+       "--json base/suite.json: is also BASE base/suite.json (an output never replaces an "
+       "input)"},
       {{"base", "again", "--json", "./again/suite.json"},
-       "--json './again/suite.json': is an input of the comparison"},
+       "--json ./again/suite.json: is also NEW again/suite.json (an output never replaces an "
+       "input)"},
       // A place that cannot take the file is found before the comparison, not after it (exit 3).
       {{"base", "again", "--json", "base/records.jsonl/x.json"},
        "--json base/records.jsonl/x.json: base/records.jsonl is a file, not a folder"},
       {{"base", "again", "--json", "never.md"},
-       "--markdown 'never.md': is also the --json file (one would overwrite the other)"},
+       "--markdown never.md: is also --json never.md (two outputs in one file: one would "
+       "replace the other)"},
   };
   for (const auto& c : kCases) {
     std::vector<std::string> args = c.args;
