@@ -42,6 +42,12 @@ Shard ParseShard(const std::string& text) {
     throw std::invalid_argument("--shard '" + text +
                                 "': expected i/n with 1 <= i <= n (shard i of n, numbered from 1)");
   }
+  if (*n > kMaxShards) {
+    throw std::invalid_argument(fmt::format(
+        "--shard '{}': at most {} shards (n); a suite split further has only empty shards",
+        text,
+        kMaxShards));
+  }
   if (*i == 0) {
     throw std::invalid_argument(fmt::format(
         "--shard '{0}': shards are numbered from 1, 1 <= i <= n (as Slurm's --array=1-{1} and "
@@ -73,6 +79,13 @@ std::optional<Shard> ShardOfRecordsFileName(const std::string& file_name) {
   const std::optional<int> i = ParseCount(middle.substr(0, of));
   const std::optional<int> n = ParseCount(middle.substr(of + 4));
   if (!i || !n) return std::nullopt;
+  if (*n > kMaxShards) {
+    throw std::invalid_argument(fmt::format(
+        "{}: a sweep of {} shards; OCPBench writes at most {} (remove or rename the file)",
+        file_name,
+        *n,
+        kMaxShards));
+  }
   if (*n < 1 || *i < 1 || *i > *n) {
     throw std::invalid_argument(
         fmt::format("{}: not a shard of the 1-based numbering (1 <= i <= n); a folder written by "

@@ -9,6 +9,11 @@
 
 namespace ocpb {
 
+/// The most shards a suite is split into (`--shard i/n`, shards.json, records file names): more
+/// would only make empty shards (a suite holds at most kMaxSuiteCases cases), and status and
+/// merge keep a line per shard.
+inline constexpr int kMaxShards = 100000;
+
 struct Shard {
   int index = 1;  ///< 1 <= index <= count
   int count = 1;
@@ -26,8 +31,8 @@ struct Shard {
 };
 
 /// Parses `--shard i/n`. Throws std::invalid_argument naming the flag and the rule: a
-/// malformed value, n < 1, and i outside 1..n; "0/n" is refused with a hint that shards are
-/// numbered from 1 (the 0-based numbering of earlier versions).
+/// malformed value, n < 1 or above kMaxShards, and i outside 1..n; "0/n" is refused with a hint
+/// that shards are numbered from 1 (the 0-based numbering of earlier versions).
 Shard ParseShard(const std::string& text);
 
 /// The shard of a records file name "records.shard-I-of-N.jsonl"; nullopt for any other name.

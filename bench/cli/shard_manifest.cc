@@ -7,6 +7,7 @@
 
 #include "bench/cli/io.h"
 #include "bench/cli/json_input.h"
+#include "bench/cli/shard.h"
 
 namespace ocpb {
 
@@ -28,8 +29,10 @@ std::optional<ShardManifest> ReadShardManifest(const std::string& dir) {
   };
   ShardManifest m;
   const json& shards = field("shards", &json::is_number_integer);
-  if (shards.get<long long>() < 1 || shards.get<long long>() > 1000000000) {
-    throw std::invalid_argument(path + ": shards: must be an integer >= 1");
+  if (!shards.is_number_unsigned() || shards.get<unsigned long long>() < 1 ||
+      shards.get<unsigned long long>() > static_cast<unsigned long long>(kMaxShards)) {
+    throw std::invalid_argument(
+        fmt::format("{}: shards: must be an integer from 1 to {}", path, kMaxShards));
   }
   m.shards = shards.get<int>();
   m.cases = field("cases", &json::is_number_unsigned).get<size_t>();
