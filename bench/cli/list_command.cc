@@ -7,6 +7,7 @@
 
 #include "bench/cli/app.h"
 #include "bench/cli/compare.h"
+#include "core/input_file.h"
 #include "core/parameters.h"
 #include "drivers/online/online_scenario.h"
 #include "problems/registry.h"
@@ -81,6 +82,10 @@ void AddListCommand(CLI::App& app) {
       ->check(CLI::IsMember({"problem", "solver", "transcription", "online", "compare"}));
   describe->add_option("name", *name, "its registered name (not for online, compare)");
   describe->callback([kind, name]() {
+    if ((*kind == "online" || *kind == "compare") && !name->empty()) {
+      throw std::invalid_argument("describe " + *kind + ": takes no name (got '" + OneLine(*name) +
+                                  "'): `ocpbench describe " + *kind + "` lists its settings");
+    }
     if (*kind == "online") {
       std::cout << "online scenario settings (suite \"online\"; ocpbench online flags):\n"
                 << OnlineScenarioSchema().Describe();

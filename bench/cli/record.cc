@@ -154,6 +154,10 @@ std::optional<SolveStatus> ParseSolveStatus(const std::string& name) {
   return std::nullopt;
 }
 
+constexpr const char* kStatusRule =
+    "one of converged, acceptable, max_iterations, max_time, step_too_small, "
+    "roundoff_limited, infeasible, numerical_failure, invalid_input, not_applicable, error";
+
 json MeshJson(const RecordMesh& m) {
   json rows = json::array();
   for (const MeshIterationRecord& row : m.history) {
@@ -465,6 +469,9 @@ Record Record::Read(const json& j, json* movable) {
   r.Integer("repeats", &rec.repeats);
 
   r.Text("status", &rec.status);
+  // The schema's list (results/record.schema.json, $defs.status), not any text: compare and
+  // the summaries count statuses by name.
+  if (r.Has("status") && !ParseSolveStatus(rec.status)) r.Fail("status", kStatusRule);
   r.Text("solver_status", &rec.solver_status);
   r.Text("message", &rec.message);
   r.Number("objective", &rec.objective);
@@ -517,6 +524,7 @@ Record Record::Read(const json& j, json* movable) {
     RecordContinuation out;
     c.Text("from", &out.from);
     c.Text("status", &out.status);
+    if (c.Has("status") && !ParseSolveStatus(out.status)) c.Fail("status", kStatusRule);
     c.Text("solver_status", &out.solver_status);
     c.Text("message", &out.message);
     c.Integer("iterations", &out.iterations);
