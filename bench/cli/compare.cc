@@ -417,6 +417,10 @@ CompareSide LoadCompareSide(const std::string& path) {
     side.records_path = path;
   }
   RecordFile file = ReadRecords(side.records_path);
+  return CompareSideOfRecords(std::move(side), std::move(file));
+}
+
+CompareSide CompareSideOfRecords(CompareSide side, RecordFile file) {
   side.dropped_partial = file.dropped_partial;
   side.records = std::move(file.records);
   // Errors name the record's line in the file, as the records reader does ("FILE:LINE: ...").

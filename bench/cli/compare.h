@@ -12,6 +12,7 @@
 
 #include "bench/cli/mann_whitney.h"
 #include "bench/cli/record.h"
+#include "bench/cli/records_file.h"
 #include "core/option_schema.h"
 #include "core/option_value.h"
 
@@ -62,6 +63,9 @@ struct CompareSide {
 /// field where a record is damaged): no such file or folder, a folder without records.jsonl, no
 /// records, a record without a key, a case recorded twice, a damaged suite.json.
 CompareSide LoadCompareSide(const std::string& path);
+/// The second half of LoadCompareSide: `side` (its path, records_path and suite set) with the
+/// records of `file`, checked the same way (the fuzzer, tests).
+CompareSide CompareSideOfRecords(CompareSide side, RecordFile file);
 
 /// What is compared, and by which rules.
 struct CompareOptions {

@@ -8,7 +8,7 @@
 # fuzzers, added from the top level) are sibling scopes, and the guard below skips the rest of
 # this file the second time, so a variable set after it would be empty in the second scope.
 set(OCPB_FUZZ_DIR ${PROJECT_SOURCE_DIR}/tests/fuzz)
-set(OCPB_FUZZ_TARGETS measurement suite records initial_guess)
+set(OCPB_FUZZ_TARGETS measurement suite records initial_guess compare)
 include_guard(GLOBAL)
 foreach(target IN LISTS OCPB_FUZZ_TARGETS)
   add_library(${target}_fuzz_entry OBJECT ${OCPB_FUZZ_DIR}/${target}_fuzzer.cc)
