@@ -408,16 +408,24 @@ CaseEstimate ValidateCase(const CaseSpec& spec) {
         spec.solver + (spec.transcription.empty() ? "" : " + " + spec.transcription),
         Bytes(budget)));
   }
+  // A solver that keeps a history row per iteration may reserve them all before its first
+  // iteration (the Hamiltonian descent does): its iteration limit is a size too.
+  const MethodOptions method = ResolveMethodOptions(spec);
+  const OptionValue* iterations = method.solver.Find("max_iterations");
+  if (iterations != nullptr && iterations->kind() == OptionValue::Kind::kInteger) {
+    const double rows = static_cast<double>(iterations->integer()) + 1.0;
+    CheckMemoryEstimate(64.0 * rows,
+                        "options: max_iterations",
+                        fmt::format("{:.0f} history rows (one per iteration)", rows));
+  }
   if (!spec.transcription.empty()) {
     // h-refinement builds each refined mesh whole (each interval split in up to
     // 1 + mesh_max_new_points pieces) before comparing it with mesh_max_nodes: that mesh is
     // sized here, before anything is solved.
-    const MeshRefinementOptions mesh = FindTranscription(spec.transcription)
-                                           .Configure(ResolveMethodOptions(spec).transcription)
-                                           .mesh;
-    const OptionValue* new_points =
-        ResolveMethodOptions(spec).transcription.Find("mesh_max_new_points");
-    if (mesh.enabled() && new_points != nullptr) {
+    const MeshRefinementOptions mesh =
+        FindTranscription(spec.transcription).Configure(method.transcription).mesh;
+    const bool new_points = method.transcription.Has("mesh_max_new_points");
+    if (mesh.enabled() && new_points) {
       if (mesh.max_new_points > mesh.max_nodes) {
         throw std::invalid_argument(fmt::format(
             "options: mesh_max_new_points: must be at most mesh_max_nodes = {} (a refined mesh "

@@ -111,8 +111,10 @@ FilePlan::Place PlaceOf(const std::string& path, const std::string& what, bool o
     place.inode = static_cast<unsigned long long>(st.st_ino);
     return place;
   }
+  // A loop of links is refused here; an over-long name is left to the check of the place
+  // itself (CheckOutputFile, the input's reader), which names the part and the limit.
   const int error = errno;
-  if (error == ELOOP || error == ENAMETOOLONG) RefusePath(what, path, error);
+  if (error == ELOOP) RefusePath(what, path, error);
   // Not there (yet): the absolute path with every link of the part that exists resolved, so
   // that "d/../x", "./x" and "link-to-folder/x" are one place.
   std::error_code ec;
@@ -120,7 +122,7 @@ FilePlan::Place PlaceOf(const std::string& path, const std::string& what, bool o
   if (ec) absolute = fs::path(path);
   fs::path resolved = fs::weakly_canonical(absolute, ec);
   if (ec) {
-    if (ec.value() == ELOOP || ec.value() == ENAMETOOLONG) RefusePath(what, path, ec.value());
+    if (ec.value() == ELOOP) RefusePath(what, path, ec.value());
     resolved = absolute.lexically_normal();
   }
   place.resolved = resolved.string();

@@ -26,8 +26,8 @@ void CheckOutputFolder(const std::string& dir, const std::string& flag);
 /// symbolic links and hard links are seen through, comparing existing files by device and
 /// inode and new ones by their path with every link of the part that exists resolved). Each
 /// path comes with what names it in messages: "--json", "the suite file", "ipopt option
-/// output_file of groups[0].methods[1]". A symbolic link loop or an over-long path is refused
-/// where it is added (std::invalid_argument, exit 2).
+/// output_file of groups[0].methods[1]". A symbolic link loop is refused where it is added
+/// (std::invalid_argument, exit 2).
 class FilePlan {
  public:
   /// A file the command reads.

@@ -427,6 +427,19 @@ TEST(InputAtFaultIsExitTwo, SizesMeetAMemoryEstimateBeforeAnyWork) {
     cases.push_back(
         {{"online", "--problem", "comm-path2d", "--solver", "hamiltonian", "--N", n}, "N"});
   }
+  // An iteration limit the Hamiltonian descent reserves its history for.
+  for (const char* limit : {"2147483647", "1000000000", "300000000"}) {
+    cases.push_back({{"solve",
+                      "--problem",
+                      "double-integrator",
+                      "--solver",
+                      "hamiltonian",
+                      "--N",
+                      "10",
+                      "--option",
+                      std::string("max_iterations=") + limit},
+                     "max_iterations"});
+  }
   for (const char* tf : {"4.9e-324", "1e-310", "2.2e-308", "1e-320"}) {
     cases.push_back({Plus(kQuickSolve, {"--set", std::string("tf=") + tf}), "tf"});
     cases.push_back({Plus(kQuickIpopt, {"--set", std::string("tf=") + tf}), "tf"});
