@@ -354,6 +354,26 @@ CaseEstimate ValidateCase(const CaseSpec& spec) {
       }
     }
   }
+  // A solver that keeps a history row per iteration may reserve them all before its first
+  // iteration (the Hamiltonian descent does): its iteration limit is a size too, of every
+  // solve and of online re-plans.
+  for (const auto& [options, field] :
+       {std::pair{&spec.options, "options: max_iterations"},
+        std::pair{&spec.replan_options, "replan_options: max_iterations"}}) {
+    const OptionValue* limit = options->Find("max_iterations");
+    if (limit == nullptr) continue;
+    std::optional<double> rows;
+    if (limit->kind() == OptionValue::Kind::kInteger) {
+      rows = static_cast<double>(limit->integer()) + 1.0;
+    } else if (limit->kind() == OptionValue::Kind::kText) {
+      rows = ParseNumberText(limit->text());  // refused by the solver's schema if not a count
+      if (rows) *rows += 1.0;
+    }
+    if (rows && *rows > 0.0) {
+      CheckMemoryEstimate(
+          64.0 * *rows, field, fmt::format("{:.0f} history rows (one per iteration)", *rows));
+    }
+  }
   if (spec.kind == "online") return ValidateOnlineCase(spec);
   const ProblemInfo& pinfo = FindProblem(spec.problem);
   const SolverInfo& sinfo = FindSolver(spec.solver);
@@ -408,16 +428,7 @@ CaseEstimate ValidateCase(const CaseSpec& spec) {
         spec.solver + (spec.transcription.empty() ? "" : " + " + spec.transcription),
         Bytes(budget)));
   }
-  // A solver that keeps a history row per iteration may reserve them all before its first
-  // iteration (the Hamiltonian descent does): its iteration limit is a size too.
   const MethodOptions method = ResolveMethodOptions(spec);
-  const OptionValue* iterations = method.solver.Find("max_iterations");
-  if (iterations != nullptr && iterations->kind() == OptionValue::Kind::kInteger) {
-    const double rows = static_cast<double>(iterations->integer()) + 1.0;
-    CheckMemoryEstimate(64.0 * rows,
-                        "options: max_iterations",
-                        fmt::format("{:.0f} history rows (one per iteration)", rows));
-  }
   if (!spec.transcription.empty()) {
     // h-refinement builds each refined mesh whole (each interval split in up to
     // 1 + mesh_max_new_points pieces) before comparing it with mesh_max_nodes: that mesh is

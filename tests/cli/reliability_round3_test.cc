@@ -439,6 +439,22 @@ TEST(InputAtFaultIsExitTwo, SizesMeetAMemoryEstimateBeforeAnyWork) {
                       "--option",
                       std::string("max_iterations=") + limit},
                      "max_iterations"});
+    cases.push_back({{"online",
+                      "--problem",
+                      "comm-path2d",
+                      "--solver",
+                      "hamiltonian",
+                      "--option",
+                      std::string("max_iterations=") + limit},
+                     "max_iterations"});
+    cases.push_back({{"online",
+                      "--problem",
+                      "comm-path2d",
+                      "--solver",
+                      "hamiltonian",
+                      "--replan-option",
+                      std::string("max_iterations=") + limit},
+                     "max_iterations"});
   }
   for (const char* tf : {"4.9e-324", "1e-310", "2.2e-308", "1e-320"}) {
     cases.push_back({Plus(kQuickSolve, {"--set", std::string("tf=") + tf}), "tf"});
