@@ -21,8 +21,9 @@ namespace ocpb {
 /// determine it). Each term is the Newton step of u_k towards argmin H_k, so u*(x_k, p_{k+1})
 /// reproduces u_k as well as a single q allows. This is IndirectNewton::CostatesFromControls'
 /// fit (solvers/README-indirect.md explains why the adjoint's own q = grad Phi starts Newton at
-/// bang-bang controls after a first-order method) for the Euler pairing of x_k with p_{k+1}.
-/// Throws std::invalid_argument on sizes that do not match.
+/// bang-bang controls after a first-order method) for the Euler pairing of x_k with p_{k+1}; both
+/// are FitTerminalCostate (solvers/costate_fit.h). Throws std::invalid_argument on sizes that do
+/// not match.
 Mat FitEulerCostates(
     const Ocp& ocp, const TimeGrid& grid, TerminalMode mode, const Mat& U, const Mat& X);
 

@@ -9,7 +9,6 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <Eigen/KLUSupport>
 #include <Eigen/LU>
 #include <Eigen/QR>
@@ -20,6 +19,7 @@
 #include "core/option_binding.h"
 #include "core/timer.h"
 #include "solvers/bvp_riccati_solver.h"
+#include "solvers/costate_fit.h"
 #include "solvers/hamiltonian_descent.h"
 #include "solvers/hamiltonian_target.h"
 #include "solvers/pmp_residual.h"
@@ -103,94 +103,6 @@ Vec EstimateMultipliers(const Ocp& ocp, ConstVecRef xN, ConstVecRef pN) {
   Vec nu = psix.transpose().colPivHouseholderQr().solve(pN - grad);
   if (!nu.allFinite()) nu.setZero();
   return nu;
-}
-
-// The components of u strictly inside U (see IndirectNewton::CostatesFromControls).
-void FreeComponents(const ControlSet& set, ConstVecRef u, std::vector<int>* free) {
-  free->clear();
-  if (set.blocks().empty()) {
-    for (int i = 0; i < u.size(); ++i) free->push_back(i);
-    return;
-  }
-  constexpr double kMargin = 1e-6;
-  for (const ControlSet::Block& b : set.blocks()) {
-    if (b.kind == ControlSet::Kind::kBox) {
-      for (int i = 0; i < b.size; ++i) {
-        const double lo = b.lower[i], hi = b.upper[i], v = u[b.offset + i];
-        const double margin = kMargin * (std::isfinite(hi - lo) ? hi - lo : 1.0);
-        if (v > lo + margin && v < hi - margin) free->push_back(b.offset + i);
-      }
-    } else {
-      const auto ub = u.segment(b.offset, b.size);
-      const double r = b.center.size() > 0 ? (ub - b.center).norm() : ub.norm();
-      if (r < (1.0 - kMargin) * b.radius) {
-        for (int i = 0; i < b.size; ++i) free->push_back(b.offset + i);
-      }
-    }
-  }
-}
-
-// The kFit terminal costate of IndirectNewton::CostatesFromControls, given p_k = M_k q + c_k
-// and the adjoint's q0: least squares on the stacked rows sqrt(w_k) (H_uu)_F^-1 (H_u)_F(q) of
-// every node, plus the ridge rows delta (q - q0).
-Vec FitTerminalCostate(const Ocp& ocp,
-                       const TimeGrid& grid,
-                       const ControlTrajectory& controls,
-                       const Mat& X,
-                       const std::vector<Mat>& M,
-                       const std::vector<Vec>& c,
-                       const Vec& q0) {
-  const int nx = ocp.nx(), nu = ocp.nu(), N = grid.intervals();
-  std::vector<double> values;  // rows of [A | b], row-major
-  Vec f(nx), Lx(nx), Lu(nu), u(nu), p0(nx);
-  Mat fx(nx, nx), fu(nx, nu), hess(nx + nu, nx + nu);
-  double L = 0.0;
-  std::vector<int> free;
-  for (int k = 0; k <= N; ++k) {
-    const double t = grid.t(k);
-    controls.Evaluate(
-        t, k < N ? ControlTrajectory::Side::kRight : ControlTrajectory::Side::kLeft, u);
-    FreeComponents(ocp.control_set(), u, &free);
-    if (free.empty()) continue;
-    ocp.DynamicsJacobian(t, X.col(k), u, f, fx, fu);
-    ocp.RunningCostGradient(t, X.col(k), u, &L, Lx, Lu);
-    p0 = M[k] * q0 + c[k];
-    ocp.PointHessian(t, X.col(k), u, 1.0, p0, Vec(), hess);
-    const int m = static_cast<int>(free.size());
-    Mat Huu(m, m), G(m, nx);
-    Vec g(m);
-    for (int a = 0; a < m; ++a) {
-      for (int b = 0; b < m; ++b) Huu(a, b) = hess(nx + free[a], nx + free[b]);
-      // H_u,a(q) = Lu_a + fu_a^T (M_k q + c_k) = G_a q + g_a.
-      G.row(a) = fu.col(free[a]).transpose() * M[k];
-      g[a] = Lu[free[a]] + fu.col(free[a]).dot(c[k]);
-    }
-    const Eigen::LLT<Mat> llt(Huu);
-    if (llt.info() == Eigen::Success && Huu.allFinite()) {
-      G = llt.solve(G);
-      g = llt.solve(g);
-    }
-    const double hw = 0.5 * ((k > 0 ? grid.h(k - 1) : 0.0) + (k < N ? grid.h(k) : 0.0));
-    const double w = std::sqrt(hw);
-    for (int a = 0; a < m; ++a) {
-      for (int j = 0; j < nx; ++j) values.push_back(w * G(a, j));
-      values.push_back(-w * g[a]);
-    }
-  }
-  const int rows = static_cast<int>(values.size()) / (nx + 1);
-  if (rows == 0) return q0;
-  Mat A(rows + nx, nx);
-  Vec b(rows + nx);
-  for (int i = 0; i < rows; ++i) {
-    for (int j = 0; j < nx; ++j) A(i, j) = values[static_cast<size_t>(i) * (nx + 1) + j];
-    b[i] = values[static_cast<size_t>(i) * (nx + 1) + nx];
-  }
-  const double delta = 1e-8 * A.topRows(rows).colwise().norm().maxCoeff();
-  A.bottomRows(nx) = delta * Mat::Identity(nx, nx);
-  b.tail(nx) = delta * q0;
-  if (!A.allFinite() || !b.allFinite() || !(delta > 0.0)) return q0;
-  const Vec q = A.householderQr().solve(b);
-  return q.allFinite() ? q : q0;
 }
 
 // The problem the method solves: the problem's Hamiltonian reformulation when it offers one.
@@ -678,7 +590,26 @@ void IndirectNewton::CostatesFromControls(const Ocp& ocp,
   Vec q(nx);
   double value = 0.0;
   ocp.TerminalObjectiveGradient(X.col(N), mode, &value, q);
-  if (how != Options::Costates::kAdjoint) q = FitTerminalCostate(ocp, grid, controls, X, M, c, q);
+  if (how != Options::Costates::kAdjoint) {
+    // The trapezoid's pairing: node k is (t_k, x_k, u(t_k)) with p_k, weight (h_{k-1} + h_k) / 2
+    // (u from the right at t_k, from the left at t_N).
+    CostateFitNodes nodes;
+    Mat U(nu, N + 1);
+    nodes.t.resize(static_cast<size_t>(N + 1));
+    nodes.weight.resize(static_cast<size_t>(N + 1));
+    for (int k = 0; k <= N; ++k) {
+      const double t = grid.t(k);
+      controls.Evaluate(
+          t, k < N ? ControlTrajectory::Side::kRight : ControlTrajectory::Side::kLeft, U.col(k));
+      nodes.t[static_cast<size_t>(k)] = t;
+      nodes.weight[static_cast<size_t>(k)] =
+          0.5 * ((k > 0 ? grid.h(k - 1) : 0.0) + (k < N ? grid.h(k) : 0.0));
+    }
+    nodes.X = &X;
+    nodes.U = &U;
+    nodes.costate_offset = 0;
+    q = FitTerminalCostate(ocp, nodes, M, c, q).q;
+  }
   P->resize(nx, N + 1);
   for (int k = 0; k <= N; ++k) P->col(k) = M[k] * q + c[k];
 }
