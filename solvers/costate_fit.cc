@@ -54,9 +54,21 @@ CostateFit FitTerminalCostate(const Ocp& ocp,
   const Vec no_mu = Vec::Zero(ocp.num_path());
   double L = 0.0;
   std::vector<int> free;
+  // A Mayer cost along the controls: L = 0, L_x = 0, L_u = 0 and L_uu = 0 at every node (checked
+  // until a node shows otherwise; the extra PointHessian only where L_x = L_u = 0).
+  bool mayer = true;
+  const Vec zero_p = Vec::Zero(nx);
   for (int i = 0; i < count; ++i) {
     const double t = nodes.t[static_cast<size_t>(i)];
     const int j = nodes.costate_offset + i;
+    if (mayer) {
+      ocp.RunningCostGradient(t, X.col(i), U.col(i), &L, Lx, Lu);
+      mayer = L == 0.0 && (Lx.array() == 0.0).all() && (Lu.array() == 0.0).all();
+      if (mayer) {
+        ocp.PointHessian(t, X.col(i), U.col(i), 1.0, zero_p, no_mu, hess);
+        mayer = (hess.bottomRightCorner(nu, nu).array() == 0.0).all();
+      }
+    }
     FreeControlComponents(ocp.control_set(), U.col(i), &free);
     if (free.empty()) continue;
     ocp.DynamicsJacobian(t, X.col(i), U.col(i), f, fx, fu);
@@ -85,6 +97,7 @@ CostateFit FitTerminalCostate(const Ocp& ocp,
   }
   CostateFit out;
   out.q = q0;
+  out.degenerate = mayer && count > 0;
   out.rows = static_cast<int>(values.size()) / (nx + 1);
   const int rows = out.rows;
   if (rows == 0) return out;
@@ -97,9 +110,6 @@ CostateFit FitTerminalCostate(const Ocp& ocp,
   const double delta = 1e-8 * A.topRows(rows).colwise().norm().maxCoeff();
   A.bottomRows(nx) = delta * Mat::Identity(nx, nx);
   b.tail(nx) = delta * q0;
-  const double homogeneous = b.head(rows).norm();
-  const double scale = (A.topRows(rows) * q0).norm();
-  out.degenerate = scale > 0.0 && homogeneous <= kDegenerateRatio * scale;
   if (!A.allFinite() || !b.allFinite() || !(delta > 0.0)) return out;
   const Vec q = A.householderQr().solve(b);
   if (q.allFinite()) out.q = q;

@@ -30,18 +30,18 @@ struct CostateFitNodes {
 /// What FitTerminalCostate decided.
 struct CostateFit {
   Vec q;  ///< the terminal costate
-  /// The rows were homogeneous: no running-cost term reaches H_u at a free component (|b| <=
-  /// kDegenerateRatio |A q0| with A q0 != 0; A, b below), as for a Mayer cost (L = 0): any multiple
-  /// of a fitting q fits as well and the least-squares q is the ridge's shrinkage of q0 towards 0
-  /// (costates near zero, where u*(x, p) is undefined for H = p^T f). q is then the fitted one
-  /// all the same; the caller chooses another start (FitTerminalCostate leaves that to it).
+  /// A Mayer cost along the controls: L = 0, L_x = 0, L_u = 0 and L_uu = 0 at every node. The
+  /// fit has then nothing to fit: its rows are homogeneous (H_u = f_u^T M q), any multiple of a
+  /// fitting q fits as well, and the least-squares q is the ridge's shrinkage of q0 towards its
+  /// part in the rows' null space (costates near zero). A constant L (the 1 of a minimum-time
+  /// problem) is not counted: the adjoint start did not help there (brachistochrone-free-time,
+  /// results/notes/family-round3.md), and such problems keep their fitted start. q is the fitted
+  /// one all the same: the caller chooses another start (FitEulerCostates and
+  /// IndirectNewton::CostatesFromControls: the adjoint sweep's).
   bool degenerate = false;
   /// Rows of the fit (free components over all nodes); 0: q = q0.
   int rows = 0;
 };
-
-/// |b| <= kDegenerateRatio |A q0| marks a degenerate fit (CostateFit::degenerate).
-inline constexpr double kDegenerateRatio = 1e-12;
 
 /// The terminal costate q minimizing
 ///

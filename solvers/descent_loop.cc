@@ -124,7 +124,15 @@ DescentLoopOutcome RunDescentLoop(const DescentLoopOptions& opt,
                              " is not negative: the proximal minimizer did not minimize"};
       break;
     }
-    const int accepted = passes->Armijo(opt.armijo, direction_theta);
+    const int accepted =
+        passes->Armijo(opt.armijo, direction_theta, CpuLimit{&clock, opt.max_cpu_seconds});
+    if (accepted == DescentPasses::kOutOfTime) {
+      stop = DescentStop{SolveStatus::kMaxTime,
+                         "max_cpu_seconds",
+                         "reached max_cpu_seconds = " + MessageNumber(opt.max_cpu_seconds) +
+                             " in the Armijo search at iteration " + std::to_string(iteration)};
+      break;
+    }
     if (accepted < 0) {
       stop = DescentStop{SolveStatus::kStepTooSmall,
                          "armijo_exponent_exceeded",

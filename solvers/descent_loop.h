@@ -61,7 +61,9 @@ struct DescentLoopOutcome {
 };
 
 /// Runs the descent from the passes' current iterate (Start must have been called): repeatedly
-/// Backward, the stopping tests of HamiltonianDescent (in its documented order), Armijo. Appends
+/// Backward, the stopping tests of HamiltonianDescent (in its documented order), Armijo. The CPU
+/// limit is tested before each iteration's search and before each Armijo trial after the first
+/// (DescentPasses::Armijo), so the loop ends within one trial's or one sweep's cost of it. Appends
 /// one IterationRecord per iterate to *history, numbered from `first_iteration`, with CPU times
 /// from `clock`; the first record is the current iterate (armijo_j = `first_armijo`).
 /// With record_first = false the first record is left out (a loop that continues an earlier one

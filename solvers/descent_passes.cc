@@ -205,7 +205,7 @@ bool DescentPasses::EvaluateTrial(double step, double threshold, double* J) {
   return true;
 }
 
-int DescentPasses::Armijo(const ArmijoRule& rule, double theta) {
+int DescentPasses::Armijo(const ArmijoRule& rule, double theta, const CpuLimit& limit) {
   if (affine_final_state_) {
     trial_U_.noalias() = U_ + D_;
     TrialStates();
@@ -223,6 +223,11 @@ int DescentPasses::Armijo(const ArmijoRule& rule, double theta) {
   }
   double step = 1.0;
   for (int j = 0; j <= rule.max_exponent; ++j, step *= rule.beta) {
+    if (j > 0 && limit.Reached()) {
+      trial_docp_ = docp_;
+      if (free_time_) ConstantBound(docp_->grid());
+      return kOutOfTime;
+    }
     if (free_time_) {
       const double T_trial = std::clamp(docp_->grid().tf() + step * dT, T_lower_, T_upper_);
       owned_trial_ = std::make_unique<DiscreteOcp>(

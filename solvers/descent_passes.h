@@ -11,6 +11,7 @@
 #include "core/discrete_ocp.h"
 #include "core/euler_stage_model.h"
 #include "core/proximal_hamiltonian.h"
+#include "core/timer.h"
 #include "solvers/convex_point_minimizer.h"
 
 namespace ocpb {
@@ -126,8 +127,11 @@ class DescentPasses {
   double Backward(double* theta_scale, double eps = std::numeric_limits<double>::infinity());
   double stationarity_theta() const { return stationarity_theta_; }
   /// The Armijo search along D (Backward first). Returns the accepted exponent, or -1 when no
-  /// exponent <= rule.max_exponent gives sufficient decrease (the iterate is then unchanged).
-  int Armijo(const ArmijoRule& rule, double theta);
+  /// exponent <= rule.max_exponent gives sufficient decrease, or kOutOfTime when `limit` was
+  /// reached before a trial after the first (checked before each one: the search ends within
+  /// one trial's cost of the limit); the iterate is then unchanged.
+  int Armijo(const ArmijoRule& rule, double theta, const CpuLimit& limit = {});
+  static constexpr int kOutOfTime = -2;
 
   const Mat& U() const { return U_; }
   const Mat& X() const { return X_; }

@@ -7,8 +7,12 @@
 
 namespace ocpb {
 
-Mat FitEulerCostates(
-    const Ocp& ocp, const TimeGrid& grid, TerminalMode mode, const Mat& U, const Mat& X) {
+Mat FitEulerCostates(const Ocp& ocp,
+                     const TimeGrid& grid,
+                     TerminalMode mode,
+                     const Mat& U,
+                     const Mat& X,
+                     bool* adjoint_fallback) {
   const int nx = ocp.nx(), nu = ocp.nu(), N = grid.intervals();
   if (U.rows() != nu || U.cols() != N || X.rows() != nx || X.cols() != N + 1) {
     throw std::invalid_argument("FitEulerCostates: U must be nu x N and X nx x (N+1)");
@@ -44,7 +48,11 @@ Mat FitEulerCostates(
   nodes.X = &X;
   nodes.U = &U;
   nodes.costate_offset = 1;
-  const Vec q = FitTerminalCostate(ocp, nodes, M, c, q0).q;
+  const CostateFit fit = FitTerminalCostate(ocp, nodes, M, c, q0);
+  Vec q = fit.q;
+  // A Mayer cost: the adjoint sweep's own terminal costate (the penalty form's gradient).
+  if (fit.degenerate) ocp.TerminalObjectiveGradient(X.col(N), TerminalMode::kPenalty, &phi, q);
+  if (adjoint_fallback) *adjoint_fallback = fit.degenerate;
   Mat P(nx, N + 1);
   for (int k = 0; k <= N; ++k) P.col(k) = M[k] * q + c[k];
   return P;

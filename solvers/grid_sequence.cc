@@ -1,6 +1,8 @@
 #include "solvers/grid_sequence.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -48,7 +50,6 @@ GridSequenceOutcome NewtonOnFinerGrids(const Ocp& ocp,
                                        double max_cpu_seconds) {
   if (finer.empty()) throw std::invalid_argument("grid sequencing: no finer grid to solve on");
   GridSequenceOutcome out;
-  const IndirectNewton newton(options);
   const SolveResult* previous = &coarse;
   for (size_t level = 0; level < finer.size(); ++level) {
     const TimeGrid& from = previous->state_grid;
@@ -68,7 +69,13 @@ GridSequenceOutcome NewtonOnFinerGrids(const Ocp& ocp,
     const Mat X = InterpolateNodes(from, previous->states, request.grid);
     const Mat P = InterpolateNodes(from, previous->costates, request.grid);
     const double cpu0 = clock.cpu();
-    SolveResult n = newton.SolveFrom(ocp, request, X, P);
+    // Newton's own limit: what is left of max_cpu_seconds.
+    IndirectNewtonOptions limited = options;
+    if (std::isfinite(max_cpu_seconds)) {
+      limited.max_cpu_seconds =
+          std::max(max_cpu_seconds - cpu0, std::numeric_limits<double>::min());
+    }
+    SolveResult n = IndirectNewton(limited).SolveFrom(ocp, request, X, P);
     out.newton_cpu_seconds += clock.cpu() - cpu0;
     out.newton_iterations += n.iterations;
     const bool finest = level + 1 == finer.size();

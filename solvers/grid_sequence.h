@@ -56,7 +56,8 @@ struct GridSequenceOutcome {
 /// the first start is `coarse`'s; nu is re-estimated from p_N by SolveFrom). For a free final
 /// time each grid is stretched to the previous solution's T (the relative node positions are
 /// kept). Stops at the first grid that does not converge, and before a grid when clock.cpu() >=
-/// max_cpu_seconds (Newton itself has no CPU limit: a grid once started runs to its end). Each
+/// max_cpu_seconds; each grid's Newton gets what is left of max_cpu_seconds as its own limit
+/// (IndirectNewtonOptions::max_cpu_seconds: it stops within one step of it). Each
 /// Newton row is appended to
 /// *history, numbered by its place there, with its CPU time from `clock`'s start and the grid's
 /// intervals in IterationRecord::intervals (-1 for the last grid of `finer`, the request's).

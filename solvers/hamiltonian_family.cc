@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <utility>
@@ -114,6 +115,17 @@ IndirectNewtonOptions PolishNewtonOptions(const HamiltonianFamilyOptions& o) {
   return no;
 }
 
+// `options` with max_cpu_seconds = what is left of `limit` on `clock` (at least the smallest
+// positive double: Newton then stops at its first test).
+IndirectNewtonOptions WithCpuLeft(IndirectNewtonOptions options,
+                                  double limit,
+                                  const Stopwatch& clock) {
+  if (std::isfinite(limit)) {
+    options.max_cpu_seconds = std::max(limit - clock.cpu(), std::numeric_limits<double>::min());
+  }
+  return options;
+}
+
 // Newton's outcome in the result: its status and its own stats (prefixed "newton_"), its final
 // residual.
 void RecordNewtonOutcome(const SolveResult& n, SolveResult* r) {
@@ -159,14 +171,18 @@ bool Polish(const FamilyRun& run,
     newton_request.grid = passes->grid();
     newton_request.terminal = request.terminal;
     Mat X = passes->X();
-    Mat P = FitEulerCostates(problem, passes->grid(), request.terminal, passes->U(), X);
+    bool adjoint_start = false;
+    Mat P =
+        FitEulerCostates(problem, passes->grid(), request.terminal, passes->U(), X, &adjoint_start);
+    stats["start_adjoint_fallback"] = adjoint_start ? 1.0 : 0.0;
     if (o.polish_constant_costate_start) {
       const ConstantCostateStartOutcome start =
           ConstantCostateStart(problem, passes->grid(), request.terminal, passes->U(), &X, &P);
       stats["start_constant_costates"] = start.solved;
       stats["start_constant_costate_evaluations"] += start.evaluations;
     }
-    *last_newton = IndirectNewton(no).SolveFrom(run.original, newton_request, X, P);
+    *last_newton = IndirectNewton(WithCpuLeft(no, o.max_cpu_seconds, clock))
+                       .SolveFrom(run.original, newton_request, X, P);
     const SolveResult& n = *last_newton;
     newton_cpu += clock.cpu() - cpu0;
     newton_iterations += n.iterations;
@@ -181,9 +197,10 @@ bool Polish(const FamilyRun& run,
     stats["newton_cpu_seconds"] = newton_cpu;
     RecordNewtonOutcome(n, r);
     r->iterations = descent_iterations + newton_iterations;
-    r->message += "; Newton " + std::to_string(attempt) + " (Euler maximum principle, fitted " +
-                  "costates, after " + std::to_string(descent_iterations) +
-                  " descent steps): " + n.message;
+    r->message += "; Newton " + std::to_string(attempt) + " (Euler maximum principle, " +
+                  (adjoint_start ? "adjoint costates (Mayer cost: the fit is degenerate)"
+                                 : "fitted costates") +
+                  ", after " + std::to_string(descent_iterations) + " descent steps): " + n.message;
     const bool converged = n.status == SolveStatus::kConverged &&
                            n.states.cols() == passes->grid().size() &&
                            n.controls.nu() == problem.nu();
@@ -322,7 +339,10 @@ GridSolve SolveOnGrid(const FamilyRun& run, const SolveRequest& request) {
   r.objective = DiscreteOcp(problem, grid, request.integrator, request.terminal)
                     .Simulate(passes.U(), nullptr);
 
-  if (o.polish) out.polished = Polish(run, problem, request, loop, &passes, &r, &out.last_newton);
+  // No Newton attempt once the CPU limit is reached (the descent's stop says so).
+  if (o.polish && clock.cpu() < o.max_cpu_seconds) {
+    out.polished = Polish(run, problem, request, loop, &passes, &r, &out.last_newton);
+  }
   return out;
 }
 

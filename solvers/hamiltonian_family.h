@@ -140,7 +140,8 @@ struct HamiltonianFamilyOptions {
 ///  4. polish: after the descent (|theta| <= polish_switch (1 + |J|) or max_iterations; for the
 ///     hard form the descent runs on the penalty form, a better start for Newton than the outer
 ///     loop's first iterations), the
-///     costates are fitted to its controls (FitEulerCostates) and IndirectNewton with
+///     costates are fitted to its controls (FitEulerCostates; for a Mayer cost, where the fit is
+///     degenerate, the adjoint sweep's) and IndirectNewton with
 ///     Scheme::kEuler solves the Euler maximum principle of the same discrete problem (penalty
 ///     or hard form, T included) from its states: the optimum of the discrete problem to Newton's
 ///     tolerance, the Euler transcription's NLP optimum. On grids of an even number >= 200 of
@@ -163,7 +164,9 @@ struct HamiltonianFamilyOptions {
 /// "terminal_residual", "path_violation", "penalty", "nu_<i>" (the final terminal multipliers,
 /// those of psi_i = 0 in the Lagrangian J + nu^T psi); free time: "final_time", "dJdT"; polish:
 /// "newton_iterations", "newton_cpu_seconds", "newton_residual_inf" and Newton's own stats prefixed
-/// "newton_"; with polish_constant_costate_start "start_constant_costates" and
+/// "newton_", "start_adjoint_fallback" (last attempt: 1 when the fit was degenerate, a Mayer cost
+/// L = 0, and Newton started from the descent's adjoint sweep instead, FitEulerCostates; else 0);
+/// with polish_constant_costate_start "start_constant_costates" and
 /// "start_constant_costate_evaluations". Grid sequencing (polish_coarse_levels): "coarse_levels"
 /// (halvings used; 0: the polish ran on the request's grid alone), and when > 0
 /// "coarse_intervals" (the coarsest grid's), "coarse_newton_iterations" (Newton steps there),

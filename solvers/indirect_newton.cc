@@ -217,6 +217,13 @@ class NewtonIteration {
                  " after max_iterations = " + std::to_string(o.max_iterations) + " Newton steps");
         return;
       }
+      if (OutOfTime()) {
+        Stop(SolveStatus::kMaxTime,
+             "max_cpu_seconds",
+             "reached max_cpu_seconds = " + NewtonNumber(o.max_cpu_seconds) + " at iterate " +
+                 std::to_string(iterations_) + " (||F||_inf = " + NewtonNumber(residual) + ")");
+        return;
+      }
       if (!Evaluate(z_, &F_, &J_, true)) {
         Stop(SolveStatus::kNumericalFailure,
              FailureStatus(),
@@ -304,6 +311,7 @@ class NewtonIteration {
         return "nonfinite_residual";
     }
   }
+  bool OutOfTime() const { return CpuLimit{&run_.watch, run_.options.max_cpu_seconds}.Reached(); }
   void Stop(SolveStatus status, const char* code, std::string message) {
     status_ = status;
     solver_status_ = code;
@@ -365,6 +373,14 @@ class NewtonIteration {
     double step = 1.0;
     int j = 0;
     while (step >= o.min_step) {
+      if (j > 0 && OutOfTime()) {
+        Stop(SolveStatus::kMaxTime,
+             "max_cpu_seconds",
+             "reached max_cpu_seconds = " + NewtonNumber(o.max_cpu_seconds) +
+                 " in the line search at iterate " + std::to_string(iterations_) + " after " +
+                 std::to_string(j) + " trials (||F||_inf = " + NewtonNumber(residual) + ")");
+        return false;
+      }
       z_trial_ = z_ + step * d_;
       const double bound = (1.0 - 2.0 * o.sufficient_decrease * step) * merit;
       const bool ok = Evaluate(z_trial_, &F_trial_, &J_trial_, false, 2.0 * bound);
@@ -466,6 +482,10 @@ const OptionBinding<IndirectNewtonOptions>& NewtonBinding() {
         "max_iterations", &O::max_iterations, "Newton steps at most", OptionBounds::AtLeast(0));
     t.Number(
         "tolerance", &O::tolerance, "converged when ||F||_inf <= this", OptionBounds::Above(0));
+    t.Number("max_cpu_seconds",
+             &O::max_cpu_seconds,
+             "CPU time limit of the solve, warm start included (inf: none)",
+             OptionBounds::Above(0).WithInfinity());
     t.Number("sufficient_decrease",
              &O::sufficient_decrease,
              "Armijo constant c of the merit 1/2 ||F||^2",
@@ -557,7 +577,9 @@ void IndirectNewton::CostatesFromControls(const Ocp& ocp,
                                           const ControlTrajectory& controls,
                                           const Mat& X,
                                           Options::Costates how,
-                                          Mat* P) {
+                                          Mat* P,
+                                          bool* adjoint_fallback) {
+  if (adjoint_fallback) *adjoint_fallback = false;
   const int nx = ocp.nx(), nu = ocp.nu(), N = grid.intervals();
   if (X.rows() != nx || X.cols() != N + 1 || controls.nu() != nu) {
     throw std::invalid_argument(
@@ -608,7 +630,11 @@ void IndirectNewton::CostatesFromControls(const Ocp& ocp,
     nodes.X = &X;
     nodes.U = &U;
     nodes.costate_offset = 0;
-    q = FitTerminalCostate(ocp, nodes, M, c, q).q;
+    const CostateFit fit = FitTerminalCostate(ocp, nodes, M, c, q);
+    q = fit.q;
+    // A Mayer cost: the adjoint sweep's own terminal costate (the penalty form's gradient).
+    if (fit.degenerate) ocp.TerminalObjectiveGradient(X.col(N), TerminalMode::kPenalty, &value, q);
+    if (adjoint_fallback) *adjoint_fallback = fit.degenerate;
   }
   P->resize(nx, N + 1);
   for (int k = 0; k <= N; ++k) P->col(k) = M[k] * q + c[k];
@@ -644,12 +670,16 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
       if (o.regularization && !warm.options.Has("regularization")) {
         warm.options.Set("regularization", *o.regularization);
       }
+      if (std::isfinite(o.max_cpu_seconds) && !warm.options.Has("max_cpu_seconds")) {
+        warm.options.Set("max_cpu_seconds", o.max_cpu_seconds);
+      }
     } else {
       // Ipopt's defaults on the trapezoid transcription of the same grid and terminal form:
       // the NLP whose KKT conditions are closest to this trapezoidal BVP.
       warm.transcription = "trapezoid";
       warm.options = OptionMap();
       warm.transcription_options = OptionMap();
+      if (std::isfinite(o.max_cpu_seconds)) warm.options.Set("max_cpu_time", o.max_cpu_seconds);
     }
     const double cpu0 = CpuSeconds();
     const Stopwatch warm_watch;
@@ -684,8 +714,16 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
     newton_request.grid = start.state_grid;
     const double start_cpu0 = CpuSeconds();
     if (o.EffectiveCostates() == Options::Costates::kFit) {
-      CostatesFromControls(
-          ocp, start.state_grid, request.terminal, start.controls, X, Options::Costates::kFit, &P);
+      bool fallback = false;
+      CostatesFromControls(ocp,
+                           start.state_grid,
+                           request.terminal,
+                           start.controls,
+                           X,
+                           Options::Costates::kFit,
+                           &P,
+                           &fallback);
+      r.solver_stats["start_adjoint_fallback"] = fallback ? 1.0 : 0.0;
     } else {
       P = start.costates;
     }
@@ -716,7 +754,12 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
     if (request.initial_costates) {
       P = SampleNodes(*request.initial_costates, grid);
     } else {
-      CostatesFromControls(ocp, grid, request.terminal, guess, X, o.EffectiveCostates(), &P);
+      bool fallback = false;
+      CostatesFromControls(
+          ocp, grid, request.terminal, guess, X, o.EffectiveCostates(), &P, &fallback);
+      if (o.EffectiveCostates() == Options::Costates::kFit) {
+        r.solver_stats["start_adjoint_fallback"] = fallback ? 1.0 : 0.0;
+      }
     }
     r.solver_stats["start_cpu_seconds"] = CpuSeconds() - start_cpu0;
   }

@@ -2,6 +2,7 @@
 // "indirect-newton").
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -55,6 +56,13 @@ struct IndirectNewtonOptions {
 
   /// Newton steps at most (>= 0; 0 only evaluates the start).
   int max_iterations = 50;
+  /// CPU limit of the whole solve, a warm start included (> 0; inf: none). Tested before every
+  /// Newton step and before every line-search trial after the first: the solve ends within one
+  /// step's (one residual evaluation's, or one Jacobian and factorization's) cost of the limit,
+  /// with kMaxTime ("max_cpu_seconds") and the last accepted iterate. A warm start gets the
+  /// limit too (hamiltonian: max_cpu_seconds unless given; ipopt: max_cpu_time). Key
+  /// "max_cpu_seconds".
+  double max_cpu_seconds = std::numeric_limits<double>::infinity();
   /// Converged when ||F(z)||_inf <= tolerance (> 0), F the residual of PmpResidual.
   double tolerance = 1e-10;
   /// Armijo constant c in (0, 1/2): a step a along the Newton direction d is accepted when
@@ -152,6 +160,8 @@ const char* ToString(IndirectNewtonOptions::Costates costates);
 /// Stopping (SolveResult::status / verbatim SolveResult::solver_status):
 ///  - ||F||_inf <= tolerance                      -> kConverged        "converged"
 ///  - max_iterations steps taken                  -> kMaxIterations    "max_iterations"
+///  - CPU time >= max_cpu_seconds (before a step or a line-search trial)
+///                                                -> kMaxTime          "max_cpu_seconds"
 ///  - no step >= min_step accepted                -> kStepTooSmall     "line_search_failed"
 ///  - stall_steps steps in a row of length <= kStallStep -> kStepTooSmall "stalled"
 ///  - the sparse LU reports the matrix singular   -> kNumericalFailure "singular_jacobian"
@@ -172,7 +182,10 @@ const char* ToString(IndirectNewtonOptions::Costates costates);
 /// "assembly_seconds" (residual and Jacobian evaluations), "factorization_seconds" (symbolic and
 /// numeric LU), "solve_seconds" (triangular solves), "newton_cpu_seconds", "start_cpu_seconds"
 /// (Solve only: the start's states and costates from its controls, after any warm start),
-/// "warm_start_cpu_seconds" and "warm_start_iterations" (warm starts only), "residual_inf",
+/// "warm_start_cpu_seconds" and "warm_start_iterations" (warm starts only),
+/// "start_adjoint_fallback" (when the start's costates come from the fit: 1 when the fit was
+/// degenerate, a Mayer cost, and the adjoint sweep's costates were used instead, else 0),
+/// "residual_inf",
 /// "unknowns",
 /// "jacobian_nonzeros", "residual_evaluations", "jacobian_evaluations", "reformulated";
 /// "riccati_fallbacks" with linear_solver = kRiccati (steps whose system KLU solved instead).
@@ -215,14 +228,20 @@ class IndirectNewton final : public Solver {
   ///    Newton step of u_k towards argmin H (H_uu at p_k(q0); unweighted where that block is not
   ///    positive definite), so the sum measures |u*(x, p) - u| in the controls' own units. The
   ///    ridge delta = 1e-8 max_j |column j| keeps q0 in the directions the controls do not
-  ///    determine (q = q0 when no component is free).
+  ///    determine (q = q0 when no component is free). The solve is FitTerminalCostate
+  ///    (solvers/costate_fit.h), shared with FitEulerCostates. A degenerate fit (a Mayer cost
+  ///    along the controls, L = 0: the rows are homogeneous and the fitted costates
+  ///    near zero) is replaced by the adjoint sweep with q = grad Phi(x_N) of the penalty form (in
+  ///    the hard form grad phi + psi_x^T nu with the penalty's estimate nu = 2 w psi(x_N));
+  ///    *adjoint_fallback (may be null) receives whether that happened (false for kAdjoint).
   static void CostatesFromControls(const Ocp& ocp,
                                    const TimeGrid& grid,
                                    TerminalMode mode,
                                    const ControlTrajectory& controls,
                                    const Mat& X,
                                    Options::Costates how,
-                                   Mat* P);
+                                   Mat* P,
+                                   bool* adjoint_fallback = nullptr);
 
   std::string name() const override { return "indirect-newton"; }
   const Options& options() const { return options_; }
