@@ -25,11 +25,11 @@ namespace ocpb {
 /// are FitTerminalCostate (solvers/costate_fit.h).
 ///
 /// A degenerate fit (CostateFit::degenerate: a Mayer cost along the controls, L = 0,
-/// where the fit returns costates near zero, not at the adjoint's scale) is replaced by the discrete
-/// adjoint sweep of the controls themselves: q = grad Phi(x_N) of the penalty form, in the hard
-/// form grad phi + psi_x^T nu with the penalty's multiplier estimate nu = 2 w psi(x_N). Every other
-/// fit is kept as it is. *adjoint_fallback (may be null) receives whether the adjoint replaced
-/// the fit. Throws std::invalid_argument on sizes that do not match.
+/// where the fit returns costates near zero, not at the adjoint's scale) is replaced by the
+/// discrete adjoint sweep of the controls themselves: q = grad Phi(x_N) of the penalty form, in the
+/// hard form grad phi + psi_x^T nu with the penalty's multiplier estimate nu = 2 w psi(x_N). Every
+/// other fit is kept as it is. *adjoint_fallback (may be null) receives whether the adjoint
+/// replaced the fit. Throws std::invalid_argument on sizes that do not match.
 Mat FitEulerCostates(const Ocp& ocp,
                      const TimeGrid& grid,
                      TerminalMode mode,

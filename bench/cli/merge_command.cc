@@ -159,8 +159,8 @@ void Merge(const MergeArgs& args) {
   const std::string records_path = args.dir + "/records.jsonl";
   const std::string text = JoinLines(lines);
   // Every earlier version stays (records.jsonl.prev the latest, records.jsonl.1.prev, .2.prev,
-  // ... the older ones): records a resumed unsharded run appended there are never lost. A merge that
-  // changes nothing keeps no copy.
+  // ... the older ones): records a resumed unsharded run appended there are never lost. A merge
+  // that changes nothing keeps no copy.
   std::error_code ec;
   const bool unchanged = fs::file_size(records_path, ec) == text.size() && !ec &&
                          ReadInputFile(records_path, text.size(), "records file") == text;
