@@ -500,6 +500,11 @@ class RiccatiInteriorPoint {
   void Measure(double mu);
   bool BuildAndSolve(double mu, Direction* d, std::string* failure);
   void LeastSquaresMultipliers();
+  // Stage k's Q, q (from the Hessian H and gradient g of its (x_k, u_k); stage 0 keeps the u
+  // block, x_0 being fixed), A and B of the linearized Euler step x_{k+1} = x_k + h f, and on the
+  // last stage with the copy of u_{N-1} its identity rows. True on that stage. The right-hand
+  // side b is the caller's (the Newton step's defects, or zero for the multiplier start).
+  bool StageBlocks(int k, const Mat& H, const Vec& g, RiccatiStage* q) const;
   NlpSolution Finish(SolveStatus status, const std::string& solver_status, std::string message);
 
   const EulerStages& S_;
@@ -649,27 +654,10 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
         if (!HasLb(j)) g[nx + j] -= kKappaD * mu;
       }
     }
-    const bool last_copy = S_.copy && k == N - 1;
-    const int rows = nx + (last_copy ? nu : 0);
-    if (k == 0) {
-      q.Q = H.bottomRightCorner(nu, nu);
-      q.q = g.tail(nu);
-      q.A.setZero(rows, 0);
-    } else {
-      q.Q = H;
-      q.q = g;
-      q.A.setZero(rows, nx);
-      q.A.topRows(nx) = S_.h[k] * e.fx;
-      q.A.topRows(nx).diagonal().array() += 1.0;
-    }
-    q.B.setZero(rows, nu);
-    q.B.topRows(nx) = S_.h[k] * e.fu;
-    q.b.resize(rows);
+    const bool last_copy = StageBlocks(k, H, g, &q);
+    q.b.resize(q.B.rows());
     q.b.head(nx) = -vals_.defects.col(k);
-    if (last_copy) {
-      q.B.bottomRows(nu).setIdentity();
-      q.b.tail(nu) = -vals_.copy_row;
-    }
+    if (last_copy) q.b.tail(nu) = -vals_.copy_row;
   }
   const int nxN = nx + (S_.copy ? nu : 0);
   qp_.QN.setZero(nxN, nxN);
@@ -787,6 +775,28 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
 // (y = J_c w + v) it is the stage QP with Q_k = I + J_c^T J_c, q_k = grad f - z_l + z_u +
 // J_c^T v, no transition or terminal residuals. Discarded (zero) when its largest entry exceeds
 // 1000 (Ipopt's constr_mult_init_max) or the recursion fails.
+bool RiccatiInteriorPoint::StageBlocks(int k, const Mat& H, const Vec& g, RiccatiStage* q) const {
+  const int N = S_.N, nx = S_.nx, nu = S_.nu;
+  const StageEval& e = st_[k];
+  const bool last_copy = S_.copy && k == N - 1;
+  const int rows = nx + (last_copy ? nu : 0);
+  if (k == 0) {
+    q->Q = H.bottomRightCorner(nu, nu);
+    q->q = g.tail(nu);
+    q->A.setZero(rows, 0);
+  } else {
+    q->Q = H;
+    q->q = g;
+    q->A.setZero(rows, nx);
+    q->A.topRows(nx) = S_.h[k] * e.fx;
+    q->A.topRows(nx).diagonal().array() += 1.0;
+  }
+  q->B.setZero(rows, nu);
+  q->B.topRows(nx) = S_.h[k] * e.fu;
+  if (last_copy) q->B.bottomRows(nu).setIdentity();
+  return last_copy;
+}
+
 void RiccatiInteriorPoint::LeastSquaresMultipliers() {
   const int N = S_.N, nx = S_.nx, nu = S_.nu;
   const double cpu0 = CpuSeconds();
@@ -804,23 +814,8 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
       H.noalias() += J.transpose() * J;
       g.noalias() += J.transpose() * it_.v[k];
     }
-    const bool last_copy = S_.copy && k == N - 1;
-    const int rows = nx + (last_copy ? nu : 0);
-    if (k == 0) {
-      q.Q = H.bottomRightCorner(nu, nu);
-      q.q = g.tail(nu);
-      q.A.setZero(rows, 0);
-    } else {
-      q.Q = H;
-      q.q = g;
-      q.A.setZero(rows, nx);
-      q.A.topRows(nx) = S_.h[k] * e.fx;
-      q.A.topRows(nx).diagonal().array() += 1.0;
-    }
-    q.B.setZero(rows, nu);
-    q.B.topRows(nx) = S_.h[k] * e.fu;
-    if (last_copy) q.B.bottomRows(nu).setIdentity();
-    q.b.setZero(rows);
+    StageBlocks(k, H, g, &q);
+    q.b.setZero(q.B.rows());
   }
   const int nxN = nx + (S_.copy ? nu : 0);
   // The identity on x_N only: the copy of u_{N-1} is no variable of the NLP, and without its own
@@ -866,6 +861,9 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
 NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   const int N = S_.N, nx = S_.nx, nu = S_.nu;
   S_.ToIterate(z0, &it_);
+  // x_0 is fixed by the NLP's bounds, which the method never leaves: take it from the problem,
+  // not from the starting point (an initial guess's states need not start at x0).
+  it_.X.col(0) = S_.nlp.ocp().x0();
   // Controls pushed into their bounds (Ipopt's bound_push, bound_frac).
   for (int k = 0; k < N; ++k) {
     for (int j = 0; j < nu; ++j) {
@@ -920,7 +918,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   // Objective scaling (Ipopt's gradient-based rule, on the objective only).
   sigma_ = 1.0;
   if (o_.nlp_scaling_method == "gradient-based") {
-    double gmax = (S_.h.size() > 0) ? 0.0 : 0.0;
+    double gmax = 0.0;
     for (int k = 0; k < N; ++k) {
       if (k > 0) gmax = std::max(gmax, S_.h[k] * st_[k].Lx.lpNorm<Eigen::Infinity>());
       gmax = std::max(gmax, S_.h[k] * st_[k].Lu.lpNorm<Eigen::Infinity>());
@@ -968,7 +966,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
       }
     }
     if (E0_ <= o_.tol && dual_inf_ / sigma_ <= o_.dual_inf_tol &&
-        constr_viol_ <= o_.constr_viol_tol && compl_ <= o_.compl_inf_tol) {
+        constr_viol_ <= o_.constr_viol_tol && compl_ / sigma_ <= o_.compl_inf_tol) {
       return Finish(SolveStatus::kConverged, "Solve_Succeeded", "");
     }
     if (iterations_ >= o_.max_iter) {

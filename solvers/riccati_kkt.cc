@@ -22,10 +22,10 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
   Mat P = problem.QN;
   P.diagonal().array() += dw;
   Vec p = problem.qN;
-  Mat E = problem.C.transpose();
+  // C is npsi x nxN; a caller without terminal rows may leave it empty (0 x 0).
+  Mat E = npsi > 0 ? Mat(problem.C.transpose()) : Mat::Zero(nxN, 0);
   Vec e = problem.c;
   Mat G = Mat::Zero(npsi, npsi);
-  if (nxN == 0) E.resize(0, npsi);
 
   Eigen::LLT<Mat> llt;
   for (int k = N - 1; k >= 0; --k) {

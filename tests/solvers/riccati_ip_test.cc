@@ -367,6 +367,26 @@ TEST(RiccatiIpSolver, PenaltyFormThroughTheRegistry) {
   EXPECT_TRUE(FindSolver("riccati-ip").uses_transcription);
 }
 
+// x_0 is fixed by the NLP's bounds: an initial guess whose states do not start at x0 must not
+// move it (the starting point's x_0 is the guess's, which Ipopt projects onto the bounds).
+TEST(RiccatiIpSolver, InitialStatesAwayFromX0KeepTheProblemsX0) {
+  const auto ocp = MakeProblem("double-integrator", {}, 1);
+  const auto nlp = EulerNlp(*ocp, 20, TerminalMode::kHard);
+  const Vec shifted = nlp->StartingPoint().array() + 0.5;
+  SolveRequest request;
+  request.grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 20);
+  request.transcription = "euler";
+  request.terminal = TerminalMode::kHard;
+  request.initial_states = nlp->StateTrajectory(shifted);
+  const SolveResult rip = FindSolver("riccati-ip").make()->Solve(*ocp, request);
+  const SolveResult ip = FindSolver("ipopt").make()->Solve(*ocp, request);
+  ASSERT_EQ(rip.status, SolveStatus::kConverged) << rip.message;
+  ASSERT_EQ(ip.status, SolveStatus::kConverged) << ip.message;
+  EXPECT_EQ(Vec(rip.states.col(0)), ocp->x0());
+  EXPECT_NEAR(rip.objective, ip.objective, 1e-8 * std::max(1.0, std::abs(ip.objective)));
+  EXPECT_LT((rip.states - ip.states).lpNorm<Eigen::Infinity>(), 1e-6);
+}
+
 TEST(RiccatiIpSolver, IterationLimitIsReported) {
   const auto ocp = MakeProblem("vanderpol", {}, 1);
   const auto nlp = EulerNlp(*ocp, 10, TerminalMode::kHard);
