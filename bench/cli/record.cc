@@ -318,7 +318,9 @@ json Record::ToJson() const {
   if (initial_guess) r["initial_guess"] = *initial_guess;
   r["repeats"] = repeats;
 
-  r["status"] = status;
+  // Every record OCPBench makes has a status; one read without it (the reader tolerates that)
+  // is written back without it, not with an empty text, which is no status name.
+  if (!status.empty()) r["status"] = status;
   r["solver_status"] = solver_status;
   r["message"] = message;
   r["objective"] = JsonNumber(objective);
@@ -361,6 +363,7 @@ json Record::ToJson() const {
                              {"message", continuation->message},
                              {"iterations", continuation->iterations},
                              {"cpu_seconds", JsonNumber(continuation->cpu_seconds)}};
+    if (continuation->status.empty()) r["continuation"].erase("status");  // as for the status
   }
   if (mesh) r["mesh"] = MeshJson(*mesh);
   if (trajectory) {
