@@ -9,9 +9,10 @@
 
 namespace ocpb {
 
-/// The most shards a suite is split into (`--shard i/n`, shards.json, records file names): more
-/// would only make empty shards (a suite holds at most kMaxSuiteCases cases), and status and
-/// merge keep a line per shard.
+/// The most shards a suite is split into (`--shard i/n`, shards.json, records file names), so
+/// that status and merge, which keep a line per shard, stay small whatever a file name claims.
+/// Lower than kMaxSuiteCases: a suite of more than 100000 cases is split into shards of several
+/// cases each (a shard per case of such a suite would be a scheduler's burden anyway).
 inline constexpr int kMaxShards = 100000;
 
 struct Shard {

@@ -83,6 +83,8 @@ local_slurm_start() {
     fi
   done
   state=$(realpath -m "$state")
+  # A cluster left in STATE by an earlier start: its daemons and its socket folder go first.
+  local_slurm_stop "$state"
   rm -rf "$state"
   mkdir -p "$state"/{munge,ctld,tmp}
   chmod 0755 "$state"
