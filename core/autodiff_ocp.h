@@ -18,6 +18,11 @@ namespace ocpb {
 ///   template <class T> T EvalRunningCost(double t, const VecT<T, NX>& x,
 ///                                        const VecT<T, NU>& u) const;        // optional
 ///   template <class T> T EvalTerminalCost(const VecT<T, NX>& x) const;            // optional
+///   template <class T> T EvalInitialCost(const VecT<T, NX>& x0) const;            // optional
+///   template <class T> void EvalBoundaryConstraints(const VecT<T, NX>& x0,
+///                                                   const VecT<T, NX>& xf,
+///                                                   VecT<T, Eigen::Dynamic>* b) const;
+///                     // with Ocp::SetBoundaryConstraints (b arrives sized num_boundary())
 ///   template <class T> void EvalTerminalConstraints(const VecT<T, NX>& x,
 ///                                                   VecT<T, NPSI>* psi) const;   // if NPSI > 0
 ///   template <class T> void EvalPathConstraints(double t, const VecT<T, NX>& x,
@@ -76,7 +81,87 @@ class AutoDiffOcp : public Ocp {
     return !requires { Derived::EvalRunningCost(NoRunningCost{}); };
   }
 
+  /// True when Derived declares EvalInitialCost (phi0(x(t0)), for a free initial state); found
+  /// by name as DefinesRunningCost is.
+  static constexpr bool DefinesInitialCost() {
+    return !requires { Derived::EvalInitialCost(NoInitialCost{}); };
+  }
+
+  /// True when Derived declares EvalBoundaryConstraints (found by name, as above).
+  static constexpr bool DefinesBoundaryConstraints() {
+    return !requires { Derived::EvalBoundaryConstraints(NoBoundaryConstraints{}); };
+  }
+  using B1 = Jet1<2 * NX>;  // derivatives with respect to (x(t0), x(tf))
+  using B2 = Jet2<2 * NX>;
+
+  // ---- boundary constraints --------------------------------------------------------
+  void BoundaryConstraints(ConstVecRef x0, ConstVecRef xf, VecRef b) const override {
+    if constexpr (DefinesBoundaryConstraints()) {
+      VecT<double, Eigen::Dynamic> out(num_boundary());
+      self().EvalBoundaryConstraints(VecT<double, NX>(x0), VecT<double, NX>(xf), &out);
+      CopyTo(out, b);
+    } else {
+      Ocp::BoundaryConstraints(x0, xf, b);
+    }
+  }
+  void BoundaryConstraintsJacobian(
+      ConstVecRef x0, ConstVecRef xf, VecRef b, MatRef b_x0, MatRef b_xf) const override {
+    if constexpr (DefinesBoundaryConstraints()) {
+      VecT<B1, NX> s0, sf;
+      SeedEnds(x0, xf, &s0, &sf);
+      VecT<B1, Eigen::Dynamic> out(num_boundary());
+      self().EvalBoundaryConstraints(s0, sf, &out);
+      for (int i = 0; i < num_boundary(); ++i) {
+        b[i] = out[i].a;
+        for (int j = 0; j < NX; ++j) {
+          b_x0(i, j) = out[i].g[j];
+          b_xf(i, j) = out[i].g[NX + j];
+        }
+      }
+    } else {
+      Ocp::BoundaryConstraintsJacobian(x0, xf, b, b_x0, b_xf);
+    }
+  }
+  void BoundaryHessian(ConstVecRef x0, ConstVecRef xf, ConstVecRef mu, MatRef hess) const override {
+    if constexpr (DefinesBoundaryConstraints()) {
+      VecT<B2, NX> s0, sf;
+      SeedEnds(x0, xf, &s0, &sf);
+      VecT<B2, Eigen::Dynamic> out(num_boundary());
+      self().EvalBoundaryConstraints(s0, sf, &out);
+      Eigen::Matrix<double, 2 * NX, 2 * NX> h = Eigen::Matrix<double, 2 * NX, 2 * NX>::Zero();
+      for (int i = 0; i < num_boundary(); ++i) h += mu[i] * out[i].h;
+      CopyTo(h, hess);
+    } else {
+      Ocp::BoundaryHessian(x0, xf, mu, hess);
+    }
+  }
+
   // ---- values -------------------------------------------------------------------
+  bool HasInitialCost() const override { return DefinesInitialCost(); }
+  double InitialCost(ConstVecRef x0) const override {
+    if constexpr (DefinesInitialCost()) {
+      return self().EvalInitialCost(VecT<double, NX>(x0));
+    } else {
+      return 0.0;
+    }
+  }
+  void InitialCostGradient(ConstVecRef x0, double* phi0, VecRef grad) const override {
+    if constexpr (DefinesInitialCost()) {
+      const X1 out = self().EvalInitialCost(SeedX<X1>(x0));
+      *phi0 = out.a;
+      for (int i = 0; i < NX; ++i) grad[i] = out.g[i];
+    } else {
+      *phi0 = 0.0;
+      for (int i = 0; i < NX; ++i) grad[i] = 0.0;
+    }
+  }
+  void InitialCostHessian(ConstVecRef x0, double sigma, MatRef hess) const override {
+    Eigen::Matrix<double, NX, NX> h = Eigen::Matrix<double, NX, NX>::Zero();
+    if constexpr (DefinesInitialCost()) {
+      if (sigma != 0.0) h += sigma * self().EvalInitialCost(SeedX<X2>(x0)).h;
+    }
+    CopyTo(h, hess);
+  }
   void Dynamics(double t, ConstVecRef x, ConstVecRef u, VecRef f) const override {
     VecT<double, NX> fx;
     self().EvalDynamics(t, VecT<double, NX>(x), VecT<double, NU>(u), &fx);
@@ -235,6 +320,10 @@ class AutoDiffOcp : public Ocp {
   // EvalRunningCost inherits (see DefinesRunningCost); declared, never defined or called.
   struct NoRunningCost {};
   static void EvalRunningCost(NoRunningCost);
+  struct NoInitialCost {};
+  static void EvalInitialCost(NoInitialCost);
+  struct NoBoundaryConstraints {};
+  static void EvalBoundaryConstraints(NoBoundaryConstraints);
 
   void CheckDimension(const char* what, int given, int declared) const {
     if (given != declared) {
@@ -265,6 +354,13 @@ class AutoDiffOcp : public Ocp {
   static void Seed(ConstVecRef x, ConstVecRef u, VecT<J, NX>* xz, VecT<J, NU>* uz) {
     for (int i = 0; i < NX; ++i) (*xz)[i] = J::Variable(x[i], i);
     for (int j = 0; j < NU; ++j) (*uz)[j] = J::Variable(u[j], NX + j);
+  }
+  template <class J>
+  static void SeedEnds(ConstVecRef x0, ConstVecRef xf, VecT<J, NX>* s0, VecT<J, NX>* sf) {
+    for (int i = 0; i < NX; ++i) {
+      (*s0)[i] = J::Variable(x0[i], i);
+      (*sf)[i] = J::Variable(xf[i], NX + i);
+    }
   }
   template <class J>
   static VecT<J, NX> SeedX(ConstVecRef x) {

@@ -94,14 +94,30 @@ Evaluation Evaluate(const Ocp& ocp,
                     const ControlTrajectory& controls,
                     const TimeGrid& grid,
                     Integrator integrator) {
+  return Evaluate(ocp, controls, grid, integrator, ocp.x0());
+}
+
+Evaluation Evaluate(const Ocp& ocp,
+                    const ControlTrajectory& controls,
+                    const TimeGrid& grid,
+                    Integrator integrator,
+                    ConstVecRef initial_state) {
   CheckInputs(ocp, controls, grid);
   const int nx = ocp.nx(), nu = ocp.nu(), N = grid.intervals();
+  if (initial_state.size() != nx) {
+    throw std::invalid_argument("Evaluate: the initial state has " +
+                                std::to_string(initial_state.size()) + " components, problem " +
+                                ocp.name() + " has nx = " + std::to_string(nx));
+  }
   Evaluation ev;
   ev.grid = grid;
   ev.integrator = integrator;
   ev.X.resize(nx, N + 1);
-  Vec x = ocp.x0();
+  Vec x = initial_state;
   ev.X.col(0) = x;
+  // x(t0) against its bounds (a fixed x0 against itself: any other start is a violation).
+  ev.state_bound_violation = ocp.InitialNodeBounds().Violation(x);
+  const std::optional<VectorBounds>& state_bounds = ocp.state_bounds();
   ViolationTracker tracker(ocp);
   Vec u0(nu), um(nu), u1(nu), k1(nx), k2(nx), k3(nx), k4(nx);
   double running = 0.0;
@@ -133,6 +149,9 @@ Evaluation Evaluate(const Ocp& ocp,
       x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
     }
     ev.X.col(k + 1) = x;
+    if (state_bounds) {
+      ev.state_bound_violation = std::max(ev.state_bound_violation, state_bounds->Violation(x));
+    }
   }
   controls.Evaluate(grid.tf(), Side::kLeft, u1);
   tracker.VisitNode(grid.tf(), x, u1);
@@ -144,10 +163,23 @@ Evaluation Evaluate(const Ocp& ocp,
   ev.terminal_penalty = ocp.terminal_weights().dot(ev.terminal_residual.cwiseAbs2());
   ev.terminal_violation = ocp.num_terminal() > 0 ? ev.terminal_residual.cwiseAbs().maxCoeff() : 0.0;
   ev.Jbar = ev.running_cost + ev.terminal_cost;
+  if (ocp.HasInitialCost()) {  // only then, so that every other problem's J keeps its bits
+    ev.initial_cost = ocp.InitialCost(ev.X.col(0));
+    ev.Jbar += ev.initial_cost;
+  }
   ev.J = ev.Jbar + ev.terminal_penalty;
+  ev.boundary_residual.resize(ocp.num_boundary());
+  ev.boundary_violation = 0.0;
+  if (ocp.num_boundary() > 0) {
+    ocp.BoundaryConstraints(ev.X.col(0), x, ev.boundary_residual);
+    ev.boundary_violation = ev.boundary_residual.allFinite()
+                                ? ocp.boundary_bounds().Violation(ev.boundary_residual)
+                                : std::numeric_limits<double>::quiet_NaN();
+  }
   ev.control_violation = tracker.control;
   ev.path_violation = tracker.path;
-  ev.finite = std::isfinite(ev.J) && ev.X.allFinite() && std::isfinite(ev.terminal_violation);
+  ev.finite = std::isfinite(ev.J) && ev.X.allFinite() && std::isfinite(ev.terminal_violation) &&
+              std::isfinite(ev.boundary_violation);
   return ev;
 }
 
@@ -157,7 +189,9 @@ double ResimulationDefect(const Ocp& ocp,
                           const Mat& X,
                           int refine) {
   const TimeGrid fine = state_grid.Refined(refine);
-  const Evaluation ev = Evaluate(ocp, controls, fine, Integrator::kRk4);
+  const bool own_start = ocp.HasFreeInitialState() && X.rows() == ocp.nx() && X.cols() > 0;
+  const Evaluation ev =
+      Evaluate(ocp, controls, fine, Integrator::kRk4, own_start ? Vec(X.col(0)) : ocp.x0());
   if (!ev.finite || !X.allFinite()) return std::numeric_limits<double>::quiet_NaN();
   double worst = 0.0;
   for (int k = 0; k < state_grid.size(); ++k) {

@@ -10,9 +10,11 @@ namespace ocpb {
 
 /// What re-simulating a control trajectory says about it.
 struct Evaluation {
-  double J = -1.0;                   ///< penalized cost: int L + phi + sum w_i psi_i^2
-  double Jbar = -1.0;                ///< unpenalized cost: int L + phi
+  double J = -1.0;                   ///< penalized cost: Jbar + sum w_i psi_i^2
+  double Jbar = -1.0;                ///< unpenalized cost: int L + phi (+ phi0(x(t0)) when
+                                     ///< the problem has an initial cost)
   double running_cost = -1.0;        ///< int L
+  double initial_cost = 0.0;         ///< phi0(x(t0)) (Ocp::InitialCost; 0 without one)
   double terminal_cost = -1.0;       ///< phi(x(tf))
   double terminal_penalty = -1.0;    ///< sum w_i psi_i(x(tf))^2
   Vec terminal_residual;             ///< psi(x(tf))
@@ -23,6 +25,13 @@ struct Evaluation {
   double path_violation = -1.0;      ///< max over grid nodes t_k and i of
                                      ///< max(c_i(t_k, x_k, u(t_k+)), 0) (at tf: u(tf-)); the
                                      ///< constraints are judged where NLPs enforce them
+  /// The state bounds (Ocp::state_bounds) at every grid node after t0 and the initial-state
+  /// bounds at t0 (a fixed x0: the distance from it), max over nodes and components of the
+  /// distance outside; 0 when everything is inside.
+  double state_bound_violation = -1.0;
+  Vec boundary_residual;             ///< b(x(t0), x(tf)) (size Ocp::num_boundary())
+  double boundary_violation = -1.0;  ///< max_i of how far b_i lies outside its bounds (0 when
+                                     ///< inside, and without boundary constraints)
 
   Mat X;  ///< states on the grid (nx x (N+1))
   TimeGrid grid;
@@ -44,10 +53,19 @@ Evaluation Evaluate(const Ocp& ocp,
                     const ControlTrajectory& controls,
                     const TimeGrid& grid,
                     Integrator integrator);
+/// The same from x(t0) = initial_state (nx components, else std::invalid_argument): for a
+/// problem with a free initial state, the x(t0) a method chose (SolveResult::initial_state). J
+/// then includes phi0(x(t0)).
+Evaluation Evaluate(const Ocp& ocp,
+                    const ControlTrajectory& controls,
+                    const TimeGrid& grid,
+                    Integrator integrator,
+                    ConstVecRef initial_state);
 
 /// The honest "does this control really do it" check for methods that carry their own states
 /// (collocation): re-simulates `controls` with RK4 on `state_grid` refined `refine` times and
-/// returns max_k |x_sim(t_k) - X.col(k)|_inf over the nodes of `state_grid`. NaN if not finite.
+/// returns max_k |x_sim(t_k) - X.col(k)|_inf over the nodes of `state_grid`, from x0() (from
+/// X.col(0) for a free initial state). NaN if not finite.
 double ResimulationDefect(const Ocp& ocp,
                           const ControlTrajectory& controls,
                           const TimeGrid& state_grid,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -150,8 +151,122 @@ bool Ocp::AdmitsFinalTime(double tf) const {
 void Ocp::SetInitialState(const Vec& x0) {
   if (x0.size() != nx_) throw std::invalid_argument("initial state: size must equal nx");
   if (!x0.allFinite()) throw std::invalid_argument("initial state: values must be finite");
+  if (initial_state_bounds_ && initial_state_bounds_->Violation(x0) > 0.0) {
+    throw std::invalid_argument(
+        "initial state: x0 must lie within the initial-state bounds set before");
+  }
   x0_ = x0;
 }
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Throws std::invalid_argument naming `what` unless lower and upper have size n, no NaN, and
+// lower <= upper componentwise.
+void CheckBounds(const char* what, int n, const Vec& lower, const Vec& upper) {
+  const std::string name(what);
+  if (lower.size() != n || upper.size() != n) {
+    throw std::invalid_argument(name +
+                                ": lower and upper must have size nx = " + std::to_string(n));
+  }
+  for (int i = 0; i < n; ++i) {
+    if (std::isnan(lower[i]) || std::isnan(upper[i])) {
+      throw std::invalid_argument(name + ": component " + std::to_string(i) + " is NaN");
+    }
+    if (!(lower[i] <= upper[i]) || lower[i] == kInfinity || upper[i] == -kInfinity) {
+      std::ostringstream os;
+      os << name << ": component " << i << " needs lower <= upper with a finite side (got ["
+         << lower[i] << ", " << upper[i] << "])";
+      throw std::invalid_argument(os.str());
+    }
+  }
+}
+
+}  // namespace
+
+double VectorBounds::Violation(ConstVecRef v) const {
+  double worst = 0.0;
+  for (int i = 0; i < v.size(); ++i) {
+    worst = std::max({worst, lower[i] - v[i], v[i] - upper[i]});
+  }
+  return worst;
+}
+
+VectorBounds Ocp::InitialNodeBounds() const {
+  if (initial_state_bounds_) return *initial_state_bounds_;
+  return VectorBounds{x0_, x0_};
+}
+
+void Ocp::SetStateBounds(const Vec& lower, const Vec& upper) {
+  CheckBounds("state bounds", nx_, lower, upper);
+  state_bounds_ = VectorBounds{lower, upper};
+}
+
+void Ocp::SetInitialStateBounds(const Vec& lower, const Vec& upper) {
+  CheckBounds("initial-state bounds", nx_, lower, upper);
+  VectorBounds b{lower, upper};
+  if (b.Violation(x0_) > 0.0) {
+    throw std::invalid_argument(
+        "initial-state bounds: x0 (SetInitialState, where methods start) must lie within them");
+  }
+  initial_state_bounds_ = std::move(b);
+}
+
+void Ocp::SetBoundaryConstraints(const Vec& lower, const Vec& upper) {
+  if (lower.size() != upper.size()) {
+    throw std::invalid_argument("boundary constraints: lower and upper must have the same size");
+  }
+  for (int i = 0; i < lower.size(); ++i) {
+    if (std::isnan(lower[i]) || std::isnan(upper[i]) || !(lower[i] <= upper[i]) ||
+        lower[i] == kInfinity || upper[i] == -kInfinity) {
+      std::ostringstream os;
+      os << "boundary constraints: row " << i
+         << " needs lower <= upper, no NaN, and a finite side (got [" << lower[i] << ", "
+         << upper[i] << "])";
+      throw std::invalid_argument(os.str());
+    }
+  }
+  nb_ = static_cast<int>(lower.size());
+  boundary_bounds_ = VectorBounds{lower, upper};
+}
+
+double Ocp::BoundaryViolation(ConstVecRef x0, ConstVecRef xf) const {
+  if (nb_ == 0) return 0.0;
+  Vec b(nb_);
+  BoundaryConstraints(x0, xf, b);
+  if (!b.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+  return boundary_bounds_.Violation(b);
+}
+
+namespace {
+
+[[noreturn]] void MissingBoundary(const std::string& problem, const char* function) {
+  throw std::logic_error("problem '" + problem +
+                         "' declares boundary constraints but does not define " + function);
+}
+
+}  // namespace
+
+void Ocp::BoundaryConstraints(ConstVecRef, ConstVecRef, VecRef) const {
+  if (nb_ > 0) MissingBoundary(name(), "BoundaryConstraints");
+}
+
+void Ocp::BoundaryConstraintsJacobian(ConstVecRef, ConstVecRef, VecRef, MatRef, MatRef) const {
+  if (nb_ > 0) MissingBoundary(name(), "BoundaryConstraintsJacobian");
+}
+
+void Ocp::BoundaryHessian(ConstVecRef, ConstVecRef, ConstVecRef, MatRef hess) const {
+  if (nb_ > 0) MissingBoundary(name(), "BoundaryHessian");
+  hess.setZero();
+}
+
+void Ocp::InitialCostGradient(ConstVecRef x0, double* phi0, VecRef grad) const {
+  *phi0 = InitialCost(x0);
+  grad.setZero();
+}
+
+void Ocp::InitialCostHessian(ConstVecRef, double, MatRef hess) const { hess.setZero(); }
 
 void Ocp::SetTerminalWeights(const Vec& w) {
   if (w.size() != npsi_) throw std::invalid_argument("terminal weights: size must equal npsi");

@@ -25,6 +25,14 @@ struct FreeFinalTime {
   double upper = 0.0;
 };
 
+/// Componentwise bounds lower <= v <= upper; an entry may be -inf (lower) or +inf (upper).
+struct VectorBounds {
+  Vec lower;
+  Vec upper;
+  /// max_i max(lower_i - v_i, v_i - upper_i, 0): 0 inside, the distance outside.
+  double Violation(ConstVecRef v) const;
+};
+
 /// What a method that needs a reformulated problem (the Hamiltonian descent) may ask of
 /// Ocp::HamiltonianReformulation. An unset field means "the problem's own default", which the
 /// problem's header states.
@@ -41,8 +49,25 @@ struct HamiltonianReformulationOptions {
 ///   minimize    J = int_{t0}^{tf} L(t, x, u) dt + phi(x(tf)) [+ sum_i w_i psi_i(x(tf))^2]
 ///   subject to  x' = f(t, x, u),  x(t0) = x0,
 ///               u(t) in U                       (a ControlSet),
-///               c(t, x, u) <= 0                 (path constraints, state bounds among them),
+///               c(t, x, u) <= 0                 (path constraints),
 ///               psi(x(tf)) = 0                  (hard form only).
+///
+/// Two widenings, both off by default (a problem that sets neither is the problem above,
+/// solved exactly as before):
+///  - state bounds x_lo <= x(t) <= x_hi on (t0, tf] (SetStateBounds): the collocation
+///    transcriptions make them bounds of their state variables (not constraint rows), at every
+///    state point but the initial one; the judge checks them on its fine re-simulation;
+///  - a free or partly free initial state (SetInitialStateBounds): x(t0) in [l0, u0] is then a
+///    decision, x0() only where methods start, and the cost may add phi0(x(t0))
+///    (InitialCost): J = phi0(x(t0)) + int L + phi(x(tf)). The initial node takes the
+///    initial-state bounds alone (a problem whose state bounds hold at t0 too repeats them
+///    there). A result carries the x(t0) it chose (SolveResult::initial_state).
+///  - boundary constraints b_lo <= b(x(t0), x(tf)) <= b_hi (SetBoundaryConstraints and
+///    BoundaryConstraints; equalities where b_lo = b_hi), coupling both ends (a periodic state,
+///    a total change, an initial condition given implicitly). Always hard constraints, in both
+///    terminal forms (the penalty form is psi's alone).
+/// Methods that do not take them (single shooting, the Hamiltonian family, indirect-newton,
+/// riccati-ip) report SolveStatus::kNotApplicable with the reason.
 ///
 /// Free final time (Ocp::free_final_time(), off by default): tf is then minimized over too, in
 /// [lower, upper], and tf() is only its nominal value, where methods start (a request's grid
@@ -83,6 +108,21 @@ class Ocp {
   const ControlSet& control_set() const { return control_set_; }
   /// Set when the final time is free (see the class comment); empty for a fixed horizon.
   const std::optional<FreeFinalTime>& free_final_time() const { return free_final_time_; }
+  /// State bounds x_lo <= x(t) <= x_hi on (t0, tf] (SetStateBounds); empty when there are none.
+  const std::optional<VectorBounds>& state_bounds() const { return state_bounds_; }
+  /// Bounds on x(t0) when the initial state is free or partly free (SetInitialStateBounds);
+  /// empty when x(t0) = x0() is fixed.
+  const std::optional<VectorBounds>& initial_state_bounds() const { return initial_state_bounds_; }
+  /// True when SetInitialStateBounds was called (some component of x(t0) is a decision).
+  bool HasFreeInitialState() const { return initial_state_bounds_.has_value(); }
+  /// The bounds x(t0) takes in a transcription: initial_state_bounds(), or [x0, x0] when fixed.
+  VectorBounds InitialNodeBounds() const;
+  /// The number of boundary constraints b(x(t0), x(tf)) (SetBoundaryConstraints; default 0).
+  int num_boundary() const { return nb_; }
+  /// Their bounds b_lo <= b <= b_hi (size num_boundary() each).
+  const VectorBounds& boundary_bounds() const { return boundary_bounds_; }
+  /// max_i of how far b_i(x0, xf) lies outside [b_lo,i, b_hi,i] (0 inside, and without any).
+  double BoundaryViolation(ConstVecRef x0, ConstVecRef xf) const;
   /// Whether a trajectory may end at `tf`: tf == tf() to 1e-9 relative for a fixed horizon,
   /// tf in [lower, upper] (to the same tolerance) for a free final time.
   bool AdmitsFinalTime(double tf) const;
@@ -92,8 +132,17 @@ class Ocp {
   virtual double RunningCost(double t, ConstVecRef x, ConstVecRef u) const = 0;
   /// phi(x(tf)), without the terminal penalty.
   virtual double TerminalCost(ConstVecRef x) const = 0;
+  /// True when the problem defines an initial cost phi0 (default false: phi0 = 0). Only a
+  /// problem with a free initial state needs one; for a fixed x(t0) it is a constant.
+  virtual bool HasInitialCost() const { return false; }
+  /// phi0(x(t0)); default 0.
+  virtual double InitialCost(ConstVecRef /*x0*/) const { return 0.0; }
   /// psi(x(tf)) (size num_terminal()).
   virtual void TerminalConstraints(ConstVecRef x, VecRef psi) const = 0;
+  /// b(x(t0), x(tf)) (size num_boundary()). The default, for num_boundary() == 0, writes
+  /// nothing; a problem that declares boundary constraints must override it and the two below
+  /// (AutoDiffOcp does, from EvalBoundaryConstraints).
+  virtual void BoundaryConstraints(ConstVecRef x0, ConstVecRef xf, VecRef b) const;
   /// c(t, x, u) <= 0 (size num_path()).
   virtual void PathConstraints(double t, ConstVecRef x, ConstVecRef u, VecRef c) const = 0;
 
@@ -105,6 +154,11 @@ class Ocp {
   virtual void RunningCostGradient(
       double t, ConstVecRef x, ConstVecRef u, double* L, VecRef Lx, VecRef Lu) const = 0;
   virtual void TerminalCostGradient(ConstVecRef x, double* phi, VecRef phix) const = 0;
+  /// phi0 and its gradient (default: 0 and zeros).
+  virtual void InitialCostGradient(ConstVecRef x0, double* phi0, VecRef grad) const;
+  /// b, b_x0 = db/dx(t0) and b_xf = db/dx(tf) (nb x nx each).
+  virtual void BoundaryConstraintsJacobian(
+      ConstVecRef x0, ConstVecRef xf, VecRef b, MatRef b_x0, MatRef b_xf) const;
   /// psi and psi_x (npsi x nx).
   virtual void TerminalConstraintsJacobian(ConstVecRef x, VecRef psi, MatRef psix) const = 0;
   /// c, c_x (nc x nx), c_u (nc x nu).
@@ -123,6 +177,10 @@ class Ocp {
                             MatRef hess) const = 0;
   /// The Hessian with respect to x (nx x nx) of sigma phi(x) + nu^T psi(x).
   virtual void TerminalHessian(ConstVecRef x, double sigma, ConstVecRef nu, MatRef hess) const = 0;
+  /// The Hessian with respect to (x(t0), x(tf)) (2nx x 2nx, full and symmetric) of mu^T b.
+  virtual void BoundaryHessian(ConstVecRef x0, ConstVecRef xf, ConstVecRef mu, MatRef hess) const;
+  /// The Hessian (nx x nx) of sigma phi0(x0) (default: zeros).
+  virtual void InitialCostHessian(ConstVecRef x0, double sigma, MatRef hess) const;
 
   // ---- pointwise Hamiltonian minimizer -------------------------------------------
   /// True when MinimizeHamiltonian is available in closed form.
@@ -237,6 +295,19 @@ class Ocp {
   /// t0 < lower <= tf() <= upper. The caller promises an autonomous problem (f, L, c
   /// independent of t); its tests should check it.
   void SetFreeFinalTime(double lower, double upper);
+  /// State bounds x_lo <= x(t) <= x_hi on (t0, tf] (size nx each; -inf / +inf for an
+  /// unbounded side; lower <= upper, no NaN). Replaces a path row c = x - x_hi <= 0: the NLP
+  /// solvers see them as variable bounds.
+  void SetStateBounds(const Vec& lower, const Vec& upper);
+  /// Makes x(t0) a decision in [lower, upper] (size nx each; lower <= upper, no NaN; a
+  /// component with lower == upper stays fixed). x0() (SetInitialState, call it first) is where
+  /// methods start and must lie inside.
+  void SetInitialStateBounds(const Vec& lower, const Vec& upper);
+  /// Declares num_boundary() = lower.size() boundary constraints lower <= b(x(t0), x(tf)) <=
+  /// upper (same sizes, no NaN, lower <= upper, -inf / +inf for a one-sided one, lower == upper
+  /// for an equality). The problem defines b by overriding BoundaryConstraints and its
+  /// derivatives (AutoDiffOcp: EvalBoundaryConstraints).
+  void SetBoundaryConstraints(const Vec& lower, const Vec& upper);
 
  private:
   int nx_ = 0, nu_ = 0, npsi_ = 0, nc_ = 0;
@@ -246,6 +317,10 @@ class Ocp {
   bool terminal_weights_chosen_ = false;
   ControlSet control_set_;
   std::optional<FreeFinalTime> free_final_time_;
+  std::optional<VectorBounds> state_bounds_;
+  std::optional<VectorBounds> initial_state_bounds_;
+  int nb_ = 0;
+  VectorBounds boundary_bounds_;
 };
 
 }  // namespace ocpb

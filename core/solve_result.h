@@ -75,6 +75,9 @@ struct SolveResult {
                                ///< spans [t0, the solution's tf]
   Mat states;                  ///< the method's own states (nx x points), if it has them
   Mat costates;                ///< costates or multiplier-based estimates, if any
+  /// The x(t0) the method chose when the problem's initial state is free
+  /// (Ocp::HasFreeInitialState); empty otherwise (x(t0) = x0). The judge starts from it.
+  Vec initial_state;
   double objective = -1.0;     ///< the objective value the method reports about itself
   int iterations = -1;
   std::vector<IterationRecord> history;

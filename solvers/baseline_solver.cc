@@ -11,7 +11,9 @@ OptionSchema BaselineSolver::Schema() { return OptionSchema("baseline"); }
 
 SolveResult BaselineSolver::Solve(const Ocp& ocp, const SolveRequest& request) const {
   Schema().Resolve(request.options);  // no options: any key is refused by name
-  if (std::optional<SolveResult> na = FreeFinalTimeNotApplicable(ocp, name())) return *na;
+  if (std::optional<SolveResult> na = FeaturesNotApplicable(ocp, name(), ProblemFeatures())) {
+    return *na;
+  }
   const Stopwatch watch;
   SolveResult r;
   r.solver = name();

@@ -9,7 +9,8 @@
 namespace ocpb {
 
 /// Forwards every Ocp function to `inner` (not owned; it must outlive this object) and copies
-/// its dimensions, horizon, initial state, terminal weights, control set and free final time.
+/// its dimensions, horizon, initial state, terminal weights, control set, free final time, state
+/// bounds, initial-state bounds and boundary constraints' bounds.
 /// A subclass overrides what it changes and documents it. HamiltonianReformulation() is not
 /// forwarded (it returns nullptr): a reformulation of `inner` would drop the subclass's change,
 /// so callers resolve reformulations before wrapping. MinimizeHamiltonianWithGradients() is not
@@ -38,6 +39,16 @@ class ForwardingOcp : public Ocp {
     if (inner.free_final_time()) {
       SetFreeFinalTime(inner.free_final_time()->lower, inner.free_final_time()->upper);
     }
+    if (inner.state_bounds()) {
+      SetStateBounds(inner.state_bounds()->lower, inner.state_bounds()->upper);
+    }
+    if (inner.initial_state_bounds()) {
+      SetInitialStateBounds(inner.initial_state_bounds()->lower,
+                            inner.initial_state_bounds()->upper);
+    }
+    if (inner.num_boundary() > 0) {
+      SetBoundaryConstraints(inner.boundary_bounds().lower, inner.boundary_bounds().upper);
+    }
   }
 
  public:
@@ -48,6 +59,24 @@ class ForwardingOcp : public Ocp {
     return inner_.RunningCost(t, x, u);
   }
   double TerminalCost(ConstVecRef x) const override { return inner_.TerminalCost(x); }
+  bool HasInitialCost() const override { return inner_.HasInitialCost(); }
+  void BoundaryConstraints(ConstVecRef x0, ConstVecRef xf, VecRef b) const override {
+    inner_.BoundaryConstraints(x0, xf, b);
+  }
+  void BoundaryConstraintsJacobian(
+      ConstVecRef x0, ConstVecRef xf, VecRef b, MatRef b_x0, MatRef b_xf) const override {
+    inner_.BoundaryConstraintsJacobian(x0, xf, b, b_x0, b_xf);
+  }
+  void BoundaryHessian(ConstVecRef x0, ConstVecRef xf, ConstVecRef mu, MatRef hess) const override {
+    inner_.BoundaryHessian(x0, xf, mu, hess);
+  }
+  double InitialCost(ConstVecRef x0) const override { return inner_.InitialCost(x0); }
+  void InitialCostGradient(ConstVecRef x0, double* phi0, VecRef grad) const override {
+    inner_.InitialCostGradient(x0, phi0, grad);
+  }
+  void InitialCostHessian(ConstVecRef x0, double sigma, MatRef hess) const override {
+    inner_.InitialCostHessian(x0, sigma, hess);
+  }
   void TerminalConstraints(ConstVecRef x, VecRef psi) const override {
     inner_.TerminalConstraints(x, psi);
   }

@@ -142,7 +142,7 @@ void CheckRequest(const Ocp& ocp, const SolveRequest& request) {
 HamiltonianTarget ResolveDescentTarget(const Ocp& original,
                                        const SolveRequest& request,
                                        const HamiltonianDescentOptions& opt) {
-  if (auto refused = FreeFinalTimeNotApplicable(original, "hamiltonian")) {
+  if (auto refused = FeaturesNotApplicable(original, "hamiltonian", ProblemFeatures())) {
     HamiltonianTarget t;
     t.not_applicable = std::move(refused);
     return t;

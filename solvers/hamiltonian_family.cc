@@ -63,6 +63,11 @@ HamiltonianTarget ResolveFamilyTarget(const std::string& name,
     t.not_applicable = NotApplicable(name, t.NotePrefix() + why);
     return std::move(t);
   };
+  ProblemFeatures takes;
+  takes.free_final_time = true;
+  if (const std::string why = UnsupportedFeature(original, name, takes); !why.empty()) {
+    return refuse(why);
+  }
   if (!t.ocp->HasHamiltonianMinimizer()) {
     return refuse("problem '" + t.ocp->name() + "' has no pointwise Hamiltonian minimizer");
   }

@@ -112,7 +112,11 @@ HamiltonianTarget ResolveNewtonTarget(const Ocp& original, const IndirectNewtonO
   options.regularization = o.regularization;
   HamiltonianTarget t = ResolveHamiltonianTarget(original, options);
   const std::string prefix = t.NotePrefix();
-  if (!t.ocp->HasHamiltonianMinimizer()) {
+  ProblemFeatures takes;  // H(tf) = 0 closes a free final time; x(t0) is fixed, no state bounds
+  takes.free_final_time = true;
+  if (std::string why = UnsupportedFeature(original, "indirect-newton", takes); !why.empty()) {
+    t.not_applicable = Result(SolveStatus::kNotApplicable, "not_applicable", why);
+  } else if (!t.ocp->HasHamiltonianMinimizer()) {
     t.not_applicable =
         Result(SolveStatus::kNotApplicable,
                "not_applicable",

@@ -81,6 +81,8 @@ void AddFeasibilityWarning(const SolveRequest& request, const JudgeOptions& opti
   };
   check("control set U", j->fine.control_violation);
   check("path constraints", j->fine.path_violation);
+  check("state bounds", j->fine.state_bound_violation);
+  check("boundary constraints", j->fine.boundary_violation);  // hard in both terminal forms
   if (request.terminal == TerminalMode::kHard) {
     check("terminal constraints", j->fine.terminal_violation);
   }
@@ -126,8 +128,15 @@ Judgement JudgeResult(const Ocp& ocp,
   j.judged = true;
   j.grid = JudgedGrid(ocp, request, result);
   j.final_time = j.grid.tf();
-  j.own_grid = Evaluate(ocp, result.controls, j.grid, options.integrator);
-  j.fine = Evaluate(ocp, result.controls, j.grid.Refined(options.refine), Integrator::kRk4);
+  // A free initial state is judged from the x(t0) the method chose; a fixed one from x0.
+  if (result.initial_state.size() != 0 && result.initial_state.size() != ocp.nx()) {
+    throw std::invalid_argument("JudgeResult: the result's initial_state has " +
+                                std::to_string(result.initial_state.size()) +
+                                " components, the problem nx = " + std::to_string(ocp.nx()));
+  }
+  const Vec start = result.initial_state.size() == ocp.nx() ? result.initial_state : ocp.x0();
+  j.own_grid = Evaluate(ocp, result.controls, j.grid, options.integrator, start);
+  j.fine = Evaluate(ocp, result.controls, j.grid.Refined(options.refine), Integrator::kRk4, start);
   const bool has_states = result.states.rows() == ocp.nx() &&
                           result.states.cols() == result.state_grid.size() &&
                           result.state_grid.size() >= 2;

@@ -22,7 +22,8 @@ namespace ocpb {
 ///  - "discretization": the method's own objective and the fine re-simulation of its controls
 ///    disagree by more than JudgeOptions::discretization_tolerance (the grid, not the method,
 ///    limits the answer: refine it, or use a higher-order scheme).
-///  - "infeasible": the controls re-simulated on the fine grid violate U, a path constraint, or
+///  - "infeasible": the controls re-simulated on the fine grid violate U, a path constraint, the
+///    state bounds (or the initial-state bounds at t0), the boundary constraints, or
 ///    (hard form) the terminal constraints by more than JudgeOptions::feasibility_tolerance,
 ///    whatever the status says (a minimizer that forgets the bounds, a scheme that does not
 ///    enforce a path constraint at tf, a penalty reformulation).
@@ -42,7 +43,8 @@ struct JudgeOptions {
   /// |fine|, 1e-8), with `fine` the fine re-simulation's J in the penalty form and its Jbar in
   /// the hard form (what the method's objective measures). 1 %: the summary's target rule.
   double discretization_tolerance = 1e-2;
-  /// Warn "infeasible" when the fine re-simulation's control_violation or path_violation, or
+  /// Warn "infeasible" when the fine re-simulation's control_violation, path_violation or
+  /// state_bound_violation, or
   /// in the hard form its terminal_violation, exceeds this (absolute, in the constraint's own
   /// units). 1e-3: far above what a converged NLP leaves (1e-8 and below), below what changes
   /// an answer visibly; the violations themselves are in Judgement::fine.

@@ -78,6 +78,9 @@ MeshSolve SolveOnMesh(const std::string& solver_name,
   result.controls = nlp->Controls(sol.z);
   result.state_grid = nlp->StateGrid(sol.z);
   result.states = nlp->States(sol.z);
+  if (ocp.HasFreeInitialState() && result.states.rows() == ocp.nx() && result.states.cols() > 0) {
+    result.initial_state = result.states.col(0);
+  }
   if (sol.lambda.size() == nlp->num_constraints() && sol.lambda.allFinite()) {
     result.costates = nlp->Costates(sol.z, sol.lambda);
     if (result.costates.size() > 0) result.costate_source = "NLP multipliers (" + info.name + ")";
@@ -117,10 +120,14 @@ SolveResult SolveTranscribed(const std::string& solver_name,
                              const SolveRequest& request,
                              const NlpBackend& backend) {
   const TranscriptionInfo& info = RequestTranscription(request);
-  if (!info.takes_free_final_time) {
-    if (auto refused = FreeFinalTimeNotApplicable(ocp, solver_name + " + " + info.name)) {
-      return *refused;
-    }
+  ProblemFeatures takes;
+  takes.free_final_time = info.takes_free_final_time;
+  takes.free_initial_state = info.takes_free_initial_state;
+  takes.state_bounds = info.takes_state_bounds;
+  takes.boundary_constraints = info.takes_boundary_constraints;
+  if (auto refused = FeaturesNotApplicable(ocp, solver_name + " + " + info.name, takes)) {
+    refused->solver = solver_name;
+    return *refused;
   }
   const Stopwatch watch;
   const TranscriptionOptions options = TranscriptionOptionsFor(request);

@@ -1234,6 +1234,8 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
            "' has a free final time, which riccati-ip does not take (it keeps the horizon fixed); "
            "ipopt on a collocation transcription solves it";
   }
+  ProblemFeatures takes;  // its stage blocks fix x(t0) and bound controls only
+  if (std::string why = UnsupportedFeature(ocp, "riccati-ip", takes); !why.empty()) return why;
   const TranscriptionOptions options = TranscriptionOptionsFor(request);
   if (!options.scaling.IsIdentity()) {
     return "riccati-ip works in the problem's units: the transcription options objective_scale, "

@@ -2,22 +2,77 @@
 
 namespace ocpb {
 
-std::optional<SolveResult> FreeFinalTimeNotApplicable(const Ocp& ocp, const std::string& solver) {
-  if (!ocp.free_final_time()) return std::nullopt;
+namespace {
+
+std::string FreeFinalTimeReason(const Ocp& ocp, const std::string& solver) {
+  return "problem '" + ocp.name() + "' has a free final time, which " + solver +
+         " does not take (it keeps the horizon fixed): indirect-newton (H(tf) = 0) and the "
+         "NLP solvers on a collocation transcription (T a variable) solve it; the "
+         "time-scaled problems (brachistochrone, zermelo, steering, goddard, robot-arm) pose "
+         "free time on a fixed horizon for every method";
+}
+
+// Who takes the features beyond free final time, for the refusal's text.
+constexpr const char* kCollocationSolvers =
+    "ipopt and nlopt on a collocation transcription (euler, trapezoid, hermite-simpson, lgr) "
+    "solve it";
+
+}  // namespace
+
+SolveResult NotApplicableResult(const std::string& solver, const std::string& why) {
   SolveResult r;
   r.solver = solver;
   r.status = SolveStatus::kNotApplicable;
   r.solver_status = "not_applicable";
-  r.message =
-      "problem '" + ocp.name() + "' has a free final time, which " + solver +
-      " does not take (it keeps the horizon fixed): indirect-newton (H(tf) = 0) and the "
-      "NLP solvers on a collocation transcription (T a variable) solve it; the "
-      "time-scaled problems (brachistochrone, zermelo, steering, goddard, robot-arm) pose free "
-      "time on a fixed horizon for every method";
+  r.message = why;
   r.iterations = 0;
   r.cpu_seconds = 0.0;
   r.wall_seconds = 0.0;
   return r;
+}
+
+std::optional<SolveResult> FreeFinalTimeNotApplicable(const Ocp& ocp, const std::string& solver) {
+  if (!ocp.free_final_time()) return std::nullopt;
+  return NotApplicableResult(solver, FreeFinalTimeReason(ocp, solver));
+}
+
+ProblemFeatures ProblemFeatures::Of(const Ocp& ocp) {
+  ProblemFeatures f;
+  f.free_final_time = ocp.free_final_time().has_value();
+  f.free_initial_state = ocp.HasFreeInitialState();
+  f.state_bounds = ocp.state_bounds().has_value();
+  f.boundary_constraints = ocp.num_boundary() > 0;
+  return f;
+}
+
+std::string UnsupportedFeature(const Ocp& ocp,
+                               const std::string& solver,
+                               const ProblemFeatures& takes) {
+  const ProblemFeatures uses = ProblemFeatures::Of(ocp);
+  if (uses.free_final_time && !takes.free_final_time) return FreeFinalTimeReason(ocp, solver);
+  if (uses.free_initial_state && !takes.free_initial_state) {
+    return "problem '" + ocp.name() + "' has a free initial state, which " + solver +
+           " does not take (it starts every trajectory from x0): " + kCollocationSolvers;
+  }
+  if (uses.state_bounds && !takes.state_bounds) {
+    return "problem '" + ocp.name() + "' has state bounds, which " + solver +
+           " does not take (its states follow from the controls, or it has no bounds on "
+           "them): " +
+           kCollocationSolvers;
+  }
+  if (uses.boundary_constraints && !takes.boundary_constraints) {
+    return "problem '" + ocp.name() + "' has boundary constraints b(x(t0), x(tf)), which " +
+           solver + " does not take: " + kCollocationSolvers;
+  }
+  return "";
+}
+
+std::optional<SolveResult> FeaturesNotApplicable(const Ocp& ocp,
+                                                 const std::string& solver,
+                                                 const ProblemFeatures& takes) {
+  const std::string why = UnsupportedFeature(ocp, solver, takes);
+  if (why.empty()) return std::nullopt;
+  return NotApplicableResult(solver, why);
 }
 
 ControlTrajectory DefaultInitialGuess(const Ocp& ocp, const TimeGrid& grid) {

@@ -68,6 +68,31 @@ class Solver {
 /// method); nullopt for a fixed horizon.
 std::optional<SolveResult> FreeFinalTimeNotApplicable(const Ocp& ocp, const std::string& solver);
 
+/// The parts of OCPBench's problem class beyond a fixed horizon, a fixed x(t0) and path rows
+/// (Ocp's class comment): which a problem uses (Of), or which a method takes.
+struct ProblemFeatures {
+  bool free_final_time = false;       ///< Ocp::free_final_time
+  bool free_initial_state = false;    ///< Ocp::HasFreeInitialState (with its initial cost)
+  bool state_bounds = false;          ///< Ocp::state_bounds
+  bool boundary_constraints = false;  ///< Ocp::num_boundary() > 0
+  /// The features `ocp` uses.
+  static ProblemFeatures Of(const Ocp& ocp);
+};
+/// The reason `solver` cannot solve `ocp` when the problem uses a feature the method does not
+/// take (one line: the feature, the problem, which methods take it); empty when it takes all
+/// the problem uses. The free final time's text is FreeFinalTimeNotApplicable's.
+std::string UnsupportedFeature(const Ocp& ocp,
+                               const std::string& solver,
+                               const ProblemFeatures& takes);
+/// UnsupportedFeature as the result a method returns instead of solving
+/// (SolveStatus::kNotApplicable, solver_status "not_applicable"); nullopt when it applies.
+std::optional<SolveResult> FeaturesNotApplicable(const Ocp& ocp,
+                                                 const std::string& solver,
+                                                 const ProblemFeatures& takes);
+/// A result that says `solver` did not run, with `why` as its message (kNotApplicable, no
+/// iterations, no time).
+SolveResult NotApplicableResult(const std::string& solver, const std::string& why);
+
 /// The default starting controls: Ocp::NominalControl() projected onto U, constant on `grid`.
 ControlTrajectory DefaultInitialGuess(const Ocp& ocp, const TimeGrid& grid);
 

@@ -80,7 +80,8 @@ CollocationNlp::CollocationNlp(const Ocp& ocp,
       nx_(ocp.nx()),
       nu_(ocp.nu()),
       nc_(ocp.num_path()),
-      npsi_(ocp.num_terminal()) {
+      npsi_(ocp.num_terminal()),
+      nb_(ocp.num_boundary()) {
   if (layout_.nx != nx_ || layout_.nu != nu_ || layout_.states.size() < 2) {
     throw std::logic_error("CollocationNlp: layout does not match the problem");
   }
@@ -88,6 +89,7 @@ CollocationNlp::CollocationNlp(const Ocp& ocp,
   for (const auto& s : layout_.states) times.push_back(s.t);
   state_grid_ = TimeGrid::FromPoints(times);
   free_time_ = ocp.free_final_time().has_value();
+  initial_cost_ = ocp.HasFreeInitialState() && ocp.HasInitialCost();
   time_index_ = free_time_ ? layout_.num_variables : -1;
   inv_duration_ = 1.0 / (grid_.tf() - grid_.t0());
 
@@ -120,6 +122,8 @@ CollocationNlp::CollocationNlp(const Ocp& ocp,
   row += static_cast<int>(layout_.controls.size() * ball_blocks_.size());
   terminal_row_begin_ = row;
   if (mode_ == TerminalMode::kHard) row += npsi_;
+  boundary_row_begin_ = row;
+  row += nb_;
   num_constraints_ = row;
 
   row_scale_ = Vec::Ones(num_constraints_);
@@ -199,6 +203,11 @@ void CollocationNlp::BuildStructure() {
     terminal_slots_ =
         append(&jac_slots_, jac.Block(Range(terminal_row_begin_, npsi_), xcols(last)));
   }
+  if (nb_ > 0) {
+    const std::vector<int> rows = Range(boundary_row_begin_, nb_);
+    boundary_x0_slots_ = append(&jac_slots_, jac.Block(rows, xcols(0)));
+    boundary_xf_slots_ = append(&jac_slots_, jac.Block(rows, xcols(last)));
+  }
   if (free_time_) {
     for (size_t d = 0; d < layout_.defects.size(); ++d) {
       time_jac_slots_.push_back(append(
@@ -224,6 +233,15 @@ void CollocationNlp::BuildStructure() {
     }
   }
   terminal_hess_slots_ = append(&hess_slots_, hess.Block(xcols(last), xcols(last), true));
+  if (initial_cost_) {
+    initial_hess_slots_ = append(&hess_slots_, hess.Block(xcols(0), xcols(0), true));
+  }
+  if (nb_ > 0) {  // (x(t0), x(tf)) jointly: its lower triangle in the NLP's column order
+    std::vector<int> ends = xcols(0);
+    const std::vector<int> xf = xcols(last);
+    ends.insert(ends.end(), xf.begin(), xf.end());
+    boundary_hess_slots_ = append(&hess_slots_, hess.Block(ends, ends, true));
+  }
   for (size_t i = 0; i < layout_.controls.size(); ++i) {
     for (int b : ball_blocks_) {
       std::vector<int> diag;
@@ -247,9 +265,18 @@ void CollocationNlp::BuildStructure() {
 void CollocationNlp::Bounds(Vec* z_lower, Vec* z_upper, Vec* g_lower, Vec* g_upper) const {
   const int n = num_variables();
   Vec zl = Vec::Constant(n, -kInf), zu = Vec::Constant(n, kInf);
+  // x(t0): fixed to x0, or within the initial-state bounds; every later state point within
+  // the state bounds (Ocp's class comment).
+  const VectorBounds initial = ocp_.InitialNodeBounds();
   const auto& x0_block = layout_.states.front();
-  zl.segment(x0_block.offset, nx_) = ocp_.x0();
-  zu.segment(x0_block.offset, nx_) = ocp_.x0();
+  zl.segment(x0_block.offset, nx_) = initial.lower;
+  zu.segment(x0_block.offset, nx_) = initial.upper;
+  if (const auto& sb = ocp_.state_bounds()) {
+    for (size_t j = 1; j < layout_.states.size(); ++j) {
+      zl.segment(layout_.states[j].offset, nx_) = sb->lower;
+      zu.segment(layout_.states[j].offset, nx_) = sb->upper;
+    }
+  }
   for (const auto& c : layout_.controls) {
     for (const auto& b : ocp_.control_set().blocks()) {
       if (b.kind != ControlSet::Kind::kBox) continue;
@@ -266,6 +293,10 @@ void CollocationNlp::Bounds(Vec* z_lower, Vec* z_upper, Vec* g_lower, Vec* g_upp
 
   Vec gl = Vec::Zero(num_constraints_), gu = Vec::Zero(num_constraints_);
   for (int r = path_row_begin_; r < ball_row_begin_; ++r) gl[r] = -kInf;
+  if (nb_ > 0) {
+    gl.segment(boundary_row_begin_, nb_) = ocp_.boundary_bounds().lower;
+    gu.segment(boundary_row_begin_, nb_) = ocp_.boundary_bounds().upper;
+  }
   const auto& blocks = ocp_.control_set().blocks();
   int row = ball_row_begin_;
   for (size_t i = 0; i < layout_.controls.size(); ++i) {
@@ -457,6 +488,12 @@ Mat CollocationNlp::Costates(ConstVecRef zhat, ConstVecRef lambda_hat) const {
     ocp_.TerminalConstraintsJacobian(x_of(last), psi, psix);
     P.col(last) += psix.transpose() * lambda.segment(terminal_row_begin_, npsi_);
   }
+  if (nb_ > 0) {  // x(tf)'s part of the boundary constraints closes the cost-to-go at tf
+    Vec b(nb_);
+    Mat b0(nb_, nx_), bf(nb_, nx_);
+    ocp_.BoundaryConstraintsJacobian(x_of(0), x_of(last), b, b0, bf);
+    P.col(last) += bf.transpose() * lambda.segment(boundary_row_begin_, nb_);
+  }
   // Blocks inside an interval: a scaled defect multiplier plus interval-start costates.
   for (int j = 0; j < S; ++j) {
     const auto& b = layout_.states[j];
@@ -530,6 +567,7 @@ bool CollocationNlp::EvalObjective(const Vec& z, double* f) const {
                                             z.segment(layout_.controls[p.control].offset, nu_));
   }
   sum = r * sum + ocp_.TerminalObjective(z.segment(layout_.states.back().offset, nx_), mode_);
+  if (initial_cost_) sum += ocp_.InitialCost(z.segment(layout_.states.front().offset, nx_));
   *f = sum;
   return std::isfinite(sum);
 }
@@ -554,6 +592,11 @@ bool CollocationNlp::EvalGradient(const Vec& z, Vec* grad) const {
   Vec g(nx_);
   ocp_.TerminalObjectiveGradient(z.segment(xo, nx_), mode_, &phi, g);
   grad->segment(xo, nx_) += g;
+  if (initial_cost_) {
+    const int x0o = layout_.states.front().offset;
+    ocp_.InitialCostGradient(z.segment(x0o, nx_), &phi, g);
+    grad->segment(x0o, nx_) += g;
+  }
   return grad->allFinite();
 }
 
@@ -591,6 +634,13 @@ bool CollocationNlp::EvalConstraints(const Vec& z, Vec* g) const {
     Vec psi(npsi_);
     ocp_.TerminalConstraints(z.segment(layout_.states.back().offset, nx_), psi);
     g->segment(terminal_row_begin_, npsi_) = psi;
+  }
+  if (nb_ > 0) {
+    Vec b(nb_);
+    ocp_.BoundaryConstraints(z.segment(layout_.states.front().offset, nx_),
+                             z.segment(layout_.states.back().offset, nx_),
+                             b);
+    g->segment(boundary_row_begin_, nb_) = b;
   }
   return g->allFinite();
 }
@@ -641,6 +691,21 @@ bool CollocationNlp::AddOtherJacobianRows(const Vec& z, const double* scale, dou
     ocp_.TerminalConstraintsJacobian(z.segment(layout_.states.back().offset, nx_), psi, psix);
     for (int i = 0; i < npsi_; ++i) {
       for (int j = 0; j < nx_; ++j) add(jac_slots_[terminal_slots_ + i * nx_ + j], psix(i, j));
+    }
+  }
+  if (nb_ > 0) {
+    Vec b(nb_);
+    Mat b0(nb_, nx_), bf(nb_, nx_);
+    ocp_.BoundaryConstraintsJacobian(z.segment(layout_.states.front().offset, nx_),
+                                     z.segment(layout_.states.back().offset, nx_),
+                                     b,
+                                     b0,
+                                     bf);
+    for (int i = 0; i < nb_; ++i) {
+      for (int j = 0; j < nx_; ++j) {
+        add(jac_slots_[boundary_x0_slots_ + i * nx_ + j], b0(i, j));
+        add(jac_slots_[boundary_xf_slots_ + i * nx_ + j], bf(i, j));
+      }
     }
   }
   return finite;
@@ -746,6 +811,29 @@ bool CollocationNlp::EvalHessian(const Vec& z, double sigma, const Vec& lambda, 
     for (int b = 0; b < nx_; ++b) {
       const int slot = hess_slots_[terminal_hess_slots_ + a * nx_ + b];
       if (slot >= 0) v[slot] += T(a, b);
+    }
+  }
+  if (nb_ > 0) {
+    const int n2 = 2 * nx_;
+    Mat B(n2, n2);
+    ocp_.BoundaryHessian(z.segment(layout_.states.front().offset, nx_),
+                         xN,
+                         lambda.segment(boundary_row_begin_, nb_),
+                         B);
+    for (int a = 0; a < n2; ++a) {
+      for (int b = 0; b < n2; ++b) {
+        const int slot = hess_slots_[boundary_hess_slots_ + a * n2 + b];
+        if (slot >= 0) v[slot] += B(a, b);
+      }
+    }
+  }
+  if (initial_cost_) {
+    ocp_.InitialCostHessian(z.segment(layout_.states.front().offset, nx_), sigma, T);
+    for (int a = 0; a < nx_; ++a) {
+      for (int b = 0; b < nx_; ++b) {
+        const int slot = hess_slots_[initial_hess_slots_ + a * nx_ + b];
+        if (slot >= 0) v[slot] += T(a, b);
+      }
     }
   }
   // Balls: |u_b - c|^2 has Hessian 2 I.

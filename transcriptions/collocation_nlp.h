@@ -18,17 +18,21 @@ namespace ocpb {
 /// rest.
 ///
 ///  - State blocks X_j (nx variables each) at times t_j, strictly increasing; block 0 is x(t0)
-///    (fixed to x0 by its bounds) and the last block is x(tf).
+///    (fixed to x0 by its bounds, or within Ocp::initial_state_bounds() for a free initial
+///    state) and the last block is x(tf). Blocks after the first take Ocp::state_bounds() as
+///    variable bounds.
 ///  - Control blocks U_i (nu variables each) at times s_i.
 ///  - Points e = (t_e, X_{state(e)}, U_{control(e)}) where f, L and c are evaluated.
 ///  - Defects d, nx rows each, for one interval k(d):
 ///        sum_j a_dj X_j - sum_e b_de f(t_e, X_{state(e)}, U_{control(e)}) = 0
 ///    (b carries the step length).
-///  - Objective  sum_e w_e L(t_e, X_{state(e)}, U_{control(e)}) + Phi(X_last), Phi = phi (+ the
-///    terminal penalty sum_i w_i psi_i^2 in TerminalMode::kPenalty).
+///  - Objective  sum_e w_e L(t_e, X_{state(e)}, U_{control(e)}) + Phi(X_last) [+ phi0(X_0)],
+///    Phi = phi (+ the terminal penalty sum_i w_i psi_i^2 in TerminalMode::kPenalty), phi0 the
+///    initial cost of a free initial state.
 ///  - Path constraints c(t_e, X_{state(e)}, U_{control(e)}) <= 0 at the points marked `path`;
 ///    ball blocks of U as |U_i,b - center|^2 <= radius^2 for every control block; box blocks of U
-///    as variable bounds; psi(X_last) = 0 in TerminalMode::kHard.
+///    as variable bounds; psi(X_last) = 0 in TerminalMode::kHard; boundary constraints
+///    b_lo <= b(X_0, X_last) <= b_hi in both modes.
 struct CollocationLayout {
   struct Term {
     int index = 0;
@@ -86,7 +90,8 @@ struct CollocationLayout {
 ///
 /// Constraint rows, in this order: all defects (nx rows each, in layout order), path constraints
 /// (nc rows per path point, in point order), ball constraints (one row per control block and
-/// ball block), terminal constraints psi (hard mode only).
+/// ball block), terminal constraints psi (hard mode only), boundary constraints b
+/// (Ocp::num_boundary() rows).
 ///
 /// Derivatives are exact: the constraint Jacobian from Ocp::DynamicsJacobian and
 /// PathConstraintsJacobian; the Hessian of sigma f + lambda^T g as the sum over points of
@@ -183,6 +188,7 @@ class CollocationNlp : public TranscribedNlp {
   int path_row_begin() const { return path_row_begin_; }
   int ball_row_begin() const { return ball_row_begin_; }
   int terminal_row_begin() const { return terminal_row_begin_; }
+  int boundary_row_begin() const { return boundary_row_begin_; }
   /// Physical variables z = D zhat from the NLP's (scaled) variables, and back.
   Vec Unscale(ConstVecRef zhat) const { return zhat.cwiseProduct(var_scale_); }
   Vec Scale(ConstVecRef z) const { return z.cwiseQuotient(var_scale_); }
@@ -244,14 +250,16 @@ class CollocationNlp : public TranscribedNlp {
   CollocationLayout layout_;
   Integrator start_integrator_;
   TimeGrid state_grid_;
-  int nx_, nu_, nc_, npsi_;
+  int nx_, nu_, nc_, npsi_, nb_;
   bool free_time_ = false;
+  bool initial_cost_ = false;  // a free initial state with phi0: its terms at block 0
   int time_index_ = -1;        // the variable T (free final time), after the layout's variables
   double inv_duration_ = 1.0;  // 1 / (tf - t0) of the nominal horizon
   std::vector<int> time_jac_slots_;   // per defect: base of its nx slots in the T column
   std::vector<int> time_hess_slots_;  // per point: base of its nx + nu slots in the T row
   int num_constraints_ = 0;
   int path_row_begin_ = 0, ball_row_begin_ = 0, terminal_row_begin_ = 0;
+  int boundary_row_begin_ = 0;
   std::vector<int> path_point_row_;  // per point: first path row, or -1
   std::vector<int> ball_blocks_;     // indices into control_set().blocks() of the ball blocks
 
@@ -270,6 +278,7 @@ class CollocationNlp : public TranscribedNlp {
   std::vector<int> path_x_slots_, path_u_slots_;  // per point (base into jac_slots_), or -1
   std::vector<int> ball_slots_;                   // per ball row: base of its `size` slots
   int terminal_slots_ = -1;                       // npsi x nx
+  int boundary_x0_slots_ = -1, boundary_xf_slots_ = -1;  // nb x nx each
   // Hessian structure.
   std::vector<int> hess_slots_;
   std::vector<int> point_hess_slots_;  // per point: base of (nx+nu)^2 entries (-1: upper)
@@ -280,6 +289,8 @@ class CollocationNlp : public TranscribedNlp {
   std::vector<HessPair> point_hess_pairs_;   // per point, its lower-triangle entries in order
   std::vector<int> point_hess_pairs_begin_;  // per point: first pair; one more at the end
   int terminal_hess_slots_ = -1;             // nx x nx
+  int initial_hess_slots_ = -1;              // nx x nx at x(t0), with initial_cost_
+  int boundary_hess_slots_ = -1;             // (2 nx)^2 over (x(t0), x(tf)), lower triangle
   std::vector<int> ball_hess_slots_;         // per ball row: base of `size` diagonal slots
 };
 

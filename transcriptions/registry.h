@@ -30,6 +30,15 @@ struct TranscriptionInfo {
   /// Whether its NLP can make a free final time a variable (Ocp::free_final_time()); the
   /// NLP solvers report kNotApplicable otherwise.
   bool takes_free_final_time = true;
+  /// Whether its NLP makes x(t0) a decision within Ocp::initial_state_bounds() (and adds the
+  /// initial cost); the NLP solvers report kNotApplicable otherwise.
+  bool takes_free_initial_state = true;
+  /// Whether its NLP takes Ocp::state_bounds() (as bounds of its state variables); the NLP
+  /// solvers report kNotApplicable otherwise.
+  bool takes_state_bounds = true;
+  /// Whether its NLP takes Ocp::num_boundary() boundary constraints b(x(t0), x(tf)) as rows;
+  /// the NLP solvers report kNotApplicable otherwise.
+  bool takes_boundary_constraints = true;
 
   /// A TranscriptionOptions with `options` applied over the defaults (configure).
   TranscriptionOptions Configure(const OptionMap& options) const;

@@ -1,5 +1,6 @@
 // Every transcription's gradient, constraint Jacobian and Hessian of the Lagrangian against
-// central differences, on six problems (two with a free final time, one with affine dynamics), both
+// central differences, on nine problems (two with a free final time, one with affine dynamics,
+// three with a free initial state, an initial cost or boundary constraints), both
 // terminal modes, with and without scaling; and the declared sparsity (unique triplets, Hessian
 // lower triangle) covers every nonzero found.
 #include <cmath>
@@ -23,7 +24,7 @@ struct Case {
   std::string scheme;
   int degree;
   std::string problem;  // "double-integrator", "nonlinear", "ball", "free-time", "free-time-ball",
-                        // "comm"
+                        // "comm", "free-start", "coupled-ends", "boundary"
   TerminalMode mode;
   bool scaled;
 };
@@ -49,6 +50,12 @@ std::unique_ptr<Ocp> MakeOcp(const std::string& name) {
   // A free final time: T is the NLP's last variable (its column, row and cross terms).
   if (name == "free-time") return MakeProblem("double-integrator-free-time", {}, 0);
   if (name == "free-time-ball") return MakeProblem("brachistochrone-free-time", {}, 0);
+  // A partly free initial state with an initial cost (its gradient and Hessian block at x(t0)).
+  if (name == "free-start") return MakeProblem("free-start", {}, 0);
+  // A boundary constraint coupling x(t0) and x(tf) (its rows, Jacobian and Hessian blocks).
+  if (name == "coupled-ends") return MakeProblem("coupled-ends", {}, 0);
+  // Nonlinear boundary constraints, an initial cost, a partly free x(t0) and state bounds.
+  if (name == "boundary") return std::make_unique<testing::BoundaryTestOcp>();
   // Affine dynamics (the constant defect Jacobian) with a ball, the hand-written Hessian, and
   // k5, k6 > 0 (every motion term); moving from the start (the smoothed |v| is stiff at v = 0),
   // D = S and c = 1 so that the terminal penalty (2e5 at the paper's D and c) leaves finite
@@ -160,8 +167,15 @@ std::vector<Case> AllCases() {
   const std::vector<std::pair<std::string, int>> schemes = {
       {"euler", 0}, {"trapezoid", 0}, {"hermite-simpson", 0}, {"lgr", 1}, {"lgr", 3}, {"lgr", 4}};
   for (const auto& [scheme, degree] : schemes) {
-    for (const std::string problem :
-         {"double-integrator", "nonlinear", "ball", "free-time", "free-time-ball", "comm"}) {
+    for (const std::string problem : {"double-integrator",
+                                      "nonlinear",
+                                      "ball",
+                                      "free-time",
+                                      "free-time-ball",
+                                      "comm",
+                                      "free-start",
+                                      "coupled-ends",
+                                      "boundary"}) {
       for (TerminalMode mode : {TerminalMode::kPenalty, TerminalMode::kHard}) {
         for (bool scaled : {false, true}) cases.push_back({scheme, degree, problem, mode, scaled});
       }

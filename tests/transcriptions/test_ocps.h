@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 
 #include "core/autodiff_ocp.h"
 
@@ -75,6 +76,51 @@ class BallTestOcp final : public AutoDiffOcp<BallTestOcp, 2, 3, 1, 2> {
   void EvalPathConstraints(double, const VecT<T, 2>& x, const VecT<T, 3>& u, VecT<T, 2>* c) const {
     (*c)[0] = x[0] * x[0] + u[2] - 2.0;
     (*c)[1] = x[1] - u[0] - 1.0;
+  }
+};
+
+/// Nonlinear boundary constraints coupling a partly free x(t0) with x(tf), an initial cost, and
+/// state bounds, for the transcriptions' derivative tests (no known optimum):
+///   x1' = x2, x2' = u - x1^3/4, x(0) = (0.3, -0.2) with x1(0) in [-1, 1] free,
+///   b = (x1(0) x2(tf), sin(x2(0)) + x1(tf)^2 x2(tf)) in [0, 0] x [-inf, 1],
+///   phi0 = x1(0)^4 / 4 + x1(0) x2(0), L = u^2, x in [-2, 2] x [-inf, 3].
+class BoundaryTestOcp final : public AutoDiffOcp<BoundaryTestOcp, 2, 1> {
+ public:
+  BoundaryTestOcp() {
+    const double inf = std::numeric_limits<double>::infinity();
+    SetHorizon(0.0, 1.0);
+    SetInitialState(Vec2(0.3, -0.2));
+    SetInitialStateBounds(Vec2(-1.0, -0.2), Vec2(1.0, -0.2));
+    SetStateBounds(Vec2(-2.0, -inf), Vec2(2.0, 3.0));
+    SetBoundaryConstraints(Vec2(0.0, -inf), Vec2(0.0, 1.0));
+  }
+  std::string name() const override { return "boundary-test"; }
+  template <class T>
+  void EvalDynamics(double, const VecT<T, 2>& x, const VecT<T, 1>& u, VecT<T, 2>* f) const {
+    (*f)[0] = x[1];
+    (*f)[1] = u[0] - 0.25 * x[0] * x[0] * x[0];
+  }
+  template <class T>
+  T EvalRunningCost(double, const VecT<T, 2>&, const VecT<T, 1>& u) const {
+    return u[0] * u[0];
+  }
+  template <class T>
+  T EvalInitialCost(const VecT<T, 2>& x0) const {
+    return 0.25 * x0[0] * x0[0] * x0[0] * x0[0] + x0[0] * x0[1];
+  }
+  template <class T>
+  void EvalBoundaryConstraints(const VecT<T, 2>& x0,
+                               const VecT<T, 2>& xf,
+                               VecT<T, Eigen::Dynamic>* b) const {
+    (*b)[0] = x0[0] * xf[1];
+    (*b)[1] = sin(x0[1]) + xf[0] * xf[0] * xf[1];
+  }
+
+ private:
+  static Vec Vec2(double a, double b) {
+    Vec v(2);
+    v << a, b;
+    return v;
   }
 };
 
