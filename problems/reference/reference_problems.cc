@@ -2,7 +2,10 @@
 
 #include "problems/reference/brachistochrone.h"
 #include "problems/reference/bryson_denham.h"
+#include "problems/reference/bryson_denham_bounds.h"
 #include "problems/reference/catmix.h"
+#include "problems/reference/coupled_ends.h"
+#include "problems/reference/free_start.h"
 #include "problems/reference/free_time_brachistochrone.h"
 #include "problems/reference/free_time_double_integrator.h"
 #include "problems/reference/goddard.h"
@@ -30,6 +33,9 @@ void AppendReferenceProblems(std::vector<ProblemInfo>* list) {
   list->push_back(RobotArmProblemInfo());
   list->push_back(FreeTimeDoubleIntegratorProblemInfo());
   list->push_back(FreeTimeBrachistochroneProblemInfo());
+  list->push_back(BrysonDenhamBoundsProblemInfo());
+  list->push_back(FreeStartProblemInfo());
+  list->push_back(CoupledEndsProblemInfo());
 }
 
 }  // namespace ocpb

@@ -1,6 +1,7 @@
 # CTest script: install OCPBench into a fresh prefix, configure and build the user example
 # (examples/user_example/) as an outside project against that install, and run:
 #  - my_problem (exits non-zero when a method misses the known optimum);
+#  - my_bounded_problem (state bounds and a free initial state; the same);
 #  - my_ocpbench, a full `ocpbench` with the example's problem and solver registered: its solver
 #    is listed and described, a bad option of it is refused like a built-in's (exit 2, the valid
 #    keys listed), and the example suite mixing it with built-in methods runs, with its rows in
@@ -50,6 +51,7 @@ run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/user_example -B ${WORK_DIR}/build
     -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS=${FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${FLAGS} ${LINK_FLAGS}")
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/my_problem)
+run(${WORK_DIR}/build/my_bounded_problem)
 
 set(cli ${WORK_DIR}/build/my_ocpbench)
 function(expect_output what needle)
