@@ -183,6 +183,18 @@ void Judge(const CaseSpec& spec, const PreparedCase& p, const SolveResult& resul
   rec->Jbar_fine = fine.Jbar;
   rec->terminal_violation_fine = fine.terminal_violation;
   rec->resimulation_defect = judged.resimulation_defect;
+  if (ocp.HasFreeInitialState()) {
+    const Vec first = ev.X.col(0);
+    rec->initial_state.assign(first.data(), first.data() + first.size());
+  }
+  if (ocp.HasFreeInitialState() || ocp.state_bounds()) {
+    rec->state_bound_violation = fine.state_bound_violation;
+  }
+  if (ocp.num_boundary() > 0) {
+    rec->boundary_residual.assign(fine.boundary_residual.data(),
+                                  fine.boundary_residual.data() + fine.boundary_residual.size());
+    rec->boundary_violation = fine.boundary_violation;
+  }
   rec->discretization_gap = judged.discretization_gap;
   for (const JudgeWarning& w : judged.warnings) rec->warnings.push_back({w.code, w.message});
   if (!ev.finite && !IsFailure(result.status)) {

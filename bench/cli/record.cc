@@ -346,6 +346,12 @@ json Record::ToJson() const {
   r["resimulation_defect"] = JsonNumber(resimulation_defect);
   r["final_time"] = JsonNumber(final_time);
   r["final_time_free"] = final_time_free;
+  if (!initial_state.empty()) r["initial_state"] = NumbersJson(initial_state);
+  if (state_bound_violation) r["state_bound_violation"] = JsonNumber(*state_bound_violation);
+  if (boundary_violation) {
+    r["boundary_residual"] = NumbersJson(boundary_residual);
+    r["boundary_violation"] = JsonNumber(*boundary_violation);
+  }
   r["discretization_gap"] = JsonNumber(discretization_gap);
   json warn = json::array();
   for (const RecordWarning& w : warnings)
@@ -498,6 +504,18 @@ Record Record::Read(const json& j, json* movable) {
   r.Number("resimulation_defect", &rec.resimulation_defect);
   r.Number("final_time", &rec.final_time);
   r.Bool("final_time_free", &rec.final_time_free);
+  r.Numbers("initial_state", &rec.initial_state);
+  if (j.contains("state_bound_violation")) {
+    double v = NAN;
+    r.Number("state_bound_violation", &v);
+    rec.state_bound_violation = v;
+  }
+  r.Numbers("boundary_residual", &rec.boundary_residual);
+  if (j.contains("boundary_violation")) {
+    double v = NAN;
+    r.Number("boundary_violation", &v);
+    rec.boundary_violation = v;
+  }
   r.Number("discretization_gap", &rec.discretization_gap);
   if (r.Has("warnings")) {
     if (!j["warnings"].is_array()) r.Fail("warnings", "an array");

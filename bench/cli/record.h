@@ -165,6 +165,16 @@ struct Record {
   double J_fine = NAN, Jbar_fine = NAN, terminal_violation_fine = NAN;
   double resimulation_defect = NAN;
   double final_time = NAN;  ///< the horizon the controls were judged on
+  /// A free initial state (Ocp::HasFreeInitialState): the x(t0) the method chose and the judge
+  /// started from; empty (left out) otherwise.
+  std::vector<double> initial_state;
+  /// A problem with state bounds or a free initial state: the fine re-simulation's
+  /// Evaluation::state_bound_violation; unset (left out) otherwise.
+  std::optional<double> state_bound_violation;
+  /// A problem with boundary constraints: the fine re-simulation's b(x(t0), x(tf)) and its
+  /// Evaluation::boundary_violation; empty / unset (left out) otherwise.
+  std::vector<double> boundary_residual;
+  std::optional<double> boundary_violation;
   bool final_time_free = false;
   /// |objective - fine| / max(|objective|, |fine|, 1e-8), fine = J_fine (penalty form) or
   /// Jbar_fine (hard form): how far the method's own discrete problem is from the continuous one

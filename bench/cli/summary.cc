@@ -285,11 +285,19 @@ std::string SummaryMarkdown(const std::string& suite_name,
     const RecordReference* reference = nullptr;
     bool free_time = false;  // a free final time: the table says each method's T
     bool costates = false;   // some record has a costate error against a known p*
+    // State bounds or a free initial state: the table says how far outside them the fine
+    // re-simulation goes, and where a free x(t0) was put.
+    bool bounds = false;
+    bool free_start = false;
+    bool boundary = false;
     for (size_t i = 0; i < records.size(); ++i) {
       if (labels.section[i] != section) continue;
       const Record& r = records[i];
       free_time = free_time || r.final_time_free;
       costates = costates || std::isfinite(r.costate_error);
+      bounds = bounds || r.state_bound_violation.has_value();
+      free_start = free_start || !r.initial_state.empty();
+      boundary = boundary || r.boundary_violation.has_value();
       if (!by_method.count(labels.row[i])) methods.push_back(labels.row[i]);
       by_method[labels.row[i]].push_back(i);
       if (!reference && r.reference && std::isfinite(r.reference->value)) {
@@ -303,14 +311,22 @@ std::string SummaryMarkdown(const std::string& suite_name,
             "field costate_error; empty where a method has no costates or the case is not the "
             "problem as posed).\n\n";
     }
+    if (bounds || free_start || boundary) {
+      md << "State bounds, a free initial state, boundary constraints: state bound viol. fine is "
+            "the worst over a row's cases of how far the fine re-simulation leaves the state "
+            "bounds (and x(t0) its bounds; record field state_bound_violation); x(t0) is where "
+            "the row's first case started (record field initial_state); boundary viol. fine how "
+            "far b(x(t0), x(tf)) lies outside its bounds (record field boundary_violation).\n\n";
+    }
     md << "| method | cases | status | warnings | J | Jbar | J fine | Jbar fine | terminal viol. | "
           "terminal viol. fine | U viol. | path viol. | resim. defect | iterations | CPU s | "
           "time to target s |"
        << (free_time ? " final time T |" : "") << (reference ? " rel. error vs reference |" : "")
-       << (costates ? " costate error |" : "") << "\n";
+       << (costates ? " costate error |" : "") << (bounds ? " state bound viol. fine |" : "")
+       << (free_start ? " x(t0) |" : "") << (boundary ? " boundary viol. fine |" : "") << "\n";
     md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
        << (free_time ? "---|" : "") << (reference ? "---|" : "") << (costates ? "---|" : "")
-       << "\n";
+       << (bounds ? "---|" : "") << (free_start ? "---|" : "") << (boundary ? "---|" : "") << "\n";
     std::vector<std::string> notes;  // one line per row and warning code: its first message
     for (const std::string& m : methods) {
       const auto& rs = by_method[m];
@@ -318,6 +334,8 @@ std::string SummaryMarkdown(const std::string& suite_name,
       std::map<std::string, int> warnings;
       std::map<std::string, std::string> first_message;
       std::vector<double> J, Jbar, Jf, Jbarf, tv, tvf, cv, pv, defect, it, cpu, ttt, rel, T, pe;
+      std::vector<double> sbv, bv;
+      std::string starts;  // the x(t0) of the row's first case that has one
       int reached = 0;
       for (const size_t i : rs) {
         const Record& r = records[i];
@@ -338,6 +356,13 @@ std::string SummaryMarkdown(const std::string& suite_name,
         cpu.push_back(r.cpu_seconds);
         T.push_back(r.final_time);
         pe.push_back(r.costate_error);
+        sbv.push_back(r.state_bound_violation.value_or(kNaN));
+        bv.push_back(r.boundary_violation.value_or(kNaN));
+        if (starts.empty() && !r.initial_state.empty()) {
+          for (const double x : r.initial_state) {
+            starts += (starts.empty() ? "" : ", ") + SummaryNumber(x);
+          }
+        }
         const double t = derived[i].time_to_target;
         if (std::isfinite(t)) {
           ttt.push_back(t);
@@ -382,6 +407,9 @@ std::string SummaryMarkdown(const std::string& suite_name,
       if (free_time) md << " " << Spread(T) << " |";
       if (reference) md << " " << Spread(rel) << " |";
       if (costates) md << " " << SummaryNumber(WorstOf(pe)) << " |";
+      if (bounds) md << " " << SummaryNumber(WorstOf(sbv)) << " |";
+      if (free_start) md << " " << (starts.empty() ? "-" : "(" + starts + ")") << " |";
+      if (boundary) md << " " << SummaryNumber(WorstOf(bv)) << " |";
       md << "\n";
     }
     md << "\n";
