@@ -231,6 +231,57 @@ void Ocp::SetBoundaryConstraints(const Vec& lower, const Vec& upper) {
   boundary_bounds_ = VectorBounds{lower, upper};
 }
 
+void Ocp::SetStaticParameters(const Vec& lower, const Vec& upper, const Vec& guess) {
+  const int np = static_cast<int>(lower.size());
+  if (np < 1 || np > nx_ || upper.size() != np || guess.size() != np) {
+    throw std::invalid_argument(
+        "static parameters: lower, upper and guess need one size np with 1 <= np <= nx = " +
+        std::to_string(nx_));
+  }
+  for (int i = 0; i < np; ++i) {
+    if (!std::isfinite(guess[i]) || std::isnan(lower[i]) || std::isnan(upper[i]) ||
+        !(lower[i] <= guess[i] && guess[i] <= upper[i])) {
+      std::ostringstream os;
+      os << "static parameters: parameter " << i << " needs lower <= guess <= upper, guess finite"
+         << " (got " << lower[i] << " <= " << guess[i] << " <= " << upper[i] << ")";
+      throw std::invalid_argument(os.str());
+    }
+  }
+  VectorBounds b = InitialNodeBounds();
+  b.lower.tail(np) = lower;
+  b.upper.tail(np) = upper;
+  Vec x0 = x0_;
+  x0.tail(np) = guess;
+  if (b.Violation(x0) > 0.0) {
+    throw std::invalid_argument(
+        "static parameters: x0's other components lie outside their initial-state bounds");
+  }
+  x0_ = std::move(x0);
+  initial_state_bounds_ = std::move(b);
+  np_ = np;
+}
+
+void Ocp::CheckStaticParameterDynamics() const {
+  if (np_ == 0) return;
+  Vec u = CheckedNominalControl();
+  control_set_.Project(u);
+  // The value and its first derivatives at one point: a dynamics that is 0 there by chance (at
+  // u = 0, say) still has a nonzero derivative somewhere in x or u.
+  Vec f(nx_);
+  Mat fx(nx_, nx_), fu(nx_, nu_);
+  DynamicsJacobian(t0_, x0_, u, f, fx, fu);
+  for (int i = nx_ - np_; i < nx_; ++i) {
+    const double slope = std::max(fx.row(i).cwiseAbs().maxCoeff(), fu.row(i).cwiseAbs().maxCoeff());
+    if (f[i] != 0.0 || slope != 0.0) {
+      std::ostringstream os;
+      os << "problem '" << name() << "': static parameter " << i - (nx_ - np_)
+         << " (state component " << i << ") must have zero dynamics, got f[" << i << "] = " << f[i]
+         << " with derivatives up to " << slope << " in x and u at (t0, x0, the nominal control)";
+      throw std::invalid_argument(os.str());
+    }
+  }
+}
+
 double Ocp::BoundaryViolation(ConstVecRef x0, ConstVecRef xf) const {
   if (nb_ == 0) return 0.0;
   Vec b(nb_);

@@ -62,6 +62,10 @@ struct HamiltonianReformulationOptions {
 ///    (InitialCost): J = phi0(x(t0)) + int L + phi(x(tf)). The initial node takes the
 ///    initial-state bounds alone (a problem whose state bounds hold at t0 too repeats them
 ///    there). A result carries the x(t0) it chose (SolveResult::initial_state).
+///  - static parameters (SetStaticParameters): the last np components of x are constant
+///    decisions p in [p_lo, p_hi] (their dynamics are 0), read by f, L, phi, c, psi and b like
+///    any state, so every derivative with respect to p is exact; transcribed as a partly free
+///    initial state whose free part stays constant (np variables per state point);
 ///  - boundary constraints b_lo <= b(x(t0), x(tf)) <= b_hi (SetBoundaryConstraints and
 ///    BoundaryConstraints; equalities where b_lo = b_hi), coupling both ends (a periodic state,
 ///    a total change, an initial condition given implicitly). Always hard constraints, in both
@@ -117,6 +121,14 @@ class Ocp {
   bool HasFreeInitialState() const { return initial_state_bounds_.has_value(); }
   /// The bounds x(t0) takes in a transcription: initial_state_bounds(), or [x0, x0] when fixed.
   VectorBounds InitialNodeBounds() const;
+  /// The number of static parameters: the last num_static_parameters() components of x
+  /// (SetStaticParameters; default 0).
+  int num_static_parameters() const { return np_; }
+  /// Throws std::invalid_argument (one line, naming the problem and the component) unless the
+  /// dynamics of every static parameter and their derivatives in x and u are 0 at (t0, x0, the
+  /// nominal control projected on U): a problem that forgot to zero them would let its
+  /// "parameters" drift. (One point: a dynamics that vanishes only there is not caught.)
+  void CheckStaticParameterDynamics() const;
   /// The number of boundary constraints b(x(t0), x(tf)) (SetBoundaryConstraints; default 0).
   int num_boundary() const { return nb_; }
   /// Their bounds b_lo <= b <= b_hi (size num_boundary() each).
@@ -308,6 +320,13 @@ class Ocp {
   /// for an equality). The problem defines b by overriding BoundaryConstraints and its
   /// derivatives (AutoDiffOcp: EvalBoundaryConstraints).
   void SetBoundaryConstraints(const Vec& lower, const Vec& upper);
+  /// Declares the last np = lower.size() components of x static parameters: decisions in
+  /// [lower, upper], constant in time, starting at `guess` (sizes np, 1 <= np <= nx, no NaN,
+  /// lower <= guess <= upper). The problem's dynamics must return 0 for them (the
+  /// transcriptions check it before solving). Call after SetInitialState and
+  /// SetInitialStateBounds: it sets x0's last np entries to `guess` and the initial-state
+  /// bounds of those components to [lower, upper] (the others keep theirs, fixed when none).
+  void SetStaticParameters(const Vec& lower, const Vec& upper, const Vec& guess);
 
  private:
   int nx_ = 0, nu_ = 0, npsi_ = 0, nc_ = 0;
@@ -321,6 +340,7 @@ class Ocp {
   std::optional<VectorBounds> initial_state_bounds_;
   int nb_ = 0;
   VectorBounds boundary_bounds_;
+  int np_ = 0;
 };
 
 }  // namespace ocpb

@@ -50,6 +50,12 @@ std::string UnsupportedFeature(const Ocp& ocp,
                                const ProblemFeatures& takes) {
   const ProblemFeatures uses = ProblemFeatures::Of(ocp);
   if (uses.free_final_time && !takes.free_final_time) return FreeFinalTimeReason(ocp, solver);
+  if (uses.free_initial_state && !takes.free_initial_state && ocp.num_static_parameters() > 0) {
+    return "problem '" + ocp.name() +
+           "' has static parameters (constant decisions, posed as a "
+           "partly free initial state), which " +
+           solver + " does not take: " + kCollocationSolvers;
+  }
   if (uses.free_initial_state && !takes.free_initial_state) {
     return "problem '" + ocp.name() + "' has a free initial state, which " + solver +
            " does not take (it starts every trajectory from x0): " + kCollocationSolvers;

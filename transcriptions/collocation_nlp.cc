@@ -62,6 +62,7 @@ void ValidateTranscriptionOptions(const Ocp& ocp, const TranscriptionOptions& op
   if (!options.scaling.IsValidFor(ocp.nx(), ocp.nu(), &error)) {
     throw std::invalid_argument("transcription: " + error);
   }
+  ocp.CheckStaticParameterDynamics();
 }
 
 CollocationNlp::CollocationNlp(const Ocp& ocp,

@@ -296,7 +296,7 @@ class CollocationNlp : public TranscribedNlp {
 
 /// Throws std::invalid_argument unless `options` is a valid request for `ocp`: the grid spans
 /// [t0, tf] (to 1e-12 relative), the initial guess has nu components, the scaling is valid for
-/// (nx, nu).
+/// (nx, nu), and static parameters have zero dynamics (Ocp::CheckStaticParameterDynamics).
 void ValidateTranscriptionOptions(const Ocp& ocp, const TranscriptionOptions& options);
 
 }  // namespace ocpb

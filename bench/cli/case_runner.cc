@@ -186,6 +186,8 @@ void Judge(const CaseSpec& spec, const PreparedCase& p, const SolveResult& resul
   if (ocp.HasFreeInitialState()) {
     const Vec first = ev.X.col(0);
     rec->initial_state.assign(first.data(), first.data() + first.size());
+    const int np = ocp.num_static_parameters();
+    rec->static_parameters.assign(first.data() + first.size() - np, first.data() + first.size());
   }
   if (ocp.HasFreeInitialState() || ocp.state_bounds()) {
     rec->state_bound_violation = fine.state_bound_violation;

@@ -347,6 +347,7 @@ json Record::ToJson() const {
   r["final_time"] = JsonNumber(final_time);
   r["final_time_free"] = final_time_free;
   if (!initial_state.empty()) r["initial_state"] = NumbersJson(initial_state);
+  if (!static_parameters.empty()) r["static_parameters"] = NumbersJson(static_parameters);
   if (state_bound_violation) r["state_bound_violation"] = JsonNumber(*state_bound_violation);
   if (boundary_violation) {
     r["boundary_residual"] = NumbersJson(boundary_residual);
@@ -505,6 +506,7 @@ Record Record::Read(const json& j, json* movable) {
   r.Number("final_time", &rec.final_time);
   r.Bool("final_time_free", &rec.final_time_free);
   r.Numbers("initial_state", &rec.initial_state);
+  r.Numbers("static_parameters", &rec.static_parameters);
   if (j.contains("state_bound_violation")) {
     double v = NAN;
     r.Number("state_bound_violation", &v);

@@ -168,6 +168,9 @@ struct Record {
   /// A free initial state (Ocp::HasFreeInitialState): the x(t0) the method chose and the judge
   /// started from; empty (left out) otherwise.
   std::vector<double> initial_state;
+  /// A problem with static parameters: their optimal values (initial_state's last
+  /// Ocp::num_static_parameters() entries); empty (left out) otherwise.
+  std::vector<double> static_parameters;
   /// A problem with state bounds or a free initial state: the fine re-simulation's
   /// Evaluation::state_bound_violation; unset (left out) otherwise.
   std::optional<double> state_bound_violation;

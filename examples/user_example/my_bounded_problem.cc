@@ -1,7 +1,7 @@
 // The widened problem class from outside OCPBench: a state bound declared as a bound, and an
 // initial state that is a decision within bounds (README.md in this folder, "State bounds, a
-// free initial state, boundary constraints"). Built against the installed package like
-// my_problem.cc.
+// free initial state, boundary constraints, static parameters"). Built against the installed
+// package like my_problem.cc.
 //
 //   minimize    1/2 int_0^1 u^2 dt + 5 (x(1) - 3)^2
 //   subject to  x' = u,  x(0) in [0, 2] (free),  x(t) <= 2.5 on (0, 1].

@@ -14,6 +14,7 @@
 #include "problems/reference/rayleigh.h"
 #include "problems/reference/robot_arm.h"
 #include "problems/reference/steering.h"
+#include "problems/reference/time_parameter_double_integrator.h"
 #include "problems/reference/vanderpol.h"
 #include "problems/reference/zermelo.h"
 
@@ -36,6 +37,7 @@ void AppendReferenceProblems(std::vector<ProblemInfo>* list) {
   list->push_back(BrysonDenhamBoundsProblemInfo());
   list->push_back(FreeStartProblemInfo());
   list->push_back(CoupledEndsProblemInfo());
+  list->push_back(TimeParameterDoubleIntegratorProblemInfo());
 }
 
 }  // namespace ocpb

@@ -17,6 +17,7 @@
 #include "problems/reference/bryson_denham.h"
 #include "problems/reference/coupled_ends.h"
 #include "problems/reference/free_start.h"
+#include "problems/reference/free_time_double_integrator.h"
 #include "problems/registry.h"
 #include "solvers/judge.h"
 #include "tests/problems/reference_test_support.h"
@@ -228,6 +229,79 @@ TEST(ProblemClass, CoupledEndsReachesTheAnalyticOptimumWithEveryCollocationSchem
   const SolveResult n = SolveWith("nlopt", *ocp, request);
   ASSERT_EQ(n.status, SolveStatus::kConverged) << n.message;
   EXPECT_LT(RelativeError(n.objective, 1.53), 1e-6);
+}
+
+// A problem whose "parameter" drifts (nonzero dynamics), and bad declarations.
+class DriftingParameter final : public AutoDiffOcp<DriftingParameter, 2, 1> {
+ public:
+  DriftingParameter() {
+    SetHorizon(0.0, 1.0);
+    SetStaticParameters(Vec::Constant(1, -1.0), Vec::Constant(1, 1.0), Vec::Constant(1, 0.5));
+  }
+  std::string name() const override { return "drifting"; }
+  template <class T>
+  void EvalDynamics(double, const VecT<T, 2>& x, const VecT<T, 1>& u, VecT<T, 2>* f) const {
+    (*f)[0] = x[1] * u[0];
+    (*f)[1] = 0.25 * u[0];  // wrong: a static parameter must not move
+  }
+  template <class T>
+  T EvalRunningCost(double, const VecT<T, 2>&, const VecT<T, 1>& u) const {
+    return u[0] * u[0];
+  }
+  void Declare(const Vec& lo, const Vec& hi, const Vec& guess) {
+    SetStaticParameters(lo, hi, guess);
+  }
+};
+
+// double-integrator-time-parameter: T as a static parameter reaches the free-time optimum
+// (T* = 18^(1/4), J* = 4 T*/3) with Hermite-Simpson and LGR (exact for this u*), and the record's
+// x(t0) carries T; a parameter with dynamics is refused before solving, with the component.
+TEST(ProblemClass, StaticParameterReachesTheFreeTimeOptimum) {
+  const auto ocp = MakeProblem("double-integrator-time-parameter", {}, 0);
+  EXPECT_EQ(ocp->num_static_parameters(), 1);
+  EXPECT_EQ(ocp->x0()[2], 1.0);  // the guess
+  const double T = FreeTimeDoubleIntegrator::OptimalTime(),
+               J = FreeTimeDoubleIntegrator::OptimalCost();
+  for (const std::string scheme : {"hermite-simpson", "lgr"}) {
+    SCOPED_TRACE(scheme);
+    const SolveRequest request = Request(*ocp, 20, TerminalMode::kHard, scheme);
+    const SolveResult r = SolveWith("ipopt", *ocp, request);
+    ASSERT_EQ(r.status, SolveStatus::kConverged) << r.message;
+    ASSERT_EQ(r.initial_state.size(), 3);
+    EXPECT_NEAR(r.initial_state[2], T, 1e-7);
+    EXPECT_EQ(r.initial_state[0], -1.0);
+    // Constant along the solution: the defects carry it.
+    EXPECT_LT((r.states.row(2).array() - r.initial_state[2]).abs().maxCoeff(), 1e-9);
+    EXPECT_LT(RelativeError(r.objective, J), 1e-9);
+    const Judgement j = JudgeResult(*ocp, request, r);
+    EXPECT_LT(RelativeError(j.fine.Jbar, J), 1e-8);
+    EXPECT_LT(j.fine.terminal_violation, 1e-8);
+  }
+  const SolveResult t =
+      SolveWith("ipopt", *ocp, Request(*ocp, 100, TerminalMode::kHard, "trapezoid"));
+  ASSERT_EQ(t.status, SolveStatus::kConverged);
+  EXPECT_NEAR(t.initial_state[2], T, 1e-3);  // second order in h
+
+  const DriftingParameter drifting;
+  try {
+    SolveWith("ipopt", drifting, Request(drifting, 10, TerminalMode::kPenalty, "trapezoid"));
+    ADD_FAILURE() << "a parameter with dynamics was solved";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("static parameter 0 (state component 1)"),
+              std::string::npos)
+        << e.what();
+  }
+  DriftingParameter p;
+  EXPECT_NE(ErrorOf([&] { p.Declare(Vec::Zero(3), Vec::Ones(3), Vec::Zero(3)); }).find("np <= nx"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] {
+              p.Declare(Vec::Zero(1), Vec::Ones(1), Vec::Constant(1, 2.0));
+            }).find("lower <= guess <= upper"),
+            std::string::npos);
+  const SolveResult refused =
+      SolveWith("hamiltonian", *ocp, Request(*ocp, 10, TerminalMode::kPenalty));
+  EXPECT_EQ(refused.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(refused.message.find("static parameters"), std::string::npos) << refused.message;
 }
 
 // The evaluator from a chosen x(t0): phi0 in J, and x(t0) judged against its bounds.

@@ -1,8 +1,8 @@
 // Every transcription's gradient, constraint Jacobian and Hessian of the Lagrangian against
-// central differences, on nine problems (two with a free final time, one with affine dynamics,
-// three with a free initial state, an initial cost or boundary constraints), both
-// terminal modes, with and without scaling; and the declared sparsity (unique triplets, Hessian
-// lower triangle) covers every nonzero found.
+// central differences, on ten problems (two with a free final time, one with affine dynamics,
+// four with a free initial state, an initial cost, boundary constraints or a static parameter),
+// both terminal modes, with and without scaling; and the declared sparsity (unique triplets,
+// Hessian lower triangle) covers every nonzero found.
 #include <cmath>
 #include <random>
 #include <set>
@@ -24,7 +24,7 @@ struct Case {
   std::string scheme;
   int degree;
   std::string problem;  // "double-integrator", "nonlinear", "ball", "free-time", "free-time-ball",
-                        // "comm", "free-start", "coupled-ends", "boundary"
+                        // "comm", "free-start", "coupled-ends", "boundary", "time-parameter"
   TerminalMode mode;
   bool scaled;
 };
@@ -56,6 +56,8 @@ std::unique_ptr<Ocp> MakeOcp(const std::string& name) {
   if (name == "coupled-ends") return MakeProblem("coupled-ends", {}, 0);
   // Nonlinear boundary constraints, an initial cost, a partly free x(t0) and state bounds.
   if (name == "boundary") return std::make_unique<testing::BoundaryTestOcp>();
+  // A static parameter in the dynamics and the running cost.
+  if (name == "time-parameter") return MakeProblem("double-integrator-time-parameter", {}, 0);
   // Affine dynamics (the constant defect Jacobian) with a ball, the hand-written Hessian, and
   // k5, k6 > 0 (every motion term); moving from the start (the smoothed |v| is stiff at v = 0),
   // D = S and c = 1 so that the terminal penalty (2e5 at the paper's D and c) leaves finite
@@ -175,7 +177,8 @@ std::vector<Case> AllCases() {
                                       "comm",
                                       "free-start",
                                       "coupled-ends",
-                                      "boundary"}) {
+                                      "boundary",
+                                      "time-parameter"}) {
       for (TerminalMode mode : {TerminalMode::kPenalty, TerminalMode::kHard}) {
         for (bool scaled : {false, true}) cases.push_back({scheme, degree, problem, mode, scaled});
       }
