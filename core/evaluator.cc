@@ -163,7 +163,9 @@ Evaluation Evaluate(const Ocp& ocp,
   ev.terminal_penalty = ocp.terminal_weights().dot(ev.terminal_residual.cwiseAbs2());
   ev.terminal_violation = ocp.num_terminal() > 0 ? ev.terminal_residual.cwiseAbs().maxCoeff() : 0.0;
   ev.Jbar = ev.running_cost + ev.terminal_cost;
-  if (ocp.HasInitialCost()) {  // only then, so that every other problem's J keeps its bits
+  // Only with a free initial state, as the transcriptions count it (for a fixed x0 it would be
+  // a constant no method sees); every other problem's J keeps its bits.
+  if (ocp.HasFreeInitialState() && ocp.HasInitialCost()) {
     ev.initial_cost = ocp.InitialCost(ev.X.col(0));
     ev.Jbar += ev.initial_cost;
   }

@@ -12,9 +12,10 @@ namespace ocpb {
 struct Evaluation {
   double J = -1.0;                   ///< penalized cost: Jbar + sum w_i psi_i^2
   double Jbar = -1.0;                ///< unpenalized cost: int L + phi (+ phi0(x(t0)) when
-                                     ///< the problem has an initial cost)
+                                     ///< the initial state is free and has a cost)
   double running_cost = -1.0;        ///< int L
-  double initial_cost = 0.0;         ///< phi0(x(t0)) (Ocp::InitialCost; 0 without one)
+  double initial_cost = 0.0;         ///< phi0(x(t0)) (Ocp::InitialCost) with a free initial
+                                     ///< state; 0 otherwise
   double terminal_cost = -1.0;       ///< phi(x(tf))
   double terminal_penalty = -1.0;    ///< sum w_i psi_i(x(tf))^2
   Vec terminal_residual;             ///< psi(x(tf))

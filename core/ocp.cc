@@ -149,6 +149,10 @@ bool Ocp::AdmitsFinalTime(double tf) const {
 }
 
 void Ocp::SetInitialState(const Vec& x0) {
+  if (np_ > 0) {
+    throw std::invalid_argument(
+        "initial state: set it before SetStaticParameters (which sets the parameters' guesses)");
+  }
   if (x0.size() != nx_) throw std::invalid_argument("initial state: size must equal nx");
   if (!x0.allFinite()) throw std::invalid_argument("initial state: values must be finite");
   if (initial_state_bounds_ && initial_state_bounds_->Violation(x0) > 0.0) {
@@ -176,7 +180,8 @@ void CheckBounds(const char* what, int n, const Vec& lower, const Vec& upper) {
     }
     if (!(lower[i] <= upper[i]) || lower[i] == kInfinity || upper[i] == -kInfinity) {
       std::ostringstream os;
-      os << name << ": component " << i << " needs lower <= upper with a finite side (got ["
+      os << name << ": component " << i
+         << " needs lower <= upper and neither side empty (lower < +inf, upper > -inf; got ["
          << lower[i] << ", " << upper[i] << "])";
       throw std::invalid_argument(os.str());
     }
@@ -204,12 +209,18 @@ void Ocp::SetStateBounds(const Vec& lower, const Vec& upper) {
 }
 
 void Ocp::SetInitialStateBounds(const Vec& lower, const Vec& upper) {
+  if (np_ > 0) {
+    throw std::invalid_argument(
+        "initial-state bounds: set them before SetStaticParameters (which sets the parameters' "
+        "bounds)");
+  }
   CheckBounds("initial-state bounds", nx_, lower, upper);
   VectorBounds b{lower, upper};
   if (b.Violation(x0_) > 0.0) {
     throw std::invalid_argument(
         "initial-state bounds: x0 (SetInitialState, where methods start) must lie within them");
   }
+  free_initial_state_ = (b.lower.array() < b.upper.array()).any();
   initial_state_bounds_ = std::move(b);
 }
 
@@ -222,8 +233,8 @@ void Ocp::SetBoundaryConstraints(const Vec& lower, const Vec& upper) {
         lower[i] == kInfinity || upper[i] == -kInfinity) {
       std::ostringstream os;
       os << "boundary constraints: row " << i
-         << " needs lower <= upper, no NaN, and a finite side (got [" << lower[i] << ", "
-         << upper[i] << "])";
+         << " needs lower <= upper, no NaN, lower < +inf and upper > -inf (got [" << lower[i]
+         << ", " << upper[i] << "])";
       throw std::invalid_argument(os.str());
     }
   }
@@ -232,6 +243,7 @@ void Ocp::SetBoundaryConstraints(const Vec& lower, const Vec& upper) {
 }
 
 void Ocp::SetStaticParameters(const Vec& lower, const Vec& upper, const Vec& guess) {
+  if (np_ > 0) throw std::invalid_argument("static parameters: declared twice");
   const int np = static_cast<int>(lower.size());
   if (np < 1 || np > nx_ || upper.size() != np || guess.size() != np) {
     throw std::invalid_argument(
@@ -257,6 +269,7 @@ void Ocp::SetStaticParameters(const Vec& lower, const Vec& upper, const Vec& gue
         "static parameters: x0's other components lie outside their initial-state bounds");
   }
   x0_ = std::move(x0);
+  free_initial_state_ = (b.lower.array() < b.upper.array()).any();
   initial_state_bounds_ = std::move(b);
   np_ = np;
 }

@@ -52,8 +52,8 @@ struct HamiltonianReformulationOptions {
 ///               c(t, x, u) <= 0                 (path constraints),
 ///               psi(x(tf)) = 0                  (hard form only).
 ///
-/// Two widenings, both off by default (a problem that sets neither is the problem above,
-/// solved exactly as before):
+/// Four widenings, each off by default (a problem that sets none is the problem above, solved
+/// exactly as before):
 ///  - state bounds x_lo <= x(t) <= x_hi on (t0, tf] (SetStateBounds): the collocation
 ///    transcriptions make them bounds of their state variables (not constraint rows), at every
 ///    state point but the initial one; the judge checks them on its fine re-simulation;
@@ -70,8 +70,12 @@ struct HamiltonianReformulationOptions {
 ///    BoundaryConstraints; equalities where b_lo = b_hi), coupling both ends (a periodic state,
 ///    a total change, an initial condition given implicitly). Always hard constraints, in both
 ///    terminal forms (the penalty form is psi's alone).
-/// Methods that do not take them (single shooting, the Hamiltonian family, indirect-newton,
-/// riccati-ip) report SolveStatus::kNotApplicable with the reason.
+/// Methods that do not take them (single shooting, hamiltonian and the Hamiltonian family,
+/// indirect-newton, riccati-ip, baseline) report SolveStatus::kNotApplicable with the reason.
+/// The collocation NLPs' costate estimates (Costates) use the constraint multipliers only: with
+/// state bounds active the bound multipliers are not in them (the path-row form of the same
+/// bound puts them in), and mesh refinement's multiplier warm start carries neither those nor
+/// the boundary constraints' multipliers (it starts them at 0).
 ///
 /// Free final time (Ocp::free_final_time(), off by default): tf is then minimized over too, in
 /// [lower, upper], and tf() is only its nominal value, where methods start (a request's grid
@@ -117,8 +121,9 @@ class Ocp {
   /// Bounds on x(t0) when the initial state is free or partly free (SetInitialStateBounds);
   /// empty when x(t0) = x0() is fixed.
   const std::optional<VectorBounds>& initial_state_bounds() const { return initial_state_bounds_; }
-  /// True when SetInitialStateBounds was called (some component of x(t0) is a decision).
-  bool HasFreeInitialState() const { return initial_state_bounds_.has_value(); }
+  /// True when some component of x(t0) is a decision: initial-state bounds with lower < upper
+  /// somewhere (bounds that fix every component leave x(t0) = x0 fixed).
+  bool HasFreeInitialState() const { return free_initial_state_; }
   /// The bounds x(t0) takes in a transcription: initial_state_bounds(), or [x0, x0] when fixed.
   VectorBounds InitialNodeBounds() const;
   /// The number of static parameters: the last num_static_parameters() components of x
@@ -144,8 +149,9 @@ class Ocp {
   virtual double RunningCost(double t, ConstVecRef x, ConstVecRef u) const = 0;
   /// phi(x(tf)), without the terminal penalty.
   virtual double TerminalCost(ConstVecRef x) const = 0;
-  /// True when the problem defines an initial cost phi0 (default false: phi0 = 0). Only a
-  /// problem with a free initial state needs one; for a fixed x(t0) it is a constant.
+  /// True when the problem defines an initial cost phi0 (default false: phi0 = 0). It counts
+  /// (in the transcriptions and the judge) only when the initial state is free: for a fixed
+  /// x(t0) it would be a constant, and no method adds it.
   virtual bool HasInitialCost() const { return false; }
   /// phi0(x(t0)); default 0.
   virtual double InitialCost(ConstVecRef /*x0*/) const { return 0.0; }
@@ -341,6 +347,7 @@ class Ocp {
   int nb_ = 0;
   VectorBounds boundary_bounds_;
   int np_ = 0;
+  bool free_initial_state_ = false;
 };
 
 }  // namespace ocpb

@@ -10,7 +10,7 @@ namespace ocpb {
 
 /// Forwards every Ocp function to `inner` (not owned; it must outlive this object) and copies
 /// its dimensions, horizon, initial state, terminal weights, control set, free final time, state
-/// bounds, initial-state bounds and boundary constraints' bounds.
+/// bounds, initial-state bounds, static parameters and boundary constraints' bounds.
 /// A subclass overrides what it changes and documents it. HamiltonianReformulation() is not
 /// forwarded (it returns nullptr): a reformulation of `inner` would drop the subclass's change,
 /// so callers resolve reformulations before wrapping. MinimizeHamiltonianWithGradients() is not
@@ -45,6 +45,11 @@ class ForwardingOcp : public Ocp {
     if (inner.initial_state_bounds()) {
       SetInitialStateBounds(inner.initial_state_bounds()->lower,
                             inner.initial_state_bounds()->upper);
+    }
+    if (const int np = inner.num_static_parameters(); np > 0) {
+      SetStaticParameters(inner.initial_state_bounds()->lower.tail(np),
+                          inner.initial_state_bounds()->upper.tail(np),
+                          inner.x0().tail(np));
     }
     if (inner.num_boundary() > 0) {
       SetBoundaryConstraints(inner.boundary_bounds().lower, inner.boundary_bounds().upper);

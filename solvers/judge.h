@@ -43,8 +43,8 @@ struct JudgeOptions {
   /// |fine|, 1e-8), with `fine` the fine re-simulation's J in the penalty form and its Jbar in
   /// the hard form (what the method's objective measures). 1 %: the summary's target rule.
   double discretization_tolerance = 1e-2;
-  /// Warn "infeasible" when the fine re-simulation's control_violation, path_violation or
-  /// state_bound_violation, or
+  /// Warn "infeasible" when the fine re-simulation's control_violation, path_violation,
+  /// state_bound_violation or boundary_violation, or
   /// in the hard form its terminal_violation, exceeds this (absolute, in the constraint's own
   /// units). 1e-3: far above what a converged NLP leaves (1e-8 and below), below what changes
   /// an answer visibly; the violations themselves are in Judgement::fine.

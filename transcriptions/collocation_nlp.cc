@@ -533,7 +533,7 @@ bool CollocationNlp::Constraints(ConstVecRef zhat, VecRef g) const {
 bool CollocationNlp::JacobianValues(ConstVecRef zhat, VecRef values) const {
   if (scaled_defect_jacobian_.size() > 0) {
     // Affine dynamics: the defect rows were computed and scaled once; only the other rows
-    // (balls, path constraints, hard terminal constraints) depend on z.
+    // (balls, path constraints, hard terminal constraints, boundary constraints) depend on z.
     values = scaled_defect_jacobian_;
     return AddOtherJacobianRows(Unscale(zhat), jac_value_scale_.data(), values.data());
   }

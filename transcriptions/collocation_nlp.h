@@ -96,10 +96,11 @@ struct CollocationLayout {
 /// Derivatives are exact: the constraint Jacobian from Ocp::DynamicsJacobian and
 /// PathConstraintsJacobian; the Hessian of sigma f + lambda^T g as the sum over points of
 /// Ocp::PointHessian(t_e, x_e, u_e, sigma w_e, -sum_d b_de lambda_d, mu_e), plus TerminalHessian
-/// (with the penalty's Gauss-Newton term 2 psi_x^T W psi_x + 2 sum w_i psi_i psi_i,xx) and 2 mu I
-/// for the balls. Both sparsity patterns are built once, in the constructor, from dense
-/// (x, u)-blocks, and hold unique (row, col) entries (no repeated triplets); the Hessian pattern
-/// is the lower triangle (row >= col).
+/// (with the penalty's Gauss-Newton term 2 psi_x^T W psi_x + 2 sum w_i psi_i psi_i,xx), 2 mu I
+/// for the balls, Ocp::BoundaryHessian over (X_0, X_last) and sigma InitialCostHessian at X_0. Both
+/// sparsity patterns are built once, in the constructor, from dense (x, u)-blocks, and hold unique
+/// (row, col) entries (no repeated triplets); the Hessian pattern is the lower triangle (row >=
+/// col).
 ///
 /// Multipliers follow the convention of HessianValues: at a KKT point sigma grad f + J^T lambda
 /// (plus bound multipliers) vanishes, as in Ipopt. Costates() turns them into p with
@@ -151,7 +152,9 @@ class CollocationNlp : public TranscribedNlp {
   TimeGrid StateGrid(ConstVecRef zhat) const override;
   Mat States(ConstVecRef z) const override;
   /// p (nx x state_grid().size()) from the NLP's multipliers `lambda` at z (as a solver returns
-  /// them, scaled NLP); empty when lambda.size() != num_constraints().
+  /// them, scaled NLP); empty when lambda.size() != num_constraints(). Variable-bound
+  /// multipliers are not in it: where Ocp::state_bounds() are active, p differs from the
+  /// path-row form's by the bound multiplier (a known limit).
   Mat Costates(ConstVecRef z, ConstVecRef lambda) const override;
   /// With TranscriptionOptions::mesh.estimate == kSimulation IntervalSimulationErrors on the
   /// mesh (stretched to T for a free final time) with every state block and Controls(z), else

@@ -49,6 +49,12 @@ void PrintReport(const Record& r) {
                            Fmt(r.cpu_seconds),
                            r.N,
                            Fmt(r.final_time));
+  if (!r.initial_state.empty()) {
+    std::cout << "  initial state (chosen) = " << nlohmann::json(r.initial_state).dump() << "\n";
+  }
+  if (!r.static_parameters.empty()) {
+    std::cout << "  static parameters = " << nlohmann::json(r.static_parameters).dump() << "\n";
+  }
   if (!r.final_state.empty()) {
     std::cout << "  final state = " << nlohmann::json(r.final_state).dump() << "\n";
   }

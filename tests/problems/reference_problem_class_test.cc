@@ -19,6 +19,7 @@
 #include "problems/reference/free_start.h"
 #include "problems/reference/free_time_double_integrator.h"
 #include "problems/registry.h"
+#include "solvers/forwarding_ocp.h"
 #include "solvers/judge.h"
 #include "tests/problems/reference_test_support.h"
 
@@ -76,6 +77,9 @@ class Tiny final : public AutoDiffOcp<Tiny, 2, 1> {
   void Bounds(const Vec& lo, const Vec& hi) { SetStateBounds(lo, hi); }
   void Start(const Vec& x0) { SetInitialState(x0); }
   void StartBounds(const Vec& lo, const Vec& hi) { SetInitialStateBounds(lo, hi); }
+  void Params(const Vec& lo, const Vec& hi, const Vec& guess) {
+    SetStaticParameters(lo, hi, guess);
+  }
 };
 
 std::string ErrorOf(const std::function<void()>& f) {
@@ -101,7 +105,7 @@ TEST(ProblemClass, SettersRejectInconsistentBoundsWithOneLineNamingTheRule) {
             std::string::npos);
   EXPECT_NE(ErrorOf([&] {
               p.Bounds(Eigen::Vector2d(kInf, 0), Eigen::Vector2d(kInf, 1));
-            }).find("finite side"),
+            }).find("lower < +inf"),
             std::string::npos);
   EXPECT_FALSE(p.state_bounds().has_value());  // nothing half-set
   // x0 must lie within the initial-state bounds, whichever is set first.
@@ -115,6 +119,32 @@ TEST(ProblemClass, SettersRejectInconsistentBoundsWithOneLineNamingTheRule) {
             std::string::npos);
   EXPECT_EQ(p.x0(), Vec::Zero(2));
   EXPECT_EQ(p.InitialNodeBounds().lower, Eigen::Vector2d(-1, 0));
+  // Bounds that fix every component leave x(t0) fixed.
+  Tiny fixed;
+  fixed.StartBounds(Vec::Zero(2), Vec::Zero(2));
+  EXPECT_FALSE(fixed.HasFreeInitialState());
+  // Static parameters: sizes, ranges, and the order of the setters.
+  Tiny q;
+  EXPECT_NE(ErrorOf([&] { q.Params(Vec::Zero(3), Vec::Ones(3), Vec::Zero(3)); }).find("np <= nx"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] {
+              q.Params(Vec::Zero(1), Vec::Ones(1), Vec::Constant(1, 2.0));
+            }).find("lower <= guess <= upper"),
+            std::string::npos);
+  EXPECT_EQ(q.num_static_parameters(), 0);
+  q.Params(Vec::Zero(1), Vec::Ones(1), Vec::Constant(1, 0.5));
+  EXPECT_EQ(q.num_static_parameters(), 1);
+  EXPECT_TRUE(q.HasFreeInitialState());
+  EXPECT_EQ(q.x0()[1], 0.5);
+  EXPECT_NE(ErrorOf([&] { q.Params(Vec::Zero(1), Vec::Ones(1), Vec::Zero(1)); }).find("twice"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] { q.Start(Vec::Zero(2)); }).find("before SetStaticParameters"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] {
+              q.StartBounds(-Vec::Ones(2), Vec::Ones(2));
+            }).find("before SetStaticParameters"),
+            std::string::npos);
+  EXPECT_EQ(q.x0()[1], 0.5);
 }
 
 TEST(ProblemClass, VectorBoundsViolationIsTheDistanceOutside) {
@@ -248,9 +278,6 @@ class DriftingParameter final : public AutoDiffOcp<DriftingParameter, 2, 1> {
   T EvalRunningCost(double, const VecT<T, 2>&, const VecT<T, 1>& u) const {
     return u[0] * u[0];
   }
-  void Declare(const Vec& lo, const Vec& hi, const Vec& guess) {
-    SetStaticParameters(lo, hi, guess);
-  }
 };
 
 // double-integrator-time-parameter: T as a static parameter reaches the free-time optimum
@@ -291,17 +318,28 @@ TEST(ProblemClass, StaticParameterReachesTheFreeTimeOptimum) {
               std::string::npos)
         << e.what();
   }
-  DriftingParameter p;
-  EXPECT_NE(ErrorOf([&] { p.Declare(Vec::Zero(3), Vec::Ones(3), Vec::Zero(3)); }).find("np <= nx"),
-            std::string::npos);
-  EXPECT_NE(ErrorOf([&] {
-              p.Declare(Vec::Zero(1), Vec::Ones(1), Vec::Constant(1, 2.0));
-            }).find("lower <= guess <= upper"),
-            std::string::npos);
   const SolveResult refused =
       SolveWith("hamiltonian", *ocp, Request(*ocp, 10, TerminalMode::kPenalty));
   EXPECT_EQ(refused.status, SolveStatus::kNotApplicable);
   EXPECT_NE(refused.message.find("static parameters"), std::string::npos) << refused.message;
+}
+
+// A wrapper keeps every feature of the problem it wraps.
+TEST(ProblemClass, ForwardingOcpKeepsTheFeatures) {
+  for (const std::string name :
+       {"double-integrator-time-parameter", "coupled-ends", "bryson-denham-bounds", "free-start"}) {
+    SCOPED_TRACE(name);
+    const auto inner = MakeProblem(name, {}, 0);
+    const ForwardingOcp outer(*inner);
+    EXPECT_EQ(outer.num_static_parameters(), inner->num_static_parameters());
+    EXPECT_EQ(outer.HasFreeInitialState(), inner->HasFreeInitialState());
+    EXPECT_EQ(outer.state_bounds().has_value(), inner->state_bounds().has_value());
+    EXPECT_EQ(outer.num_boundary(), inner->num_boundary());
+    EXPECT_EQ(outer.HasInitialCost(), inner->HasInitialCost());
+    EXPECT_EQ(outer.x0(), inner->x0());
+    EXPECT_EQ(outer.InitialNodeBounds().lower, inner->InitialNodeBounds().lower);
+    EXPECT_EQ(outer.InitialNodeBounds().upper, inner->InitialNodeBounds().upper);
+  }
 }
 
 // The evaluator from a chosen x(t0): phi0 in J, and x(t0) judged against its bounds.
