@@ -52,22 +52,9 @@ void CheckInputs(const Ocp& ocp, const ControlTrajectory& controls, const TimeGr
   }
   if (grid.size() < 2) throw std::invalid_argument("Evaluate: the grid has no interval");
   const double tol = 1e-9 * std::max({1.0, std::abs(ocp.t0()), std::abs(ocp.tf())});
-  if (std::abs(grid.t0() - ocp.t0()) > tol || !ocp.AdmitsFinalTime(grid.tf())) {
-    const auto& free = ocp.free_final_time();
-    std::string horizon = "[";
-    horizon += Str(ocp.t0());
-    if (free) {
-      horizon += ", tf] with tf in [";
-      horizon += Str(free->lower);
-      horizon += ", ";
-      horizon += Str(free->upper);
-    } else {
-      horizon += ", ";
-      horizon += Str(ocp.tf());
-    }
-    horizon += "]";
-    throw std::invalid_argument("Evaluate: the grid [" + Str(grid.t0()) + ", " + Str(grid.tf()) +
-                                "] does not span the horizon " + horizon + " of " + ocp.name());
+  if (const std::string off = ocp.GridOffHorizon(grid, Ocp::HorizonEnd::kAdmissible);
+      !off.empty()) {
+    throw std::invalid_argument("Evaluate: " + off);
   }
   const TimeGrid& cg = controls.grid();
   if (cg.size() < 2 || cg.t0() > grid.t0() + tol || cg.tf() < grid.tf() - tol) {

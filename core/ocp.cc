@@ -148,6 +148,29 @@ bool Ocp::AdmitsFinalTime(double tf) const {
   return tf >= free_final_time_->lower - tol && tf <= free_final_time_->upper + tol;
 }
 
+bool Ocp::GridOnHorizon(const TimeGrid& grid, HorizonEnd end) const {
+  if (grid.size() < 2) return false;
+  const double tol = 1e-9 * std::max({1.0, std::abs(t0_), std::abs(tf_)});
+  if (std::abs(grid.t0() - t0_) > tol) return false;
+  return end == HorizonEnd::kAdmissible ? AdmitsFinalTime(grid.tf())
+                                        : std::abs(grid.tf() - tf_) <= tol;
+}
+
+std::string Ocp::GridOffHorizon(const TimeGrid& grid, HorizonEnd end) const {
+  if (GridOnHorizon(grid, end)) return "";
+  if (grid.size() < 2) return "the grid has no interval (problem '" + name() + "')";
+  std::ostringstream os;
+  os << "the grid [" << grid.t0() << ", " << grid.tf() << "] does not span the horizon [" << t0_
+     << ", ";
+  if (end == HorizonEnd::kAdmissible && free_final_time_) {
+    os << "T] with T in [" << free_final_time_->lower << ", " << free_final_time_->upper << "]";
+  } else {
+    os << tf_ << "]";
+  }
+  os << " of problem '" << name() << "'";
+  return os.str();
+}
+
 void Ocp::SetInitialState(const Vec& x0) {
   if (np_ > 0) {
     throw std::invalid_argument(

@@ -143,6 +143,17 @@ class Ocp {
   /// Whether a trajectory may end at `tf`: tf == tf() to 1e-9 relative for a fixed horizon,
   /// tf in [lower, upper] (to the same tolerance) for a free final time.
   bool AdmitsFinalTime(double tf) const;
+  /// Which end a grid may have (GridOnHorizon): kNominal, the problem's own tf() (what a
+  /// request's grid spans, for a free final time too); kAdmissible, any final time
+  /// AdmitsFinalTime accepts (a free-time solution's [t0, T]).
+  enum class HorizonEnd { kNominal, kAdmissible };
+  /// The one check, for every method and the evaluator, that `grid` lies on the problem's
+  /// horizon: at least two points, grid.t0() == t0() and its end as `end` says, to
+  /// AdmitsFinalTime's tolerance (1e-9 relative to max(1, |t0|, |tf|)).
+  bool GridOnHorizon(const TimeGrid& grid, HorizonEnd end) const;
+  /// Empty when GridOnHorizon, else the one-line reason: "the grid [a, b] does not span the
+  /// horizon [t0, tf] of problem 'NAME'" (a free final time's bounds named with kAdmissible).
+  std::string GridOffHorizon(const TimeGrid& grid, HorizonEnd end) const;
 
   // ---- values ------------------------------------------------------------------
   virtual void Dynamics(double t, ConstVecRef x, ConstVecRef u, VecRef f) const = 0;

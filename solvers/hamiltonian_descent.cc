@@ -124,11 +124,8 @@ namespace {
 void CheckRequest(const Ocp& ocp, const SolveRequest& request) {
   const TimeGrid& grid = request.grid;
   if (grid.size() < 2) throw std::invalid_argument("hamiltonian: the request's grid is empty");
-  const double tol = 1e-9 * std::max(1.0, std::abs(ocp.tf() - ocp.t0()));
-  if (std::abs(grid.t0() - ocp.t0()) > tol || std::abs(grid.tf() - ocp.tf()) > tol) {
-    throw std::invalid_argument("hamiltonian: the grid [" + MessageNumber(grid.t0()) + ", " +
-                                MessageNumber(grid.tf()) + "] does not span the horizon [" +
-                                MessageNumber(ocp.t0()) + ", " + MessageNumber(ocp.tf()) + "]");
+  if (const std::string off = ocp.GridOffHorizon(grid, Ocp::HorizonEnd::kNominal); !off.empty()) {
+    throw std::invalid_argument("hamiltonian: " + off);
   }
   if (request.initial_guess && request.initial_guess->nu() != ocp.nu()) {
     throw std::invalid_argument("hamiltonian: the initial guess has " +

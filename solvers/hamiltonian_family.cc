@@ -19,26 +19,11 @@
 namespace ocpb {
 namespace {
 
-SolveResult NotApplicable(const std::string& solver, const std::string& reason) {
-  SolveResult r;
-  r.solver = solver;
-  r.status = SolveStatus::kNotApplicable;
-  r.solver_status = "not_applicable";
-  r.message = reason;
-  r.iterations = 0;
-  r.cpu_seconds = 0.0;
-  r.wall_seconds = 0.0;
-  return r;
-}
-
 void CheckRequest(const std::string& name, const Ocp& ocp, const SolveRequest& request) {
   const TimeGrid& grid = request.grid;
   if (grid.size() < 2) throw std::invalid_argument(name + ": the request's grid is empty");
-  const double tol = 1e-9 * std::max(1.0, std::abs(ocp.tf() - ocp.t0()));
-  if (std::abs(grid.t0() - ocp.t0()) > tol || std::abs(grid.tf() - ocp.tf()) > tol) {
-    throw std::invalid_argument(name + ": the grid [" + MessageNumber(grid.t0()) + ", " +
-                                MessageNumber(grid.tf()) + "] does not span the horizon [" +
-                                MessageNumber(ocp.t0()) + ", " + MessageNumber(ocp.tf()) + "]");
+  if (const std::string off = ocp.GridOffHorizon(grid, Ocp::HorizonEnd::kNominal); !off.empty()) {
+    throw std::invalid_argument(name + ": " + off);
   }
   if (request.initial_guess && request.initial_guess->nu() != ocp.nu()) {
     throw std::invalid_argument(name + ": the initial guess has the wrong number of controls");
@@ -60,7 +45,7 @@ HamiltonianTarget ResolveFamilyTarget(const std::string& name,
   ro.regularization = o.regularization;
   HamiltonianTarget t = ResolveHamiltonianTarget(original, ro, /*reformulate=*/!path_al);
   auto refuse = [&](const std::string& why) {
-    t.not_applicable = NotApplicable(name, t.NotePrefix() + why);
+    t.not_applicable = NotApplicableResult(name, t.NotePrefix() + why);
     return std::move(t);
   };
   ProblemFeatures takes;

@@ -13,8 +13,6 @@
 namespace ocpb {
 namespace {
 
-bool SameTime(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); }
-
 // Gx = f_x + f_u U_x, Gp = f_u U_p, Ex = H_xx + H_xu U_x, Ep = f_x^T + H_xu U_p: the node's
 // blocks, column-major (H_xx, H_xu the blocks of the (nx+nu)^2 PointHessian `hess`), in plain
 // loops at the compile-time sizes kNx, kNu when nonzero (solvers/small_dims.h): nx x nu x nx is
@@ -159,11 +157,9 @@ void PmpResidual::CheckApplicable(const Ocp& ocp, const TimeGrid& grid) {
         "problem '" + ocp.name() +
         "' has path constraints, which the indirect method does not handle");
   }
-  if (grid.size() < 2 || !SameTime(grid.t0(), ocp.t0()) || !ocp.AdmitsFinalTime(grid.tf())) {
-    throw std::invalid_argument(
-        ocp.free_final_time()
-            ? "the grid must span [t0, T] with T within the problem's final-time bounds"
-            : "the grid must span the problem's horizon [t0, tf]");
+  if (const std::string off = ocp.GridOffHorizon(grid, Ocp::HorizonEnd::kAdmissible);
+      !off.empty()) {
+    throw std::invalid_argument(off);
   }
 }
 

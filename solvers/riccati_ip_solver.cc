@@ -1257,17 +1257,7 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
 SolveResult RiccatiIpSolver::Solve(const Ocp& ocp, const SolveRequest& request) const {
   const RiccatiIpOptions options = RiccatiIpOptions::Apply(request.options, RiccatiIpOptions());
   const std::string why = RiccatiIpNotApplicable(ocp, request);
-  if (!why.empty()) {
-    SolveResult r;
-    r.solver = name();
-    r.status = SolveStatus::kNotApplicable;
-    r.solver_status = "not_applicable";
-    r.message = why;
-    r.iterations = 0;
-    r.cpu_seconds = 0.0;
-    r.wall_seconds = 0.0;
-    return r;
-  }
+  if (!why.empty()) return NotApplicableResult(name(), why);
   return SolveTranscribed(
       name(), ocp, request, [&](const TranscribedNlp& nlp, const Vec&, const NlpMultipliers&) {
         return SolveEulerNlpWithRiccatiIp(nlp, options);

@@ -43,13 +43,9 @@ int CollocationLayout::AddControl(double t) {
 }
 
 void ValidateTranscriptionOptions(const Ocp& ocp, const TranscriptionOptions& options) {
-  const TimeGrid& grid = options.grid;
-  if (grid.size() < 2) throw std::invalid_argument("transcription: the grid is empty");
-  const double tol = 1e-12 * std::max({1.0, std::abs(ocp.t0()), std::abs(ocp.tf())});
-  if (std::abs(grid.t0() - ocp.t0()) > tol || std::abs(grid.tf() - ocp.tf()) > tol) {
-    throw std::invalid_argument("transcription: the grid [" + std::to_string(grid.t0()) + ", " +
-                                std::to_string(grid.tf()) + "] must span the horizon [" +
-                                std::to_string(ocp.t0()) + ", " + std::to_string(ocp.tf()) + "]");
+  if (const std::string off = ocp.GridOffHorizon(options.grid, Ocp::HorizonEnd::kNominal);
+      !off.empty()) {
+    throw std::invalid_argument("transcription: " + off);
   }
   if (options.initial_guess && options.initial_guess->nu() != ocp.nu()) {
     throw std::invalid_argument("transcription: the initial guess must have nu = " +

@@ -10,12 +10,6 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-bool SpansHorizon(const TimeGrid& grid, const Ocp& ocp) {
-  const double scale = std::max({1.0, std::abs(ocp.t0()), std::abs(ocp.tf())});
-  return grid.size() >= 2 && std::abs(grid.t0() - ocp.t0()) <= 1e-12 * scale &&
-         std::abs(grid.tf() - ocp.tf()) <= 1e-12 * scale;
-}
-
 }  // namespace
 
 SingleShootingNlp::SingleShootingNlp(const Ocp& ocp,
@@ -26,9 +20,9 @@ SingleShootingNlp::SingleShootingNlp(const Ocp& ocp,
       nx_(ocp.nx()),
       nu_(ocp.nu()),
       N_(options.grid.intervals()) {
-  if (!SpansHorizon(options.grid, ocp)) {
-    throw std::invalid_argument("single-shooting: the grid must span the problem's horizon [" +
-                                std::to_string(ocp.t0()) + ", " + std::to_string(ocp.tf()) + "]");
+  if (const std::string off = ocp.GridOffHorizon(options.grid, Ocp::HorizonEnd::kNominal);
+      !off.empty()) {
+    throw std::invalid_argument("single-shooting: " + off);
   }
   if (nu_ < 1) throw std::invalid_argument("single-shooting: the problem has no controls");
   if (options.initial_guess && options.initial_guess->nu() != nu_) {

@@ -77,11 +77,8 @@ bool TranscriptionOptions::IsValid(std::string* error) const {
 
 bool TranscriptionOptions::IsValidFor(const Ocp& ocp, std::string* error) const {
   if (!IsValidOnItsOwn(error)) return false;
-  const double tol = 1e-12 * std::max({1.0, std::abs(ocp.t0()), std::abs(ocp.tf())});
-  if (std::abs(grid.t0() - ocp.t0()) > tol || std::abs(grid.tf() - ocp.tf()) > tol) {
-    return Invalid(error,
-                   "transcription: the grid " + Interval(grid.t0(), grid.tf()) +
-                       " must span the horizon " + Interval(ocp.t0(), ocp.tf()));
+  if (const std::string off = ocp.GridOffHorizon(grid, Ocp::HorizonEnd::kNominal); !off.empty()) {
+    return Invalid(error, "transcription: " + off);
   }
   if (initial_guess && initial_guess->nu() != ocp.nu()) {
     return Invalid(error,

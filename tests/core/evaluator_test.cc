@@ -135,7 +135,8 @@ TEST(Evaluator, RejectsControlsThatDoNotFitTheProblem) {
             "Evaluate: the controls have 0 components, the problem double-integrator has nu = 1");
   const TimeGrid longer = TimeGrid::Uniform(0.0, 2.0, 10);
   EXPECT_EQ(error(ControlTrajectory::Constant(longer, Vec::Zero(1)), longer),
-            "Evaluate: the grid [0, 2] does not span the horizon [0, 1] of double-integrator");
+            "Evaluate: the grid [0, 2] does not span the horizon [0, 1] of problem "
+            "'double-integrator'");
   const TimeGrid half = TimeGrid::Uniform(0.0, 0.5, 5);
   EXPECT_EQ(error(ControlTrajectory::Constant(half, Vec::Zero(1)), grid),
             "Evaluate: the controls are defined on [0, 0.5], which does not cover the grid [0, 1]");

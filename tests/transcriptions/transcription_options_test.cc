@@ -56,7 +56,9 @@ TEST(TranscriptionOptions, SizesAndHorizonAreCheckedAgainstTheProblem) {
   TranscriptionOptions o = Valid();
   o.grid = TimeGrid::Uniform(0.0, 2.0, 10);
   EXPECT_EQ(ErrorOf(o), "(valid)");
-  EXPECT_EQ(ErrorFor(o, *ocp), "transcription: the grid [0, 2] must span the horizon [0, 1]");
+  EXPECT_EQ(ErrorFor(o, *ocp),
+            "transcription: the grid [0, 2] does not span the horizon [0, 1] of problem "
+            "'double-integrator'");
   o = Valid();
   o.initial_guess = ControlTrajectory::Constant(o.grid, Vec::Zero(2));
   EXPECT_EQ(ErrorFor(o, *ocp),
