@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -130,6 +131,34 @@ class OptionBinding {
     schema_.AddNested(prefix, nested, std::move(doc));
     nested_.push_back({prefix, field});
     return *this;
+  }
+  /// A double or int field of a struct nested in Options (or in a base of it): (o.*outer).*inner,
+  /// for example the family's proximal schedule or a transcription's mesh refinement options.
+  /// Its default is Defaults()'s (the struct this binding fills, presets included).
+  template <class Base, class Outer, class T>
+  OptionBinding& NestedMember(const std::string& name,
+                              Outer Base::*outer,
+                              T Outer::*inner,
+                              std::string doc,
+                              OptionBounds bounds = OptionBounds::Any()) {
+    static_assert(std::is_base_of_v<Base, Options>, "outer must be a member of Options");
+    static_assert(std::is_same_v<T, double> || std::is_same_v<T, int>,
+                  "NestedMember binds double and int fields");
+    constexpr bool kInt = std::is_same_v<T, int>;
+    return Bind(
+        Spec(name,
+             kInt ? OptionType::kInteger : OptionType::kNumber,
+             std::move(doc),
+             OptionValue(Defaults().*outer.*inner),
+             bounds),
+        [outer, inner](Options* o, const OptionValue& v) {
+          if constexpr (kInt) {
+            o->*outer.*inner = static_cast<int>(v.integer());
+          } else {
+            o->*outer.*inner = v.number();
+          }
+        },
+        [outer, inner](const Options& o) { return OptionValue(o.*outer.*inner); });
   }
   /// Any other spec, with its own setter (for example a field of another type).
   OptionBinding& Custom(OptionSpec spec,

@@ -28,33 +28,6 @@ struct PolishPreset : Options {
   PolishPreset() { static_cast<Options&>(*this) = HamiltonianFamily::Polished(); }
 };
 
-// A field of a nested struct (the proximal schedule, the outer loop's rule) as a spec.
-template <class O, class Outer, class T>
-void NestedField(OptionBinding<O>& t,
-                 const std::string& name,
-                 Outer Options::*outer,
-                 T Outer::*inner,
-                 std::string doc,
-                 OptionBounds bounds) {
-  OptionSpec s;
-  s.name = name;
-  s.type = std::is_same_v<T, int> ? OptionType::kInteger : OptionType::kNumber;
-  s.doc = std::move(doc);
-  const O defaults{};
-  s.default_value = OptionValue(defaults.*outer.*inner);
-  s.bounds = bounds;
-  t.Custom(
-      std::move(s),
-      [outer, inner](O* o, const OptionValue& v) {
-        if constexpr (std::is_same_v<T, int>) {
-          o->*outer.*inner = static_cast<int>(v.integer());
-        } else {
-          o->*outer.*inner = v.number();
-        }
-      },
-      [outer, inner](const O& o) { return OptionValue(o.*outer.*inner); });
-}
-
 template <class O>
 OptionBinding<O> MakeBinding(const std::string& owner) {
   OptionBinding<O> t(owner);
@@ -94,30 +67,26 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
       &O::direction,
       {{"paper", Options::Direction::kPaper}, {"proximal", Options::Direction::kProximal}},
       "the descent's direction: the paper's u* - u, or Sakawa-Shindo's proximal one");
-  NestedField(t,
-              "proximal_eps",
-              &Options::proximal,
-              &ProximalSchedule::initial_eps,
-              "proximal direction: eps of the first iteration",
-              OptionBounds::Above(0));
-  NestedField(t,
-              "proximal_growth",
-              &Options::proximal,
-              &ProximalSchedule::growth,
-              "proximal direction: eps factor after a full Armijo step",
-              OptionBounds::AtLeast(1));
-  NestedField(t,
-              "proximal_min_eps",
-              &Options::proximal,
-              &ProximalSchedule::min_eps,
-              "proximal direction: smallest eps",
-              OptionBounds::Above(0));
-  NestedField(t,
-              "proximal_max_eps",
-              &Options::proximal,
-              &ProximalSchedule::max_eps,
-              "proximal direction: largest eps (inf: the paper's direction allowed)",
-              OptionBounds::Above(0).WithInfinity());
+  t.NestedMember("proximal_eps",
+                 &Options::proximal,
+                 &ProximalSchedule::initial_eps,
+                 "proximal direction: eps of the first iteration",
+                 OptionBounds::Above(0));
+  t.NestedMember("proximal_growth",
+                 &Options::proximal,
+                 &ProximalSchedule::growth,
+                 "proximal direction: eps factor after a full Armijo step",
+                 OptionBounds::AtLeast(1));
+  t.NestedMember("proximal_min_eps",
+                 &Options::proximal,
+                 &ProximalSchedule::min_eps,
+                 "proximal direction: smallest eps",
+                 OptionBounds::Above(0));
+  t.NestedMember("proximal_max_eps",
+                 &Options::proximal,
+                 &ProximalSchedule::max_eps,
+                 "proximal direction: largest eps (inf: the paper's direction allowed)",
+                 OptionBounds::Above(0).WithInfinity());
   t.template Enum<Options::PathConstraints>(
       "path",
       &O::path,
@@ -125,60 +94,51 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
        {"augmented-lagrangian", Options::PathConstraints::kAugmentedLagrangian}},
       "path constraints: the problem's penalty reformulation, or the outer loop's multipliers");
   using AL = AugmentedLagrangianRule;
-  NestedField(t,
-              "al_initial_penalty",
-              &Options::augmented_lagrangian,
-              &AL::initial_penalty,
-              "outer loop: rho_0",
-              OptionBounds::Above(0));
-  NestedField(t,
-              "al_penalty_growth",
-              &Options::augmented_lagrangian,
-              &AL::penalty_growth,
-              "outer loop: rho factor when the infeasibility did not fall below eta",
-              OptionBounds::Above(1));
-  NestedField(t,
-              "al_max_penalty",
-              &Options::augmented_lagrangian,
-              &AL::max_penalty,
-              "outer loop: largest rho",
-              OptionBounds::Above(0));
-  NestedField(t,
-              "al_initial_feasibility",
-              &Options::augmented_lagrangian,
-              &AL::initial_feasibility,
-              "outer loop: eta_0",
-              OptionBounds::Above(0));
-  NestedField(t,
-              "al_feasibility_tolerance",
-              &Options::augmented_lagrangian,
-              &AL::feasibility_tolerance,
-              "outer loop: converged when max |psi| and max c+ are below this",
-              OptionBounds::Above(0));
-  NestedField(t,
-              "al_initial_inner_tolerance",
-              &Options::augmented_lagrangian,
-              &AL::initial_inner_tolerance,
-              "outer loop: omega_0, relative inner |theta| tolerance",
-              OptionBounds::Above(0));
-  NestedField(t,
-              "al_final_inner_tolerance",
-              &Options::augmented_lagrangian,
-              &AL::final_inner_tolerance,
-              "outer loop: the last inner solves' relative |theta| tolerance",
-              OptionBounds::Above(0));
-  NestedField(t,
-              "al_max_outer_iterations",
-              &Options::augmented_lagrangian,
-              &AL::max_outer_iterations,
-              "outer loop: outer iterations at most",
-              OptionBounds::AtLeast(1));
-  NestedField(t,
-              "al_max_inner_iterations",
-              &Options::augmented_lagrangian,
-              &AL::max_inner_iterations,
-              "outer loop: descent steps per outer iteration at most",
-              OptionBounds::AtLeast(1));
+  t.NestedMember("al_initial_penalty",
+                 &Options::augmented_lagrangian,
+                 &AL::initial_penalty,
+                 "outer loop: rho_0",
+                 OptionBounds::Above(0));
+  t.NestedMember("al_penalty_growth",
+                 &Options::augmented_lagrangian,
+                 &AL::penalty_growth,
+                 "outer loop: rho factor when the infeasibility did not fall below eta",
+                 OptionBounds::Above(1));
+  t.NestedMember("al_max_penalty",
+                 &Options::augmented_lagrangian,
+                 &AL::max_penalty,
+                 "outer loop: largest rho",
+                 OptionBounds::Above(0));
+  t.NestedMember("al_initial_feasibility",
+                 &Options::augmented_lagrangian,
+                 &AL::initial_feasibility,
+                 "outer loop: eta_0",
+                 OptionBounds::Above(0));
+  t.NestedMember("al_feasibility_tolerance",
+                 &Options::augmented_lagrangian,
+                 &AL::feasibility_tolerance,
+                 "outer loop: converged when max |psi| and max c+ are below this",
+                 OptionBounds::Above(0));
+  t.NestedMember("al_initial_inner_tolerance",
+                 &Options::augmented_lagrangian,
+                 &AL::initial_inner_tolerance,
+                 "outer loop: omega_0, relative inner |theta| tolerance",
+                 OptionBounds::Above(0));
+  t.NestedMember("al_final_inner_tolerance",
+                 &Options::augmented_lagrangian,
+                 &AL::final_inner_tolerance,
+                 "outer loop: the last inner solves' relative |theta| tolerance",
+                 OptionBounds::Above(0));
+  t.NestedMember("al_max_outer_iterations",
+                 &Options::augmented_lagrangian,
+                 &AL::max_outer_iterations,
+                 "outer loop: outer iterations at most",
+                 OptionBounds::AtLeast(1));
+  t.NestedMember("al_max_inner_iterations",
+                 &Options::augmented_lagrangian,
+                 &AL::max_inner_iterations,
+                 "outer loop: descent steps per outer iteration at most",
+                 OptionBounds::AtLeast(1));
   t.Number("free_time_initial_fraction",
            &O::free_time_initial_fraction,
            "free final time: the first T step moves T by at most this fraction of T - t0",

@@ -28,31 +28,6 @@ OptionBinding<TranscriptionOptions> ScalingAndMesh(const std::string& owner) {
   return b;
 }
 
-// One option bound to a number or integer field of TranscriptionOptions::mesh.
-template <class T>
-void BindMeshField(OptionBinding<TranscriptionOptions>* binding,
-                   const char* name,
-                   T MeshRefinementOptions::*field,
-                   std::string doc,
-                   OptionBounds bounds) {
-  OptionSpec s;
-  s.name = name;
-  s.type = std::is_same_v<T, double> ? OptionType::kNumber : OptionType::kInteger;
-  s.doc = std::move(doc);
-  s.default_value = MeshRefinementOptions{}.*field;
-  s.bounds = bounds;
-  binding->Custom(
-      std::move(s),
-      [field](TranscriptionOptions* o, const OptionValue& v) {
-        if constexpr (std::is_same_v<T, double>) {
-          o->mesh.*field = v.number();
-        } else {
-          o->mesh.*field = static_cast<int>(v.integer());
-        }
-      },
-      [field](const TranscriptionOptions& o) { return OptionValue(o.mesh.*field); });
-}
-
 std::vector<TranscriptionInfo> BuildTranscriptions() {
   std::vector<TranscriptionInfo> list;
   // [transcriptions] one entry per transcription, in the order `ocpbench list` prints them.
@@ -167,28 +142,30 @@ void BindScalingOptions(OptionBinding<TranscriptionOptions>* binding) {
 
 void BindMeshOptions(OptionBinding<TranscriptionOptions>* binding, MeshRefinementKind kind) {
   const bool h = kind == MeshRefinementKind::kH;
-  BindMeshField(binding,
-                "mesh_tolerance",
-                &MeshRefinementOptions::tolerance,
-                h ? "adaptive h-refinement until every interval's error estimate (mesh_estimate) "
-                    "is <= this; 0: off, one solve on the given grid"
-                  : "adaptive ph-refinement (raise an interval's degree, or split it) until "
-                    "every interval's error estimate (mesh_estimate) is <= this; 0: off, one "
-                    "solve on the given grid",
-                OptionBounds::AtLeast(0));
-  BindMeshField(binding,
-                "mesh_max_iterations",
-                &MeshRefinementOptions::max_iterations,
-                "at most this many meshes are solved (the given grid is the first)",
-                OptionBounds::AtLeast(1));
-  BindMeshField(binding,
-                "mesh_max_nodes",
-                &MeshRefinementOptions::max_nodes,
-                h ? "a refined mesh with more nodes (N + 1) than this is not solved; refinement "
-                    "stops on the last mesh"
-                  : "a refined mesh with more collocation points + 1 (the sum of the interval "
-                    "degrees + 1) than this is not solved; refinement stops on the last mesh",
-                OptionBounds::AtLeast(2));
+  binding->NestedMember(
+      "mesh_tolerance",
+      &TranscriptionOptions::mesh,
+      &MeshRefinementOptions::tolerance,
+      h ? "adaptive h-refinement until every interval's error estimate (mesh_estimate) "
+          "is <= this; 0: off, one solve on the given grid"
+        : "adaptive ph-refinement (raise an interval's degree, or split it) until "
+          "every interval's error estimate (mesh_estimate) is <= this; 0: off, one "
+          "solve on the given grid",
+      OptionBounds::AtLeast(0));
+  binding->NestedMember("mesh_max_iterations",
+                        &TranscriptionOptions::mesh,
+                        &MeshRefinementOptions::max_iterations,
+                        "at most this many meshes are solved (the given grid is the first)",
+                        OptionBounds::AtLeast(1));
+  binding->NestedMember(
+      "mesh_max_nodes",
+      &TranscriptionOptions::mesh,
+      &MeshRefinementOptions::max_nodes,
+      h ? "a refined mesh with more nodes (N + 1) than this is not solved; refinement "
+          "stops on the last mesh"
+        : "a refined mesh with more collocation points + 1 (the sum of the interval "
+          "degrees + 1) than this is not solved; refinement stops on the last mesh",
+      OptionBounds::AtLeast(2));
   const std::string own = h ? "defect" : "interpolation";
   {
     OptionSpec s;
@@ -229,25 +206,26 @@ void BindMeshOptions(OptionBinding<TranscriptionOptions>* binding, MeshRefinemen
       [](TranscriptionOptions* o, const OptionValue& v) { o->mesh.warm_multipliers = v.boolean(); },
       [](const TranscriptionOptions& o) { return OptionValue(o.mesh.warm_multipliers); });
   if (h) {
-    BindMeshField(binding,
-                  "mesh_max_new_points",
-                  &MeshRefinementOptions::max_new_points,
-                  "at most this many nodes added to one interval per refinement",
-                  OptionBounds::AtLeast(1));
+    binding->NestedMember("mesh_max_new_points",
+                          &TranscriptionOptions::mesh,
+                          &MeshRefinementOptions::max_new_points,
+                          "at most this many nodes added to one interval per refinement",
+                          OptionBounds::AtLeast(1));
     return;
   }
-  BindMeshField(binding,
-                "mesh_min_degree",
-                &MeshRefinementOptions::min_degree,
-                "ph: the degree of the pieces of a split interval, and the least degree "
-                "lowering goes down to",
-                OptionBounds::Closed(1, kMaxRadauPoints - 1));
-  BindMeshField(binding,
-                "mesh_max_degree",
-                &MeshRefinementOptions::max_degree,
-                "ph: an interval whose predicted degree exceeds this is split instead of raised "
-                "(>= mesh_min_degree)",
-                OptionBounds::Closed(1, kMaxRadauPoints - 1));
+  binding->NestedMember("mesh_min_degree",
+                        &TranscriptionOptions::mesh,
+                        &MeshRefinementOptions::min_degree,
+                        "ph: the degree of the pieces of a split interval, and the least degree "
+                        "lowering goes down to",
+                        OptionBounds::Closed(1, kMaxRadauPoints - 1));
+  binding->NestedMember(
+      "mesh_max_degree",
+      &TranscriptionOptions::mesh,
+      &MeshRefinementOptions::max_degree,
+      "ph: an interval whose predicted degree exceeds this is split instead of raised "
+      "(>= mesh_min_degree)",
+      OptionBounds::Closed(1, kMaxRadauPoints - 1));
   binding->Custom(
       [] {
         OptionSpec s;
