@@ -12,6 +12,7 @@
 #include "drivers/online/online_scenario.h"
 #include "problems/registry.h"
 #include "solvers/registry.h"
+#include "solvers/solver.h"
 
 namespace ocpb {
 namespace {
@@ -28,6 +29,31 @@ void DescribeProblem(const std::string& name) {
               << p.reference_source << "; " << p.reference_scheme << ")\n";
   }
   if (!p.hamiltonian_note.empty()) std::cout << "hamiltonian: " << p.hamiltonian_note << "\n";
+  // The problem as its defaults build it (make_for_checks: without its expensive parts): its
+  // sizes and which parts of the problem class it uses, which decide the methods that take it.
+  const Parameters defaults(p.parameters);
+  const std::unique_ptr<Ocp> ocp =
+      p.make_for_checks ? p.make_for_checks(defaults, 1) : p.make(defaults, 1);
+  std::cout << "sizes: nx = " << ocp->nx() << ", nu = " << ocp->nu() << ", terminal constraints "
+            << ocp->num_terminal() << ", path constraints " << ocp->num_path()
+            << ", boundary constraints " << ocp->num_boundary() << ", static parameters "
+            << ocp->num_static_parameters() << "\n";
+  const ProblemFeatures f = ProblemFeatures::Of(*ocp);
+  std::string features;
+  const auto add = [&](bool on, const char* what) {
+    if (on) features += (features.empty() ? "" : ", ") + std::string(what);
+  };
+  add(f.free_final_time, "free final time");
+  add(f.free_initial_state, "free initial state");
+  add(f.state_bounds, "state bounds");
+  add(f.boundary_constraints, "boundary constraints");
+  std::cout << "features: "
+            << (features.empty()
+                    ? "none (fixed horizon, fixed x(t0), no state bounds or boundary constraints)"
+                    : features +
+                          " (ipopt and nlopt on a collocation transcription take them; "
+                          "methods that do not say not_applicable)")
+            << "\n";
   std::cout << "parameters (--set key=value, suite \"set\"):\n" << parameters.Describe();
 }
 
