@@ -78,7 +78,7 @@ struct SolveResult {
   /// The x(t0) the method chose when the problem's initial state is free
   /// (Ocp::HasFreeInitialState); empty otherwise (x(t0) = x0). The judge starts from it.
   Vec initial_state;
-  double objective = -1.0;     ///< the objective value the method reports about itself
+  double objective = -1.0;  ///< the objective value the method reports about itself
   int iterations = -1;
   std::vector<IterationRecord> history;
   double cpu_seconds = -1.0;

@@ -278,9 +278,9 @@ class CollocationNlp : public TranscribedNlp {
   Vec scaled_defect_jacobian_;
   std::vector<std::vector<PointUse>> point_uses_;  // per point
   std::vector<StateUse> state_uses_;
-  std::vector<int> path_x_slots_, path_u_slots_;  // per point (base into jac_slots_), or -1
-  std::vector<int> ball_slots_;                   // per ball row: base of its `size` slots
-  int terminal_slots_ = -1;                       // npsi x nx
+  std::vector<int> path_x_slots_, path_u_slots_;         // per point (base into jac_slots_), or -1
+  std::vector<int> ball_slots_;                          // per ball row: base of its `size` slots
+  int terminal_slots_ = -1;                              // npsi x nx
   int boundary_x0_slots_ = -1, boundary_xf_slots_ = -1;  // nb x nx each
   // Hessian structure.
   std::vector<int> hess_slots_;

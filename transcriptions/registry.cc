@@ -69,7 +69,7 @@ std::vector<TranscriptionInfo> BuildTranscriptions() {
       "discrete adjoint (RK4 with --integrator rk4)",
       [] { return std::make_unique<SingleShooting>(); },
       ScalingOnly("single-shooting")));
-  list.back().takes_free_final_time = false;  // the horizon is fixed by its simulation
+  list.back().takes_free_final_time = false;     // the horizon is fixed by its simulation
   list.back().takes_free_initial_state = false;  // it simulates from x0
   list.back().takes_state_bounds = false;        // its states are not variables
   list.back().takes_boundary_constraints = false;

@@ -1,8 +1,8 @@
 // Every problem in the registry, found by iterating it (a new problem is checked by being
 // registered, not by being added to a list): its first and second derivatives against finite
 // differences, and the consistency of its registry entry.
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <random>
 #include <string>
