@@ -185,6 +185,7 @@ ProblemInfo CommFixedPathProblemInfo() {
   };
   p.default_intervals = 400;
   p.uses_seed = true;
+  p.tags = {"paper"};
   return p;
 }
 

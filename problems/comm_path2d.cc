@@ -768,6 +768,7 @@ ProblemInfo CommPath2dProblemInfo() {
   };
   p.default_intervals = 400;
   p.uses_seed = true;
+  p.tags = {"paper"};
   return p;
 }
 

@@ -32,6 +32,27 @@ struct TruthJudgement {
   double min_distance_to_base = NAN;
 };
 
+/// A further published value of a problem beside its primary reference (ProblemInfo::
+/// reference_value): typically a peer's optimum of one discretization at one grid
+/// (CTBenchmarks' trapezoid objectives at N = 200, 500, 1000, 2000; COPS' values at its nh), which
+/// OCPBench's transcription of the same scheme and grid must reproduce at the NLP level, or a
+/// second continuous value from another source.
+struct ProblemReference {
+  double value = NAN;
+  std::string quantity = "J";         ///< "J" (the cost as posed) or "tf"
+  std::string scheme = "continuous";  ///< "continuous", or the transcription whose NLP it solves
+  int intervals = 0;                  ///< the grid of a discrete value (0 when continuous)
+  std::string source;                 ///< where the value is published
+};
+
+/// The tags a problem may carry (`ocpbench list problems --tag T`), each with what it means.
+struct ProblemTag {
+  const char* name;
+  const char* meaning;
+};
+/// Every tag, in the order the docs list them.
+const std::vector<ProblemTag>& ProblemTags();
+
 /// A registered problem: how to build it, its parameters, and what is known about its optimum.
 struct ProblemInfo {
   std::string name;
@@ -56,6 +77,12 @@ struct ProblemInfo {
   /// of that transcription and grid may be compared with.
   std::string reference_scheme = "continuous";
   int reference_intervals = 0;  ///< the grid of a discrete reference (0 when continuous)
+  /// Further published values (see ProblemReference); the primary one above is not repeated.
+  std::vector<ProblemReference> additional_references;
+  /// What kind of problem it is, from ProblemTags() (a registry test checks every name).
+  std::vector<std::string> tags;
+  /// Where the problem comes from (a suite, paper or book), when not the reference's source.
+  std::string origin;
   bool uses_seed = false;       ///< true when `seed` changes the problem
   /// How the Hamiltonian descent applies (for example "path constraint as penalty rho max(0,
   /// c)^2, rho = 1e4"), or why it does not (then the note says "not applicable"); empty when it

@@ -76,6 +76,7 @@ ProblemInfo BrysonDenhamProblemInfo() {
   p.hamiltonian_note =
       "path constraint x1 <= 1/9 as the penalty rho max(0, x1 - 1/9)^2 in L (parameter rho), "
       "u* = -p2";
+  p.tags = {"state-constrained"};
   return p;
 }
 

@@ -38,6 +38,7 @@ ProblemInfo BrysonDenhamBoundsProblemInfo() {
   p.hamiltonian_note =
       "not applicable: state bounds (the family takes path rows; bryson-denham poses the same "
       "problem with one)";
+  p.tags = {"state-constrained"};
   return p;
 }
 

@@ -79,6 +79,7 @@ ProblemInfo CatmixProblemInfo() {
   p.hamiltonian_note =
       "singular arc: eps int u^2 added to the cost (parameter hamiltonian_eps), u* = clip(-s/(2 "
       "eps), 0, 1)";
+  p.tags = {"singular-arc", "control-constrained"};
   return p;
 }
 

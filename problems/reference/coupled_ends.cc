@@ -40,6 +40,7 @@ ProblemInfo CoupledEndsProblemInfo() {
     return Vec::Constant(1,
                          -CoupledEnds(Parameters(CoupledEnds::ParameterSpecs())).OptimalControl());
   };
+  p.tags = {"free-initial-state", "boundary-constraints"};
   return p;
 }
 

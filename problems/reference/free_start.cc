@@ -70,6 +70,7 @@ ProblemInfo FreeStartProblemInfo() {
   p.reference_costate = [](double) {
     return FreeStart(Parameters(FreeStart::ParameterSpecs())).OptimalCostate();
   };
+  p.tags = {"free-initial-state", "mayer"};
   return p;
 }
 

@@ -57,6 +57,7 @@ ProblemInfo FreeTimeBrachistochroneProblemInfo() {
       "free final time: the descent keeps tf fixed (not applicable); indirect-newton and the NLP "
       "solvers on a collocation transcription take it; the time-scaled 'brachistochrone' poses it "
       "for every method";
+  p.tags = {"smooth", "free-time", "control-constrained"};
   return p;
 }
 

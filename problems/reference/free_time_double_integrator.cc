@@ -42,6 +42,7 @@ ProblemInfo FreeTimeDoubleIntegratorProblemInfo() {
   p.hamiltonian_note =
       "free final time: the descent keeps tf fixed (not applicable); indirect-newton (H(T) = 0) "
       "and the NLP solvers on a collocation transcription (T a variable) take it";
+  p.tags = {"smooth", "free-time"};
   return p;
 }
 

@@ -38,6 +38,7 @@ ProblemInfo HagerProblemInfo() {
   p.reference_source =
       "closed form (Hager, Numer. Math. 87, 2000); quadrature and Riccati agree to 1e-14";
   p.reference_costate = [](double t) { return Vec::Constant(1, Hager::OptimalCostate(t)); };
+  p.tags = {"smooth"};
   return p;
 }
 

@@ -59,6 +59,7 @@ ProblemInfo LqrProblemInfo() {
   p.reference_source =
       "1/2 x0' P(0) x0 from the Riccati ODE at rtol 1e-13 (problem: CTProblems.jl lqr_ricatti)";
   p.reference_costate = [](double t) -> Vec { return Lqr::OptimalCostate(t); };
+  p.tags = {"smooth"};
   return p;
 }
 

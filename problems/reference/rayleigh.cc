@@ -49,6 +49,7 @@ ProblemInfo RayleighProblemInfo() {
   p.hamiltonian_note =
       "mixed constraint u + x1/6 <= 0 as the penalty rho max(0, u + x1/6)^2 in L (parameter rho), "
       "exact piecewise minimizer";
+  p.tags = {"mixed-constraint"};
   return p;
 }
 

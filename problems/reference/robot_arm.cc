@@ -37,6 +37,7 @@ ProblemInfo RobotArmProblemInfo() {
       "free T by time scaling (sigma = dt/ds a control, eps Var(sigma) in J: exact), torques as "
       "v = sigma w in the cone |v_i| <= sigma, penalized in the Hamiltonian reformulation (rho "
       "dist^2, parameter rho)";
+  p.tags = {"bang-bang", "free-time", "control-constrained"};
   return p;
 }
 

@@ -27,6 +27,7 @@ ProblemInfo SteeringProblemInfo() {
   p.hamiltonian_note =
       "free tf by time scaling (sigma = dt/ds a control, eps Var(sigma) in J: exact), angle as "
       "unit vector w in the disc (the half-disc bound is inactive)";
+  p.tags = {"smooth", "free-time"};
   return p;
 }
 

@@ -34,6 +34,7 @@ ProblemInfo TimeParameterDoubleIntegratorProblemInfo() {
   p.hamiltonian_note =
       "not applicable: a static parameter (the family starts every trajectory from x0; "
       "double-integrator-free-time poses T for indirect-newton)";
+  p.tags = {"smooth", "free-time", "static-parameters"};
   return p;
 }
 

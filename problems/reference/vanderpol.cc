@@ -25,6 +25,7 @@ ProblemInfo VanDerPolProblemInfo() {
   p.reference_source =
       "shooting on the optimality conditions (project notes 2.9); Bocop examples list: 1.05 "
       "(midpoint, 100 steps)";
+  p.tags = {"smooth"};
   return p;
 }
 

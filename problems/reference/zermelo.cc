@@ -28,6 +28,7 @@ ProblemInfo ZermeloProblemInfo() {
   p.hamiltonian_note =
       "free tf by time scaling (sigma = dt/ds a control, eps Var(sigma) in J: exact), angle as "
       "unit vector w in the disc";
+  p.tags = {"smooth", "free-time"};
   return p;
 }
 
