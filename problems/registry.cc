@@ -93,19 +93,22 @@ const std::vector<ProblemTag>& ProblemTags() {
   return tags;
 }
 
+void CheckProblemTag(const std::string& where, const std::string& tag) {
+  std::string names;
+  for (const ProblemTag& t : ProblemTags()) {
+    if (tag == t.name) return;
+    names += (names.empty() ? "" : ", ") + std::string(t.name);
+  }
+  throw std::invalid_argument(where + ": unknown tag '" + tag + "' (the tags: " + names + ")");
+}
+
 const std::vector<ProblemInfo>& Problems() { return Registry().All(); }
 
 void RegisterProblem(ProblemInfo info) {
   Registry().Add("RegisterProblem", std::move(info), [](const ProblemInfo& p) {
     if (!p.make)
       throw std::invalid_argument("RegisterProblem: '" + p.name + "' has no make function");
-    for (const std::string& tag : p.tags) {
-      bool known = false;
-      for (const ProblemTag& t : ProblemTags()) known = known || tag == t.name;
-      if (!known)
-        throw std::invalid_argument("RegisterProblem: '" + p.name + "' has the unknown tag '" +
-                                    tag + "' (`ocpbench list tags` lists the tags)");
-    }
+    for (const std::string& tag : p.tags) CheckProblemTag("RegisterProblem: '" + p.name + "'", tag);
   });
 }
 

@@ -52,6 +52,9 @@ struct ProblemTag {
 };
 /// Every tag, in the order the docs list them.
 const std::vector<ProblemTag>& ProblemTags();
+/// Throws std::invalid_argument "WHERE: unknown tag 'T' (the tags: a, b, ...)" unless `tag` is
+/// one of ProblemTags().
+void CheckProblemTag(const std::string& where, const std::string& tag);
 
 /// A registered problem: how to build it, its parameters, and what is known about its optimum.
 struct ProblemInfo {

@@ -564,6 +564,13 @@ Record RunCase(const CaseSpec& given) {
     ref.N = pinfo.reference_intervals;
     rec.reference = ref;
   }
+  for (const ProblemReference& peer : pinfo.additional_references) {
+    if (peer.scheme == rec.transcription && peer.intervals == rec.N && peer.quantity == "J") {
+      rec.nlp_reference =
+          RecordReference{peer.value, peer.quantity, peer.source, peer.scheme, peer.intervals};
+      break;
+    }
+  }
   return rec;
 }
 

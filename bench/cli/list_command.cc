@@ -1,8 +1,10 @@
 // `ocpbench list` (names, one per line: scripts read it) and `ocpbench describe` (what a
 // problem, solver or transcription accepts: every option with its default and rule).
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
+#include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
 #include "bench/cli/app.h"
@@ -17,6 +19,19 @@
 namespace ocpb {
 namespace {
 
+std::string JoinTags(const std::vector<std::string>& tags) {
+  std::string out;
+  for (const std::string& t : tags) out += (out.empty() ? "" : ", ") + t;
+  return out;
+}
+
+bool HasEveryTag(const ProblemInfo& p, const std::vector<std::string>& tags) {
+  for (const std::string& t : tags) {
+    if (std::find(p.tags.begin(), p.tags.end(), t) == p.tags.end()) return false;
+  }
+  return true;
+}
+
 void DescribeProblem(const std::string& name) {
   const ProblemInfo& p = FindProblem(name);
   OptionSchema parameters("parameters of " + p.name);
@@ -24,10 +39,27 @@ void DescribeProblem(const std::string& name) {
   std::cout << "problem " << p.name << ": " << p.description << "\n";
   std::cout << "default grid: N = " << p.default_intervals
             << (p.uses_seed ? "; --seed picks the channel realization" : "") << "\n";
+  if (!p.origin.empty()) std::cout << "origin: " << p.origin << "\n";
+  std::cout << "tags: " << (p.tags.empty() ? "none" : JoinTags(p.tags)) << "\n";
+  const auto print_reference = [](const std::string& quantity,
+                                  double value,
+                                  const std::string& scheme,
+                                  int intervals,
+                                  const std::string& source) {
+    std::cout << "reference " << quantity << " = " << fmt::format("{:.12g}", value) << " ("
+              << (scheme == "continuous" ? scheme
+                                         : fmt::format("{} NLP at N = {}", scheme, intervals))
+              << "; " << source << ")\n";
+  };
   if (p.reference_value) {
-    std::cout << "reference " << p.reference_quantity << " = " << *p.reference_value << " ("
-              << p.reference_source << "; " << p.reference_scheme << ")\n";
+    print_reference(p.reference_quantity,
+                    *p.reference_value,
+                    p.reference_scheme,
+                    p.reference_intervals,
+                    p.reference_source);
   }
+  for (const ProblemReference& r : p.additional_references)
+    print_reference(r.quantity, r.value, r.scheme, r.intervals, r.source);
   if (!p.hamiltonian_note.empty()) std::cout << "hamiltonian: " << p.hamiltonian_note << "\n";
   // The problem as its defaults build it (make_for_checks: without its expensive parts): its
   // sizes and which parts of the problem class it uses, which decide the methods that take it.
@@ -86,12 +118,30 @@ void AddListCommand(CLI::App& app) {
   CLI::App* list = app.add_subcommand("list", "List registered names, one per line");
   // The option's storage lives as long as the callback that reads it (the app owns both).
   auto what = std::make_shared<std::string>();
-  list->add_option("what", *what, "problems | solvers | transcriptions")
+  auto tags = std::make_shared<std::vector<std::string>>();
+  list->add_option("what", *what, "problems | solvers | transcriptions | tags")
       ->required()
-      ->check(CLI::IsMember({"problems", "solvers", "transcriptions"}));
-  list->callback([what]() {
+      ->check(CLI::IsMember({"problems", "solvers", "transcriptions", "tags"}));
+  list->add_option("--tag",
+                   *tags,
+                   "with `list problems`: only the problems carrying every tag given (repeatable; "
+                   "`ocpbench list tags` lists them)");
+  list->callback([what, tags]() {
+    if (!tags->empty() && *what != "problems") {
+      throw std::invalid_argument("list --tag: filters problems only (got `list " + *what + "`)");
+    }
+    for (const std::string& tag : *tags) CheckProblemTag("list --tag", tag);
     if (*what == "problems") {
-      for (const ProblemInfo& p : Problems()) std::cout << p.name << "\n";
+      for (const ProblemInfo& p : Problems()) {
+        if (HasEveryTag(p, *tags)) std::cout << p.name << "\n";
+      }
+    } else if (*what == "tags") {
+      // Name, then what it means and how many problems carry it (scripts split on the tab).
+      for (const ProblemTag& t : ProblemTags()) {
+        int count = 0;
+        for (const ProblemInfo& p : Problems()) count += HasEveryTag(p, {t.name}) ? 1 : 0;
+        std::cout << t.name << "\t" << t.meaning << " (" << count << " problems)\n";
+      }
     } else if (*what == "solvers") {
       for (const SolverInfo& s : Solvers()) std::cout << s.name << "\n";
     } else {

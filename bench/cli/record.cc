@@ -389,14 +389,16 @@ json Record::ToJson() const {
   if (std::isfinite(costate_error)) r["costate_error"] = costate_error;
   if (costates) r["costates"] = json{{"t", costates->t}, {"p", JsonRows(costates->p)}};
   if (!s_map.is_null()) r["s_map"] = s_map;
-  if (reference) {
-    json ref{{"value", JsonNumber(reference->value)},
-             {"quantity", reference->quantity},
-             {"source", reference->source},
-             {"scheme", reference->scheme}};
-    if (reference->scheme != "continuous") ref["N"] = reference->N;
-    r["reference"] = ref;
-  }
+  const auto reference_json = [](const RecordReference& reference) {
+    json ref{{"value", JsonNumber(reference.value)},
+             {"quantity", reference.quantity},
+             {"source", reference.source},
+             {"scheme", reference.scheme}};
+    if (reference.scheme != "continuous") ref["N"] = reference.N;
+    return ref;
+  };
+  if (reference) r["reference"] = reference_json(*reference);
+  if (nlp_reference) r["nlp_reference"] = reference_json(*nlp_reference);
   if (online) OnlineToJson(*online, &r);
   if (truth && !online) {
     r["truth_model"] = truth->model;
@@ -589,9 +591,9 @@ Record Record::Read(const json& j, json* movable) {
     rec.costates = std::move(out);
   }
   r.Any("s_map", &rec.s_map);
-  if (r.Has("reference")) {
-    if (!j["reference"].is_object()) r.Fail("reference", "an object");
-    const Reader ref(j["reference"], "reference.");
+  const auto read_reference = [&](const std::string& field) {
+    if (!j[field].is_object()) r.Fail(field, "an object");
+    const Reader ref(j[field], field + ".");
     RecordReference out;
     ref.Number("value", &out.value);
     ref.Text("quantity", &out.quantity);
@@ -600,8 +602,10 @@ Record Record::Read(const json& j, json* movable) {
     out.scheme.clear();
     ref.Text("scheme", &out.scheme);
     ref.Integer("N", &out.N);
-    rec.reference = out;
-  }
+    return out;
+  };
+  if (r.Has("reference")) rec.reference = read_reference("reference");
+  if (r.Has("nlp_reference")) rec.nlp_reference = read_reference("nlp_reference");
   if (rec.kind == "online") {
     rec.online = OnlineFrom(r);
   } else if (r.Has("truth_model") || r.Has("energy_true")) {

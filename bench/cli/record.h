@@ -198,6 +198,10 @@ struct Record {
   std::optional<RecordTrajectory> trajectory;
   nlohmann::json s_map;  ///< null, or the channel map for figures
   std::optional<RecordReference> reference;
+  /// A peer's published optimum of the very NLP this record solved (ProblemInfo::
+  /// additional_references with the record's transcription and N, e.g. CTBenchmarks' trapezoid
+  /// value at N = 200): the transcription is checked against it at the NLP level (objective).
+  std::optional<RecordReference> nlp_reference;
   std::optional<OnlineOutcome> online;
   std::optional<RecordTruth> truth;  ///< solve records of problems with judge_on_truth
   RecordVersions versions;

@@ -290,6 +290,7 @@ std::string SummaryMarkdown(const std::string& suite_name,
     bool bounds = false;
     bool free_start = false;
     bool boundary = false;
+    bool peer = false;  // some record solved an NLP whose optimum a peer published
     for (size_t i = 0; i < records.size(); ++i) {
       if (labels.section[i] != section) continue;
       const Record& r = records[i];
@@ -298,6 +299,7 @@ std::string SummaryMarkdown(const std::string& suite_name,
       bounds = bounds || r.state_bound_violation.has_value();
       free_start = free_start || !r.initial_state.empty();
       boundary = boundary || r.boundary_violation.has_value();
+      peer = peer || r.nlp_reference.has_value();
       if (!by_method.count(labels.row[i])) methods.push_back(labels.row[i]);
       by_method[labels.row[i]].push_back(i);
       if (!reference && r.reference && std::isfinite(r.reference->value)) {
@@ -311,6 +313,12 @@ std::string SummaryMarkdown(const std::string& suite_name,
             "field costate_error; empty where a method has no costates or the case is not the "
             "problem as posed).\n\n";
     }
+    if (peer) {
+      md << "NLP vs peer: |objective - value| / |value| against a peer's published optimum of "
+            "the same NLP (the row's transcription and N; record field nlp_reference, e.g. "
+            "CTBenchmarks' trapezoid values), the worst over the row's cases that have one: a "
+            "check that the transcription is the peer's NLP, not an accuracy.\n\n";
+    }
     if (bounds || free_start || boundary) {
       md << "State bounds, a free initial state, boundary constraints: state bound viol. fine is "
             "the worst over a row's cases of how far the fine re-simulation leaves the state "
@@ -323,10 +331,12 @@ std::string SummaryMarkdown(const std::string& suite_name,
           "time to target s |"
        << (free_time ? " final time T |" : "") << (reference ? " rel. error vs reference |" : "")
        << (costates ? " costate error |" : "") << (bounds ? " state bound viol. fine |" : "")
-       << (free_start ? " x(t0) |" : "") << (boundary ? " boundary viol. fine |" : "") << "\n";
+       << (free_start ? " x(t0) |" : "") << (boundary ? " boundary viol. fine |" : "")
+       << (peer ? " NLP vs peer |" : "") << "\n";
     md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
        << (free_time ? "---|" : "") << (reference ? "---|" : "") << (costates ? "---|" : "")
-       << (bounds ? "---|" : "") << (free_start ? "---|" : "") << (boundary ? "---|" : "") << "\n";
+       << (bounds ? "---|" : "") << (free_start ? "---|" : "") << (boundary ? "---|" : "")
+       << (peer ? "---|" : "") << "\n";
     std::vector<std::string> notes;  // one line per row and warning code: its first message
     for (const std::string& m : methods) {
       const auto& rs = by_method[m];
@@ -334,7 +344,7 @@ std::string SummaryMarkdown(const std::string& suite_name,
       std::map<std::string, int> warnings;
       std::map<std::string, std::string> first_message;
       std::vector<double> J, Jbar, Jf, Jbarf, tv, tvf, cv, pv, defect, it, cpu, ttt, rel, T, pe;
-      std::vector<double> sbv, bv;
+      std::vector<double> sbv, bv, nlp;
       std::string starts;  // the x(t0) of the row's first case that has one
       int reached = 0;
       for (const size_t i : rs) {
@@ -369,6 +379,7 @@ std::string SummaryMarkdown(const std::string& suite_name,
           ++reached;
         }
         if (reference) rel.push_back(ReferenceError(r, *reference));
+        if (r.nlp_reference) nlp.push_back(ReferenceError(r, *r.nlp_reference));
       }
       std::string st;
       for (const auto& [s, n] : statuses)
@@ -410,6 +421,7 @@ std::string SummaryMarkdown(const std::string& suite_name,
       if (bounds) md << " " << SummaryNumber(WorstOf(sbv)) << " |";
       if (free_start) md << " " << (starts.empty() ? "-" : "(" + starts + ")") << " |";
       if (boundary) md << " " << SummaryNumber(WorstOf(bv)) << " |";
+      if (peer) md << " " << SummaryNumber(WorstOf(nlp)) << " |";
       md << "\n";
     }
     md << "\n";
