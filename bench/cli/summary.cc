@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "bench/cli/json_values.h"
+#include "bench/cli/summary_overview.h"
 
 namespace ocpb {
 
@@ -166,6 +167,8 @@ std::string ReferenceNote(const RecordReference& ref) {
          "a scheme and grid): the error column stays empty.";
 }
 
+}  // namespace
+
 double ReferenceError(const Record& r, const RecordReference& ref) {
   const double value = ref.value;
   if (!std::isfinite(value) || value == 0.0) return kNaN;
@@ -175,8 +178,6 @@ double ReferenceError(const Record& r, const RecordReference& ref) {
   }
   return std::abs(r.objective - value) / std::abs(value);
 }
-
-}  // namespace
 
 std::vector<DerivedFields> DeriveTargets(const std::vector<Record>& records) {
   const Labels labels = LabelRecords(records);
@@ -272,6 +273,7 @@ std::string SummaryMarkdown(const std::string& suite_name,
         "U, a path constraint or (hard form) the terminal constraints by more than 1e-3. Each "
         "record's `stopping_tolerance` names the option that bounds its "
         "accuracy (Ipopt: `tol`).\n\n";
+  md << OverviewMarkdown(records);
   const Labels labels = LabelRecords(records);
   const std::vector<DerivedFields> derived = DeriveTargets(records);
   std::vector<std::string> sections;

@@ -34,6 +34,12 @@ struct DerivedFields {
   double time_to_target = NAN;
 };
 
+/// |the record's value - reference| / |reference|: for a continuous optimum the record's Jbar
+/// fine (the continuous-time cost of its controls), for a discrete one (a scheme's NLP at a
+/// grid) its own objective, only when the record solved that NLP (same transcription and N,
+/// hard terminal form); NaN otherwise or when the reference is 0 or not finite.
+double ReferenceError(const Record& r, const RecordReference& ref);
+
 /// The derived fields of every record, in order.
 std::vector<DerivedFields> DeriveTargets(const std::vector<Record>& records);
 

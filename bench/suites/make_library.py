@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""Writes the library suite: every registered problem but the paper's (they have their own
+suites), every method family that may take it, at each problem's default grid.
+
+  python3 bench/suites/make_library.py build/bin/ocpbench > bench/suites/library.json
+
+Per problem, one group in the hard terminal form:
+  - Ipopt on euler, trapezoid, hermite-simpson and lgr (degree 3) at the default N (`ocpbench
+    describe problem P`), the families a user compares first;
+  - riccati-ip (Euler NLP, the stage-structured interior point) at the same N;
+  - NLopt SLSQP on Hermite-Simpson at N = 20 where the problem has at most 6 states (SLSQP's
+    dense quasi-Newton matrix grows with the square of the NLP's size);
+  - hamiltonian-polish and indirect-newton at the default N: they say not_applicable where the
+    problem has no closed-form Hamiltonian minimizer or uses a feature they do not take;
+  - every discrete reference a peer published (trapezoid at its N, ...) in a scheme OCPBench
+    has, as its own case, so
+    the summary's "NLP vs peer" column checks OCPBench's transcription against it.
+Methods that do not take a problem are recorded as not_applicable (with the reason), which
+costs nothing, so the generator does not need to know the rules.
+"""
+import json
+import re
+import subprocess
+import sys
+
+SKIP = {"comm-path2d", "comm-fixed-path"}  # the paper's problems: bench/suites/paper.json
+SCHEMES = ["euler", "trapezoid", "hermite-simpson", "lgr"]
+
+
+def describe(ocpbench, name):
+    text = subprocess.run([ocpbench, "describe", "problem", name], check=True,
+                          capture_output=True, text=True).stdout
+    n = int(re.search(r"^default grid: N = (\d+)", text, re.M).group(1))
+    nx = int(re.search(r"^sizes: nx = (\d+)", text, re.M).group(1))
+    peers = [(m.group(2), int(m.group(3))) for m in
+             re.finditer(r"^reference (\S+) = \S+ \((\S+) NLP at N = (\d+);", text, re.M)]
+    return n, nx, peers
+
+
+def main():
+    ocpbench = sys.argv[1] if len(sys.argv) > 1 else "build/bin/ocpbench"
+    names = subprocess.run([ocpbench, "list", "problems"], check=True, capture_output=True,
+                           text=True).stdout.split()
+    schemes = subprocess.run([ocpbench, "list", "transcriptions"], check=True,
+                             capture_output=True, text=True).stdout.split()
+    groups = []
+    for name in names:
+        if name in SKIP:
+            continue
+        n, nx, peers = describe(ocpbench, name)
+        methods = [{"solver": "ipopt", "transcription": s, "N": n} for s in SCHEMES]
+        methods.append({"solver": "riccati-ip", "transcription": "euler", "N": n})
+        if nx <= 6:
+            methods.append({"solver": "nlopt", "transcription": "hermite-simpson",
+                            "algorithm": "LD_SLSQP", "N": 20})
+        methods.append({"solver": "hamiltonian-polish", "N": n})
+        methods.append({"solver": "indirect-newton", "N": n})
+        for scheme, n_peer in peers:
+            if scheme not in schemes:
+                continue  # a peer's scheme OCPBench does not have (COPS' Gauss-Legendre)
+            case = {"solver": "ipopt", "transcription": scheme, "N": n_peer}
+            if case not in methods:
+                methods.append(case)
+        groups.append({"problem": name, "terminal": "hard", "keep_trajectory": False,
+                       "methods": methods})
+    suite = {
+        "name": "library",
+        "description": (
+            "The reference library (docs/problems.md): every registered problem but the "
+            "paper's, in the hard terminal form, with Ipopt on the four collocation schemes and "
+            "riccati-ip at the problem's default N, NLopt SLSQP (Hermite-Simpson, N = 20) on "
+            "problems of at most 6 states, hamiltonian-polish and indirect-newton (not_applicable "
+            "where they do not take the problem), and Ipopt on each peer's published NLP (its "
+            "scheme and N) for the 'NLP vs peer' column. Written by bench/suites/make_library.py."),
+        "groups": groups,
+    }
+    json.dump(suite, sys.stdout, indent=1)
+    sys.stdout.write("\n")
+
+
+if __name__ == "__main__":
+    main()
