@@ -38,7 +38,7 @@ ProblemInfo GoddardProblemInfo() {
   p.hamiltonian_note =
       "not applicable: the method needs the penalty terminal form, and with C (m(T) - mf)^2 the "
       "rocket problem is unbounded below (burning past mf pays; the descent ran to h = 1e152)";
-  p.tags = {"singular-arc", "free-time", "control-constrained", "mayer"};
+  p.tags = {"singular-arc", "free-time", "control-constrained", "mayer", "aerospace"};
   return p;
 }
 

@@ -9,12 +9,14 @@
 #include "problems/reference/free_time_brachistochrone.h"
 #include "problems/reference/free_time_double_integrator.h"
 #include "problems/reference/goddard.h"
+#include "problems/reference/goddard_three_phase.h"
 #include "problems/reference/hager.h"
 #include "problems/reference/lqr.h"
 #include "problems/reference/rayleigh.h"
 #include "problems/reference/robot_arm.h"
 #include "problems/reference/steering.h"
 #include "problems/reference/time_parameter_double_integrator.h"
+#include "problems/reference/two_phase_double_integrator.h"
 #include "problems/reference/vanderpol.h"
 #include "problems/reference/zermelo.h"
 
@@ -38,6 +40,8 @@ void AppendReferenceProblems(std::vector<ProblemInfo>* list) {
   list->push_back(FreeStartProblemInfo());
   list->push_back(CoupledEndsProblemInfo());
   list->push_back(TimeParameterDoubleIntegratorProblemInfo());
+  list->push_back(TwoPhaseDoubleIntegratorProblemInfo());
+  list->push_back(GoddardThreePhaseProblemInfo());
 }
 
 }  // namespace ocpb

@@ -36,5 +36,33 @@ TEST(DescribeProblemCli, NamesSizesAndFeatures) {
   EXPECT_NE(plain.out.find("features: none (fixed horizon"), std::string::npos) << plain.out;
 }
 
+// Tags select problems (`list problems --tag`, every tag given), `list tags` says what each
+// means, `describe problem` shows a problem's tags and references; an unknown tag is refused.
+TEST(DescribeProblemCli, TagsSelectAndDescribe) {
+  const ProgramRun free_time = RunOcpbenchProgram({"list", "problems", "--tag", "free-time"});
+  ASSERT_EQ(free_time.exit_code, 0) << free_time.err;
+  EXPECT_NE(free_time.out.find("goddard\n"), std::string::npos) << free_time.out;
+  EXPECT_EQ(free_time.out.find("bryson-denham\n"), std::string::npos) << free_time.out;
+  const ProgramRun both =
+      RunOcpbenchProgram({"list", "problems", "--tag", "free-time", "--tag", "mayer"});
+  ASSERT_EQ(both.exit_code, 0) << both.err;
+  EXPECT_NE(both.out.find("goddard\n"), std::string::npos) << both.out;
+  EXPECT_EQ(both.out.find("zermelo\n"), std::string::npos) << both.out;
+  const ProgramRun tags = RunOcpbenchProgram({"list", "tags"});
+  ASSERT_EQ(tags.exit_code, 0) << tags.err;
+  EXPECT_NE(tags.out.find("singular-arc\t"), std::string::npos) << tags.out;
+  const ProgramRun unknown = RunOcpbenchProgram({"list", "problems", "--tag", "smoth"});
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("unknown tag 'smoth' (the tags: smooth,"), std::string::npos)
+      << unknown.err;
+  const ProgramRun solvers = RunOcpbenchProgram({"list", "solvers", "--tag", "smooth"});
+  EXPECT_EQ(solvers.exit_code, 2);
+  const ProgramRun goddard = RunOcpbenchProgram({"describe", "problem", "goddard"});
+  EXPECT_NE(goddard.out.find("tags: singular-arc, free-time"), std::string::npos) << goddard.out;
+  EXPECT_NE(goddard.out.find("reference J = -1.01283 (trapezoid NLP at N = 400;"),
+            std::string::npos)
+      << goddard.out;
+}
+
 }  // namespace
 }  // namespace ocpb

@@ -1,6 +1,7 @@
 // Every problem in the registry, found by iterating it (a new problem is checked by being
 // registered, not by being added to a list): its first and second derivatives against finite
 // differences, and the consistency of its registry entry.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -13,6 +14,7 @@
 #include "core/derivative_check.h"
 #include "core/parameters.h"
 #include "problems/registry.h"
+#include "transcriptions/registry.h"
 
 namespace ocpb {
 namespace {
@@ -122,6 +124,33 @@ TEST(RegisteredProblems, EntriesAreConsistent) {
         EXPECT_GT(info.reference_intervals, 0) << info.name;
       }
     }
+    // Tags: at least one, each from the vocabulary (`ocpbench list problems --tag T`).
+    EXPECT_FALSE(info.tags.empty()) << info.name << " has no tag";
+    for (const std::string& tag : info.tags) {
+      EXPECT_NO_THROW(CheckProblemTag(info.name, tag)) << info.name << ": " << tag;
+    }
+    // Further references: a value, a source, and a grid exactly when discrete, in a scheme
+    // OCPBench has (the library suite and the NLP-level test solve that NLP).
+    for (const ProblemReference& r : info.additional_references) {
+      EXPECT_TRUE(std::isfinite(r.value)) << info.name;
+      EXPECT_FALSE(r.source.empty()) << info.name;
+      if (r.scheme == "continuous") {
+        EXPECT_EQ(r.intervals, 0) << info.name;
+      } else {
+        EXPECT_GT(r.intervals, 0) << info.name;
+        EXPECT_NO_THROW(FindTranscription(r.scheme)) << info.name << ": " << r.scheme;
+      }
+    }
+  }
+}
+
+// Every registered problem but the paper's (whose measure is the paper's reproduction:
+// problems/README-paper.md) carries at least one published reference value.
+TEST(RegisteredProblems, EveryProblemHasAReference) {
+  for (const ProblemInfo& info : Problems()) {
+    if (std::find(info.tags.begin(), info.tags.end(), "paper") != info.tags.end()) continue;
+    EXPECT_TRUE(info.reference_value.has_value() || !info.additional_references.empty())
+        << info.name << " has no reference value";
   }
 }
 

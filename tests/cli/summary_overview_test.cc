@@ -1,0 +1,71 @@
+// The overview of a suite of many problems (bench/cli/summary_overview.h) on synthetic records:
+// which case stands for a family on a problem, what counts as solved, and the profile's rho.
+#include "bench/cli/summary_overview.h"
+
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace ocpb {
+namespace {
+
+Record Case(const std::string& problem,
+            const std::string& solver,
+            const std::string& transcription,
+            const std::string& status,
+            double Jbar_fine,
+            double cpu,
+            double reference = 1.0) {
+  Record r;
+  r.problem = problem;
+  r.solver = solver;
+  r.transcription = transcription;
+  r.terminal = "hard";
+  r.status = status;
+  r.J_fine = r.Jbar_fine = Jbar_fine;
+  r.cpu_seconds = cpu;
+  r.reference = RecordReference{reference, "J", "test", "continuous", 0};
+  return r;
+}
+
+TEST(SummaryOverview, BestCaseSolvedStatusAndProfile) {
+  const std::vector<Record> records = {
+      // a: hermite-simpson converged to 1e-9 at 2 s, and a faster non-converged case that
+      // must not stand for the family; euler converged, 1e-4 off (not solved).
+      Case("a", "ipopt", "hermite-simpson", "max_iterations", 1.0, 0.5),
+      Case("a", "ipopt", "hermite-simpson", "converged", 1.0 + 1e-9, 2.0),
+      Case("a", "ipopt", "euler", "converged", 1.0 + 1e-4, 1.0),
+      // b: both solve, euler four times faster.
+      Case("b", "ipopt", "hermite-simpson", "converged", 1.0, 4.0),
+      Case("b", "ipopt", "euler", "converged", 1.0, 1.0),
+      // c: euler is not applicable, hermite-simpson solves.
+      Case("c", "ipopt", "hermite-simpson", "converged", 1.0, 1.0),
+      Case("c", "ipopt", "euler", "not_applicable", NAN, 0.0),
+  };
+  const Overview o = BuildOverview(records);
+  ASSERT_EQ(o.problems, (std::vector<std::string>{"a", "b", "c"}));
+  ASSERT_EQ(o.families, (std::vector<std::string>{"ipopt + hermite-simpson", "ipopt + euler"}));
+  EXPECT_EQ(o.cell[0][0].cases, 2);
+  EXPECT_EQ(o.cell[0][0].status, "converged");
+  EXPECT_DOUBLE_EQ(o.cell[0][0].cpu_seconds, 2.0);
+  EXPECT_TRUE(o.cell[0][0].solved);
+  EXPECT_FALSE(o.cell[0][1].solved);  // 1e-4 from the reference
+  EXPECT_TRUE(o.cell[1][1].solved);
+  EXPECT_EQ(o.cell[2][1].status, "not_applicable");
+
+  const std::string md = OverviewMarkdown(records);
+  // hermite-simpson: applies to 3, solves 3, fastest on a and c; within 4x on b.
+  EXPECT_NE(md.find("| ipopt + hermite-simpson | 3 | 3 | 2 | 0.67 | 0.67 | 1.00 | 1.00 |"),
+            std::string::npos)
+      << md;
+  // euler: applies to a and b only, solves b, where it is the fastest.
+  EXPECT_NE(md.find("| ipopt + euler | 2 | 1 | 1 | 0.50 | 0.50 | 0.50 | 0.50 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| c | **0** (1 s) | n/a |"), std::string::npos) << md;
+  // A suite of fewer problems than asked for gets no overview.
+  EXPECT_EQ(OverviewMarkdown(records, 4), "");
+}
+
+}  // namespace
+}  // namespace ocpb
