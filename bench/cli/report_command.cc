@@ -62,7 +62,8 @@ std::vector<std::string> InputFiles(const ReportInput& in) {
 
 // The output folder: replaced as a whole, so it may hold no input, and it may only be a folder
 // an earlier report wrote (or an empty one): --out never deletes anyone's other files.
-void CheckOutPlace(const std::string& out, const std::vector<ReportInput>& inputs,
+void CheckOutPlace(const std::string& out,
+                   const std::vector<ReportInput>& inputs,
                    const std::string& compare_json) {
   FilePlan plan;
   for (const ReportInput& in : inputs) {
@@ -78,10 +79,11 @@ void CheckOutPlace(const std::string& out, const std::vector<ReportInput>& input
     if (!compare_json.empty()) files.push_back(compare_json);
     for (const std::string& f : files) {
       if (Within(Absolute(f), site)) {
-        throw std::invalid_argument(fmt::format(
-            "report: --out {}: holds the input {} (the site replaces its whole folder; "
-            "choose a folder that holds no input, such as DIR/report)",
-            out, f));
+        throw std::invalid_argument(
+            fmt::format("report: --out {}: holds the input {} (the site replaces its whole folder; "
+                        "choose a folder that holds no input, such as DIR/report)",
+                        out,
+                        f));
       }
     }
   }
@@ -95,7 +97,8 @@ void CheckOutPlace(const std::string& out, const std::vector<ReportInput>& input
       throw std::invalid_argument(fmt::format(
           "report: --out {}: a folder that is not a report of ocpbench (no {}): only an empty "
           "folder or an earlier report is replaced; choose another folder",
-          out, kReportMarker));
+          out,
+          kReportMarker));
     }
   }
   const fs::path parent = fs::absolute(out).lexically_normal().parent_path();
@@ -110,22 +113,26 @@ json LoadCompareJson(const std::string& path, const ReportInput& input) {
     if (!j.contains(part) || !j[part].is_object()) {
       throw std::invalid_argument(fmt::format(
           "--compare-json {}: {}: must be an object (the file `ocpbench compare --json` writes)",
-          path, part));
+          path,
+          part));
     }
   }
   for (const char* part : {"cases", "only_in_base", "only_in_new", "methods", "profiles"}) {
     if (!j.contains(part) || !j[part].is_array()) {
       throw std::invalid_argument(fmt::format(
           "--compare-json {}: {}: must be an array (the file `ocpbench compare --json` writes)",
-          path, part));
+          path,
+          part));
     }
   }
   const json& suite = j["new"]["suite"];
   if (input.suite_named && suite.is_string() && !suite.get<std::string>().empty() &&
       suite.get<std::string>() != input.suite) {
     throw std::invalid_argument(fmt::format(
-        "--compare-json {}: new.suite: '{}' is not the report's suite '{}' (mixed suites)", path,
-        suite.get<std::string>(), input.suite));
+        "--compare-json {}: new.suite: '{}' is not the report's suite '{}' (mixed suites)",
+        path,
+        suite.get<std::string>(),
+        input.suite));
   }
   return j;
 }
@@ -142,7 +149,8 @@ CompareSide SideOf(const ReportInput& in) {
 
 // Writes the site into a fresh folder beside `out`, then puts it in place of `out`: the old
 // site is renamed aside first and removed last, so that a failure leaves it where it was.
-void WriteInPlace(const std::string& out, const ReportInput& input,
+void WriteInPlace(const std::string& out,
+                  const ReportInput& input,
                   const std::optional<json>& comparison) {
   const fs::path target = fs::absolute(out).lexically_normal();
   const fs::path parent = target.parent_path();
@@ -193,7 +201,10 @@ void RunReport(const ReportArgs& args) {
     throw std::invalid_argument(fmt::format(
         "report: BASE {} is suite '{}', NEW {} is suite '{}': a compare view needs two runs of "
         "one suite (mixed suites)",
-        inputs[0].path, inputs[0].suite, inputs[1].path, inputs[1].suite));
+        inputs[0].path,
+        inputs[0].suite,
+        inputs[1].path,
+        inputs[1].suite));
   }
   std::optional<json> comparison;
   if (!args.compare_json.empty()) comparison = LoadCompareJson(args.compare_json, shown);
@@ -212,7 +223,8 @@ void RunReport(const ReportArgs& args) {
   }
   WriteInPlace(out, shown, comparison);
   std::cerr << fmt::format("ocpbench: report: {} cases, {} problem pages{} in {}\n",
-                           shown.records.size(), ReportProblems(shown).size(),
+                           shown.records.size(),
+                           ReportProblems(shown).size(),
                            comparison ? ", a compare view" : "",
                            (fs::path(out) / "index.html").string());
 }
@@ -225,14 +237,17 @@ void AddReportCommand(CLI::App& app) {
       "report",
       "A suite's results as a static web site (no network needed): an index with every case, "
       "a page per problem, and with BASE NEW a compare view");
-  cmd->add_option("dirs", args->dirs,
+  cmd->add_option("dirs",
+                  args->dirs,
                   "DIR: a result folder of ocpbench run or merge (or a records file); BASE NEW: "
                   "two runs of one suite, the site of NEW with the comparison")
       ->required();
   cmd->add_option("--out", args->out, "the site's folder (default DIR/report; NEW/report)");
-  cmd->add_option("--compare-json", args->compare_json,
+  cmd->add_option("--compare-json",
+                  args->compare_json,
                   "the compare view from this file of `ocpbench compare --json` (with one DIR)");
-  cmd->add_option("--ignore-option", args->ignore_options,
+  cmd->add_option("--ignore-option",
+                  args->ignore_options,
                   "compare view: match cases without this option (as ocpbench compare)");
   // The compare view's thresholds are `ocpbench compare`'s, with the same flags.
   for (const OptionSpec& spec : CompareThresholdSchema().specs()) {

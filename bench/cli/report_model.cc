@@ -65,8 +65,7 @@ double WorstViolation(const Record& r) {
   auto take = [&worst](double v) {
     if (std::isfinite(v)) worst = std::isfinite(worst) ? std::max(worst, v) : v;
   };
-  take(std::isfinite(r.terminal_violation_fine) ? r.terminal_violation_fine
-                                                : r.terminal_violation);
+  take(std::isfinite(r.terminal_violation_fine) ? r.terminal_violation_fine : r.terminal_violation);
   take(r.control_violation);
   take(r.path_violation);
   if (r.state_bound_violation) take(*r.state_bound_violation);
@@ -133,35 +132,62 @@ json Bounds(const Record& r) {
   }
 }
 
+// The pages' numbers carry 9 significant digits, not a double's 17: the data files of a suite
+// with trajectories shrink by about half, and a gap of 1e-8 to the best J stays visible.
+void Compact(json& j) {
+  if (j.is_number_float()) {
+    const double v = j.get<double>();
+    if (std::isfinite(v)) j = std::stod(fmt::format("{:.9g}", v));
+  } else if (j.is_structured()) {
+    for (json& item : j) Compact(item);
+  }
+}
+
+// A history thinned to at most kHistoryPoints rows, evenly by index, the last row kept: a
+// descent's 8000 iterations draw no better than 500 on a 560-pixel plot.
+constexpr size_t kHistoryPoints = 500;
+json Thinned(const json& history) {
+  if (!history.is_array() || history.size() <= kHistoryPoints) return history;
+  json out = json::array();
+  const size_t n = history.size();
+  for (size_t k = 0; k < kHistoryPoints; ++k)
+    out.push_back(history[k * (n - 1) / (kHistoryPoints - 1)]);
+  return out;
+}
+
 // One table row of a record, with its derived fields (summary.md's target rule).
 json CaseRow(const Record& r, const DerivedFields& d) {
   json warnings = json::array();
   for (const RecordWarning& w : r.warnings) warnings.push_back(w.code);
-  return {{"key", r.key},
-          {"kind", r.kind},
-          {"problem", r.problem},
-          {"page", ProblemPageName(r.problem)},
-          {"section", d.section},
-          {"method", d.method_label},
-          {"solver", r.solver},
-          {"seed", r.seed},
-          {"N", r.N},
-          {"terminal", r.terminal},
-          {"status", r.status},
-          {"warnings", warnings},
-          {"tags", Tags(r.problem)},
-          {"J_fine", Num(r.J_fine)},
-          {"Jbar_fine", Num(r.Jbar_fine)},
-          {"ref_error", Num(ReferenceError(r))},
-          {"violation", Num(WorstViolation(r))},
-          {"iterations", Count(r.iterations)},
-          {"cpu", Num(r.cpu_seconds)},
-          {"time_to_target", Num(d.time_to_target)},
-          {"best_J", Num(d.best_J)},
-          {"reached_target", d.reached_target},
-          {"energy_true", r.online ? Num(r.online->energy_true) : Num(r.truth ? r.truth->energy_true : NAN)},
-          {"offline_energy_true", r.online ? Num(r.online->offline_energy_true) : json(nullptr)},
-          {"cycles", r.online ? json(r.online->cycles.size()) : json(nullptr)}};
+  return {
+      {"key", r.key},
+      {"kind", r.kind},
+      {"problem", r.problem},
+      {"page", ProblemPageName(r.problem)},
+      {"section", d.section},
+      {"method", d.method_label},
+      {"solver", r.solver},
+      {"seed", r.seed},
+      {"N", r.N},
+      {"terminal", r.terminal},
+      {"status", r.status},
+      {"warnings", warnings},
+      {"tags", Tags(r.problem)},
+      {"J_fine", Num(r.J_fine)},
+      {"Jbar_fine", Num(r.Jbar_fine)},
+      {"ref_error", Num(ReferenceError(r))},
+      {"violation", Num(WorstViolation(r))},
+      {"iterations", Count(r.iterations)},
+      {"cpu", Num(r.cpu_seconds)},
+      {"time_to_target", Num(d.time_to_target)},
+      {"best_J", Num(d.best_J)},
+      {"reached_target", d.reached_target},
+      {"energy_true",
+       r.online ? Num(r.online->energy_true) : Num(r.truth ? r.truth->energy_true : NAN)},
+      {"offline_energy_true", r.online ? Num(r.online->offline_energy_true) : json(nullptr)},
+      {"cycles", r.online ? json(r.online->cycles.size()) : json(nullptr)},
+      {"energy_ratio", r.online ? Num(r.online->energy_ratio) : json(nullptr)},
+      {"transmit_energy_ratio", r.online ? Num(r.online->transmit_energy_ratio) : json(nullptr)}};
 }
 
 // Dolan-More profiles of CPU time to target, one instance per target group (a problem, seed,
@@ -209,18 +235,23 @@ ReportInput LoadReportInput(const std::string& path) {
       if (manifest) {
         throw std::invalid_argument("report: DIR " + path +
                                     ": holds shards not merged yet (no records.jsonl); run "
-                                    "`ocpbench merge " + path + "` first");
+                                    "`ocpbench merge " +
+                                    path + "` first");
       }
       throw std::invalid_argument("report: DIR " + records +
                                   ": no such file (not a result folder of ocpbench run)");
     }
-    if (manifest) in.shards = manifest->shards;
+    if (manifest) {
+      in.shards = manifest->shards;
+      in.expected_cases = manifest->cases;
+    }
   }
   // The records with the checks `compare` makes of each side: keys present, no case twice.
   const CompareSide side = LoadCompareSide(path);
   in.records_path = side.records_path;
   in.suite_named = !side.suite.empty();
-  in.suite = side.suite.empty() ? fs::path(path).lexically_normal().filename().string() : side.suite;
+  in.suite =
+      side.suite.empty() ? fs::path(path).lexically_normal().filename().string() : side.suite;
   if (in.suite.empty()) in.suite = fs::path(path).stem().string();
   in.records = side.records;
   in.dropped_partial = side.dropped_partial;
@@ -266,23 +297,27 @@ json SuiteIndexData(const ReportInput& input) {
                         {"description", info ? info->description : ""},
                         {"tags", Tags(p)}});
   }
-  const json meta{
-      {"suite", input.suite},
-      {"source", input.path},
-      {"records", records.size()},
-      {"commits", Distinct(records, [](const Record& r) { return r.versions.commit; })},
-      {"versions",
-       Distinct(records,
-                [](const Record& r) {
-                  const RecordVersions& v = r.versions;
-                  return fmt::format("ocpbench {}, {}, Ipopt {}, NLopt {}",
-                                     v.ocpbench, v.compiler, v.ipopt, v.nlopt);
-                })},
-      {"recorded_at", input.recorded_at},
-      {"shards", input.shards},
-      {"dropped_partial", input.dropped_partial},
-      {"online", std::any_of(records.begin(), records.end(),
-                             [](const Record& r) { return r.kind == "online"; })}};
+  const json meta{{"suite", input.suite},
+                  {"source", input.path},
+                  {"records", records.size()},
+                  {"commits", Distinct(records, [](const Record& r) { return r.versions.commit; })},
+                  {"versions",
+                   Distinct(records,
+                            [](const Record& r) {
+                              const RecordVersions& v = r.versions;
+                              return fmt::format("ocpbench {}, {}, Ipopt {}, NLopt {}",
+                                                 v.ocpbench,
+                                                 v.compiler,
+                                                 v.ipopt,
+                                                 v.nlopt);
+                            })},
+                  {"recorded_at", input.recorded_at},
+                  {"shards", input.shards},
+                  {"expected_cases", input.expected_cases},
+                  {"dropped_partial", input.dropped_partial},
+                  {"online", std::any_of(records.begin(), records.end(), [](const Record& r) {
+                     return r.kind == "online";
+                   })}};
   return {{"meta", meta},
           {"counts", {{"status", by_status}, {"warning", by_warning}}},
           {"profiles", Profiles(records, derived)},
@@ -335,14 +370,27 @@ json ProblemPageData(const ReportInput& input, const std::string& problem) {
     for (const RecordWarning& w : r.warnings) {
       run["warning_messages"].push_back({{"code", w.code}, {"message", w.message}});
     }
-    for (const char* part : {"trajectory", "costates", "history", "mesh", "continuation",
-                             "stopping_tolerance"}) {
+    for (const char* part :
+         {"trajectory", "costates", "history", "mesh", "continuation", "stopping_tolerance"}) {
       run[part] = full.contains(part) ? full[part] : json(nullptr);
     }
+    run["history_rows"] = r.history.size();
+    run["history"] = Thinned(run["history"]);
     if (r.online) {
       run["online_executed"] = r.online->executed;
       run["online_offline"] = r.online->offline;
+      // Of each cycle only what the page draws (a cycle also keeps its plan and measurements).
+      json cycles = json::array();
+      for (const json& c : r.online->cycles) {
+        json kept = json::object();
+        for (const char* k : {"t0", "solve_seconds", "predict_seconds", "iterations", "status"}) {
+          if (c.is_object() && c.contains(k)) kept[k] = c[k];
+        }
+        cycles.push_back(std::move(kept));
+      }
+      run["online_cycles"] = std::move(cycles);
     }
+    Compact(run);
     runs.push_back(std::move(run));
   }
   return {{"suite", input.suite},

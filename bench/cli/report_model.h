@@ -20,9 +20,10 @@ struct ReportInput {
   std::string suite;         ///< the suite's name (suite.json); the folder's name when absent
   bool suite_named = false;  ///< the name came from suite.json (a records file names none)
   std::vector<Record> records;
-  bool dropped_partial = false;  ///< a last line cut short by a killed run was left out
-  int shards = 0;                ///< merged from this many shards (shards.json); 0: one run
-  std::string recorded_at;       ///< records file's modification time, UTC ("2026-12-06 14:22")
+  bool dropped_partial = false;      ///< a last line cut short by a killed run was left out
+  int shards = 0;                    ///< merged from this many shards (shards.json); 0: one run
+  size_t expected_cases = 0;         ///< the sharded suite's case count (shards.json); 0: unknown
+  std::string recorded_at;           ///< records file's modification time, UTC ("2026-12-06 14:22")
   std::vector<std::string> figures;  ///< the folder's figures/*.png and *.svg, relative names
 };
 

@@ -31,11 +31,20 @@ std::string HtmlEscape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -44,8 +53,7 @@ std::string HtmlEscape(const std::string& text) {
 // A page's data as a script that sets window.OCPB_DATA. Text the records hold that is not valid
 // UTF-8 is replaced rather than refused: a report is for reading.
 std::string DataScript(const json& data) {
-  return "window.OCPB_DATA = " + data.dump(-1, ' ', false, json::error_handler_t::replace) +
-         ";\n";
+  return "window.OCPB_DATA = " + data.dump(-1, ' ', false, json::error_handler_t::replace) + ";\n";
 }
 
 // Every page is the same shell: the navigation, a <main> the script fills, the page's data and
@@ -58,14 +66,22 @@ std::string Page(const std::string& kind,
   if (has_compare) nav += "<a href=\"compare.html\">compare</a>";
   return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-         "<title>" + HtmlEscape(title) + "</title>\n"
+         "<title>" +
+         HtmlEscape(title) +
+         "</title>\n"
          "<link rel=\"icon\" href=\"data:,\">\n"
          "<link rel=\"stylesheet\" href=\"assets/report.css\">\n</head>\n"
-         "<body data-page=\"" + kind + "\">\n"
-         "<header><nav>OCPBench report &nbsp; " + nav + "</nav></header>\n"
+         "<body data-page=\"" +
+         kind +
+         "\">\n"
+         "<header><nav>OCPBench report &nbsp; " +
+         nav +
+         "</nav></header>\n"
          "<main id=\"main\"><noscript>This report draws its tables and figures with JavaScript "
          "(in the page itself: nothing is fetched from the network).</noscript></main>\n"
-         "<script src=\"data/" + data_file + "\"></script>\n"
+         "<script src=\"data/" +
+         data_file +
+         "\"></script>\n"
          "<script src=\"assets/report.js\"></script>\n</body>\n</html>\n";
 }
 

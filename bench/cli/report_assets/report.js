@@ -49,6 +49,8 @@
       el("thead", {}, el("tr", {}, headers.map((h) => el("th", {}, h)))),
       el("tbody", {}, rows.map((r) => el("tr", {}, r.map((c) => el("td", {}, c))))));
   }
+  // The page's sections into <main>; a section with nothing to show is null and left out.
+  function fill(...sections) { main.append(...sections.filter((x) => x)); }
   function finite(v) { return typeof v === "number" && isFinite(v); }
 
   // ---- plots --------------------------------------------------------------------------------
@@ -257,7 +259,12 @@
       ["records written", m.recorded_at + " (the records file's last change)"],
       ["machine", m.machine || "not in the records (they carry no host name)"],
     ];
-    if (m.shards > 0) rows.push(["sharded sweep", `merged from ${m.shards} shards`]);
+    if (m.shards > 0) {
+      const partial = m.expected_cases > m.records
+        ? `: partial, ${m.records} of the suite's ${m.expected_cases} cases (ocpbench merge names ` +
+          "the missing ones)" : `, all ${m.records} cases of the suite`;
+      rows.push(["sharded sweep", `merged from ${m.shards} shards${partial}`]);
+    }
     if (m.online) rows.push(["online runs", "yes: re-planning records (kind online)"]);
     if (m.dropped_partial) rows.push(["note", "a last record cut short by a killed run was left out"]);
     return section("What ran", "meta",
@@ -391,6 +398,21 @@
       bar, shown, el("div", {class: "scroll"}, tbl));
   }
 
+  // Online re-planning records (kind online) in a table of their own: what they measure is the
+  // energy of the executed plan on the true channel against the offline plan's.
+  function onlineTableSection(cases) {
+    const online = cases.filter((c) => c.kind === "online");
+    if (!online.length) return null;
+    return section("Online re-planning", "online-runs",
+      el("p", {}, "Each online run's executed energy on the true channel against the offline " +
+        "plan of t0 = 0 (ratio < 1: re-planning paid)."),
+      el("div", {class: "scroll"}, table(["problem", "method", "seed", "status", "energy true",
+        "offline energy true", "energy ratio", "transmit energy ratio", "cycles", "CPU s"],
+      online.map((c) => [el("a", {href: c.page}, c.problem), c.method, String(c.seed), c.status,
+        fmt(c.energy_true), fmt(c.offline_energy_true), fmt(c.energy_ratio),
+        fmt(c.transmit_energy_ratio), fmt(c.cycles), fmt(c.cpu)]), {id: "online", class: "cases"})));
+  }
+
   function problemsSection(problems) {
     return section("Problems", "problems", el("ul", {},
       problems.map((p) => el("li", {}, el("a", {href: p.page}, p.name),
@@ -407,9 +429,9 @@
 
   function indexPage() {
     document.title = `${D.meta.suite}: OCPBench report`;
-    main.append(el("h1", {}, `Suite ${D.meta.suite}`),
+    fill(el("h1", {}, `Suite ${D.meta.suite}`),
       metaSection(D.meta), countsSection(D.counts), problemsSection(D.problems),
-      profilesSection(D.profiles), casesSection(D.cases, D.meta.online),
+      profilesSection(D.profiles), onlineTableSection(D.cases), casesSection(D.cases, D.meta.online),
       figuresSection(D.figures));
   }
 
@@ -544,19 +566,31 @@
       : el("p", {}, "No record of this problem has a warning."));
   }
 
+  // Online records: the executed path against the offline plan (records with keep_trajectory)
+  // and each re-planning cycle's solve time.
   function onlineSection(runs) {
-    const paths = [];
+    const paths = [], solves = [];
     runs.forEach((r, i) => {
+      const color = COLORS[i % COLORS.length];
       for (const [part, dash] of [["online_executed", false], ["online_offline", true]]) {
         const p = r[part];
         if (!p || !p.x || p.x.length < 2) continue;
-        paths.push({label: `${runLabel(r)}, ${part === "online_executed" ? "executed" : "offline plan"}`,
-          x: p.x[0], y: p.x[1], dash: dash, color: COLORS[i % COLORS.length]});
+        const what = part === "online_executed" ? "executed" : "offline plan";
+        paths.push({label: `${runLabel(r)}, ${what}`, x: p.x[0], y: p.x[1], dash: dash,
+          color: color});
+      }
+      const cycles = r.online_cycles || [];
+      if (cycles.length) {
+        solves.push({label: runLabel(r), x: cycles.map((c) => c.t0),
+          y: cycles.map((c) => c.solve_seconds), color: color});
       }
     });
-    if (!paths.length) return null;
-    return section("Online re-planning: paths", "online",
-      plot({series: paths, xlabel: "x (m)", ylabel: "y (m)"}));
+    if (!paths.length && !solves.length) return null;
+    return section("Online re-planning", "online", el("div", {class: "plots"},
+      paths.length ? plot({title: "path: executed (solid) and offline plan (dashed)",
+        series: paths, xlabel: "x1", ylabel: "x2"}) : null,
+      solves.length ? plot({title: "each cycle's re-planning solve", series: solves,
+        xlabel: "cycle start t0", ylabel: "solve seconds"}) : null));
   }
 
   function problemPage() {
@@ -564,16 +598,19 @@
     const refs = D.references.map((r) => [fmt(r.value), r.quantity, r.scheme === "continuous"
       ? "continuous" : `${r.scheme}, N = ${r.N}`, r.source]);
     const runs = D.runs;
+    const online = runs.some((r) => r.kind === "online");
     const sideBySide = table(["method", "seed", "N", "terminal", "status", "solver status",
       "J fine", "Jbar fine", "rel. error vs ref.", "terminal viol. fine", "control viol.",
       "path viol.", "discretization gap", "costate error", "iterations", "CPU s",
-      "time to target s", "warnings"],
+      "time to target s", "warnings"].concat(online
+      ? ["energy true", "offline energy true", "energy ratio", "cycles"] : []),
     runs.map((r) => [r.method, String(r.seed), String(r.N), r.terminal, r.status, r.solver_status,
       fmt(r.J_fine), fmt(r.Jbar_fine), fmt(r.ref_error), fmt(r.terminal_violation_fine),
       fmt(r.control_violation), fmt(r.path_violation), fmt(r.discretization_gap),
       fmt(r.costate_error), fmt(r.iterations), fmt(r.cpu), fmt(r.time_to_target),
-      r.warnings.join(", ")]), {id: "methods", class: "cases"});
-    main.append(el("p", {}, el("a", {href: "index.html"}, `← suite ${D.suite}`)),
+      r.warnings.join(", ")].concat(online ? [fmt(r.energy_true), fmt(r.offline_energy_true),
+      fmt(r.energy_ratio), fmt(r.cycles)] : [])), {id: "methods", class: "cases"});
+    fill(el("p", {}, el("a", {href: "index.html"}, `← suite ${D.suite}`)),
       el("h1", {}, D.problem),
       section("The problem", "problem",
         el("p", {}, D.description),
@@ -639,7 +676,7 @@
       ? D.profiles[0].tau.map((t) => `tau = ${t}`) : []),
     D.profiles.map((p) => [p.method, String(p.groups)].concat(
       p.base.map((b, k) => `${fmt(b)} → ${fmt(p.new[k])}`))));
-    main.append(el("p", {}, el("a", {href: "index.html"}, `← suite ${D.new.suite} (NEW)`)),
+    fill(el("p", {}, el("a", {href: "index.html"}, `← suite ${D.new.suite} (NEW)`)),
       el("h1", {}, `Compare: ${D.base.suite}`),
       section("The two runs", "sides", head),
       section("Cases, regressions first", "compare",
