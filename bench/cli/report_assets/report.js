@@ -628,6 +628,17 @@
 
   // Regressions first, then cases of BASE missing from NEW (a regression too: their result is
   // unknown), improvements, the rest: the order `ocpbench compare` reports them in.
+  // The CPU verdict of a case or method in words: `compare`'s finding when it made one, else
+  // why it made none (inside the ratio threshold, or beyond it without a significant test).
+  function cpuVerdict(item) {
+    const f = item.findings.find((x) => x.measure === "CPU");
+    if (f) return (f.worse ? "slower" : "faster") + ", significant";
+    const r = item.cpu_ratio, t = D.thresholds.cpu_ratio;
+    if (!finite(r)) return "–";
+    if (r > t || r < 1 / t) return `beyond ${t}x, not significant at alpha = ${D.thresholds.alpha}`;
+    return `within ${t}x`;
+  }
+
   function comparePage() {
     document.title = `compare ${D.base.suite}: OCPBench report`;
     const rank = {regressed: 0, improved: 2, unchanged: 3};
@@ -651,25 +662,25 @@
       el("dt", {}, "thresholds"), el("dd", {}, Object.entries(D.thresholds)
         .map(([k, x]) => `${k} = ${x}`).join(", ")));
     const tbl = table(["verdict", "section", "method", "seed", "findings", "status", "cost change",
-      "CPU ratio", "CPU p-value", "time to target s"],
+      "CPU ratio", "CPU p-value", "CPU verdict", "time to target s"],
     rows.map((r) => {
       if (r.u) return [r.verdict, r.u.section, r.u.method, "", "not in NEW", r.u.status + " → ?",
-        "", "", "", ""];
+        "", "", "", "", ""];
       const c = r.c;
       const findings = c.findings.map((f) => `${f.worse ? "worse" : "better"} ${f.measure}: ${f.detail}`);
       return [c.verdict, c.section, c.method, String(c.seed), findings.join("; "),
         `${c.base.status} → ${c.new.status}`,
         finite(c.cost_change) ? fmt(100 * c.cost_change) + " %" : "–",
-        fmt(c.cpu_ratio), fmt(c.cpu_test && c.cpu_test.p_value),
+        fmt(c.cpu_ratio), fmt(c.cpu_test && c.cpu_test.p_value), cpuVerdict(c),
         `${fmt(c.base.time_to_target)} → ${fmt(c.new.time_to_target)}`];
     }), {id: "compare-cases", class: "cases"});
     tbl.querySelectorAll("tbody tr").forEach((tr, k) => {
       tr.className = "verdict-" + (rows[k].c ? rows[k].c.verdict : "missing");
     });
     const methods = table(["section", "method", "cases", "regressed", "improved",
-      "CPU ratio (geometric mean)", "CPU p-value (stratified)", "findings"],
+      "CPU ratio (geometric mean)", "CPU p-value (stratified)", "CPU verdict", "findings"],
     D.methods.map((m) => [m.section, m.method, String(m.cases), String(m.regressed),
-      String(m.improved), fmt(m.cpu_ratio), fmt(m.cpu_test && m.cpu_test.p_value),
+      String(m.improved), fmt(m.cpu_ratio), fmt(m.cpu_test && m.cpu_test.p_value), cpuVerdict(m),
       m.findings.map((f) => `${f.worse ? "worse" : "better"} ${f.measure}: ${f.detail}`)
         .join("; ")]), {id: "compare-methods", class: "cases"});
     const profiles = table(["method", "groups"].concat(D.profiles.length
