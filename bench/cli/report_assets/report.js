@@ -442,11 +442,11 @@
   // The runs' rows of one matrix (x, u, p: rows of values) against their times, one series each.
   function rowSeries(runs, pick, row) {
     const out = [];
-    runs.forEach((r, i) => {
+    runs.forEach((r) => {
       const part = pick(r);
       if (!part || !part.m || !part.m[row]) return;
       out.push({label: runLabel(r), x: part.t, y: part.m[row], step: part.step,
-        color: COLORS[i % COLORS.length]});
+        color: r.color});
     });
     return out;
   }
@@ -513,12 +513,12 @@
   // group (summary.md's target), against iteration and against CPU seconds.
   function convergenceSection(runs) {
     const byIter = [], byCpu = [];
-    runs.forEach((r, i) => {
+    runs.forEach((r) => {
       const h = (r.history || []).filter((e) => e.intervals === undefined || e.intervals === null);
       if (!h.length || !finite(r.best_J)) return;
       const scale = Math.max(Math.abs(r.best_J), 1e-12);
       const gap = h.map((e) => finite(e.J) ? Math.max(Math.abs(e.J - r.best_J) / scale, 1e-16) : null);
-      const color = COLORS[i % COLORS.length];
+      const color = r.color;
       byIter.push({label: runLabel(r), x: h.map((e) => e.iteration), y: gap, color: color});
       byCpu.push({label: runLabel(r), x: h.map((e) => e.cpu_seconds), y: gap, color: color});
     });
@@ -547,9 +547,9 @@
       r.mesh.history.map((m, k) => [String(k + 1), fmt(m.intervals), fmt(m.nlp_variables),
         fmt(m.nlp_constraints), fmt(m.max_error), fmt(m.iterations), fmt(m.cpu_seconds),
         m.status || ""]), {class: "mesh"})));
-    const series = refined.map((r, i) => ({label: runLabel(r),
+    const series = refined.map((r) => ({label: runLabel(r),
       x: r.mesh.history.map((m) => m.intervals), y: r.mesh.history.map((m) => m.max_error),
-      color: COLORS[i % COLORS.length]}));
+      color: r.color}));
     return section("Mesh refinement", "mesh",
       plot({series: series, logy: true, xlabel: "mesh intervals", ylabel: "max error estimate"}),
       blocks);
@@ -570,8 +570,8 @@
   // and each re-planning cycle's solve time.
   function onlineSection(runs) {
     const paths = [], solves = [];
-    runs.forEach((r, i) => {
-      const color = COLORS[i % COLORS.length];
+    runs.forEach((r) => {
+      const color = r.color;
       for (const [part, dash] of [["online_executed", false], ["online_offline", true]]) {
         const p = r[part];
         if (!p || !p.x || p.x.length < 2) continue;
@@ -598,6 +598,7 @@
     const refs = D.references.map((r) => [fmt(r.value), r.quantity, r.scheme === "continuous"
       ? "continuous" : `${r.scheme}, N = ${r.N}`, r.source]);
     const runs = D.runs;
+    runs.forEach((r, i) => { r.color = COLORS[i % COLORS.length]; });
     const online = runs.some((r) => r.kind === "online");
     const sideBySide = table(["method", "seed", "N", "terminal", "status", "solver status",
       "J fine", "Jbar fine", "rel. error vs ref.", "terminal viol. fine", "control viol.",
@@ -620,14 +621,43 @@
         refs.length ? table(["reference", "quantity", "optimum of", "source"], refs)
           : el("p", {}, "No published reference value.")),
       section("Methods side by side", "side-by-side", el("div", {class: "scroll"}, sideBySide)),
-      warningsSection(runs), trajectorySection(runs, D.bounds), convergenceSection(runs),
-      meshSection(runs), onlineSection(runs));
+      warningsSection(runs), runFigures(runs));
+  }
+
+  // The figures of a problem's runs, drawn for the runs a menu picks (a seed, a setting) when
+  // there are several: fifty curves of five seeds overlaid tell nothing. The first seed is shown
+  // first; every run keeps its colour whichever are shown.
+  function runFigures(runs) {
+    const seeds = [...new Set(runs.map((r) => String(r.seed)))];
+    const sections = [...new Set(runs.map((r) => r.section))];
+    const holder = el("div", {id: "figures"});
+    const menus = el("div", {class: "filters"});
+    const pick = {};
+    const menu = (key, title, values, first) => {
+      if (values.length < 2) return;
+      const s = el("select", {id: "runs-" + key, "aria-label": title},
+        el("option", {value: ""}, "every " + title), values.map((v) => el("option", {value: v}, v)));
+      s.value = first;
+      s.addEventListener("change", draw);
+      pick[key] = s;
+      menus.appendChild(el("label", {}, "show " + title + " ", s));
+    };
+    menu("seed", "seed", seeds, seeds[0]);
+    menu("section", "setting", sections, "");
+    function draw() {
+      const shown = runs.filter((r) =>
+        (!pick.seed || !pick.seed.value || String(r.seed) === pick.seed.value) &&
+        (!pick.section || !pick.section.value || r.section === pick.section.value));
+      holder.textContent = "";
+      holder.append(...[trajectorySection(shown, D.bounds), convergenceSection(shown),
+        meshSection(shown), onlineSection(shown)].filter((x) => x));
+    }
+    draw();
+    return el("div", {}, menus.children.length ? menus : null, holder);
   }
 
   // ---- the compare page: two runs of one suite ------------------------------------------------
 
-  // Regressions first, then cases of BASE missing from NEW (a regression too: their result is
-  // unknown), improvements, the rest: the order `ocpbench compare` reports them in.
   // The CPU verdict of a case or method in words: `compare`'s finding when it made one, else
   // why it made none (inside the ratio threshold, or beyond it without a significant test).
   function cpuVerdict(item) {
@@ -639,6 +669,8 @@
     return `within ${t}x`;
   }
 
+  // Regressions first, then cases of BASE missing from NEW (a regression too: their result is
+  // unknown), improvements, the rest: the order `ocpbench compare` reports them in.
   function comparePage() {
     document.title = `compare ${D.base.suite}: OCPBench report`;
     const rank = {regressed: 0, improved: 2, unchanged: 3};
