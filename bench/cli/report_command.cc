@@ -190,6 +190,11 @@ void RunReport(const ReportArgs& args) {
     throw std::invalid_argument(
         "report: --compare-json: give it with one DIR (NEW), or give BASE NEW without it");
   }
+  if (args.dirs.size() == 1 && (!args.thresholds.empty() || !args.ignore_options.empty())) {
+    throw std::invalid_argument(
+        "report: the compare flags (--cost, --cpu-ratio, ..., --ignore-option) apply to BASE NEW "
+        "only (a --compare-json file was computed with its own)");
+  }
   for (const std::string& d : args.dirs) FilePlan().Input(d, "DIR");  // empty, link loops
   CompareOptions options;
   options.thresholds = ResolveCompareThresholds(args.thresholds);

@@ -78,6 +78,8 @@ def main():
     with open(w("damaged.jsonl"), "w") as f:
         f.write('{"key": "a", "status": 3}\n{"key": "b"}\n')
     expect_error(args, "damaged.jsonl:1", "report", w("damaged.jsonl"), "--out", w("site"))
+    expect_error(args, "apply to BASE NEW only", "report", w("base"), "--cpu-ratio", "2",
+                 "--out", w("site"))
     expect_error(args, "--out: required", "report", w("base", "records.jsonl"))
     if os.path.exists(w("site")):
         fail("a refused run wrote the site")
