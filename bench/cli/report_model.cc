@@ -146,12 +146,26 @@ void Compact(json& j) {
 // A history thinned to at most kHistoryPoints rows, evenly by index, the last row kept: a
 // descent's 8000 iterations draw no better than 500 on a 560-pixel plot.
 constexpr size_t kHistoryPoints = 500;
+// Of each row only what the page draws: iteration, J, CPU seconds and the grid (a row of a
+// coarser grid is left out of the gap plots).
+json DrawnRow(const json& row) {
+  json out = json::object();
+  for (const char* k : {"iteration", "J", "cpu_seconds", "intervals"}) {
+    if (row.is_object() && row.contains(k) && !row[k].is_null()) out[k] = row[k];
+  }
+  return out;
+}
+
 json Thinned(const json& history) {
-  if (!history.is_array() || history.size() <= kHistoryPoints) return history;
+  if (!history.is_array()) return history;
   json out = json::array();
   const size_t n = history.size();
+  if (n <= kHistoryPoints) {
+    for (const json& row : history) out.push_back(DrawnRow(row));
+    return out;
+  }
   for (size_t k = 0; k < kHistoryPoints; ++k)
-    out.push_back(history[k * (n - 1) / (kHistoryPoints - 1)]);
+    out.push_back(DrawnRow(history[k * (n - 1) / (kHistoryPoints - 1)]));
   return out;
 }
 
@@ -374,6 +388,9 @@ json ProblemPageData(const ReportInput& input, const std::string& problem) {
          {"trajectory", "costates", "history", "mesh", "continuation", "stopping_tolerance"}) {
       run[part] = full.contains(part) ? full[part] : json(nullptr);
     }
+    // The method's own states and costates (a warm start's source) are not drawn: the
+    // evaluator's trajectory and the costates are. They were half of the paper suite's page.
+    if (run["trajectory"].is_object()) run["trajectory"].erase("own");
     run["history_rows"] = r.history.size();
     run["history"] = Thinned(run["history"]);
     if (r.online) {

@@ -593,24 +593,30 @@
         xlabel: "cycle start t0", ylabel: "solve seconds"}) : null));
   }
 
+  // Every judged number of each run, one row per run.
+  function sideBySideSection(runs) {
+    const online = runs.some((r) => r.kind === "online");
+    const rows = table(["method", "seed", "N", "terminal", "status", "solver status",
+      "J fine", "Jbar fine", "rel. error vs ref.", "terminal viol. fine", "control viol.",
+      "path viol.", "discretization gap", "costate error", "iterations", "CPU s",
+      "time to target s", "warnings"].concat(online
+      ? ["energy true", "offline energy true", "energy ratio", "cycles"] : []),
+    runs.map((r) => [el("span", {}, el("span", {class: "swatch", style: "background:" + r.color}),
+      r.method), String(r.seed), String(r.N), r.terminal, r.status, r.solver_status,
+      fmt(r.J_fine), fmt(r.Jbar_fine), fmt(r.ref_error), fmt(r.terminal_violation_fine),
+      fmt(r.control_violation), fmt(r.path_violation), fmt(r.discretization_gap),
+      fmt(r.costate_error), fmt(r.iterations), fmt(r.cpu), fmt(r.time_to_target),
+      r.warnings.join(", ")].concat(online ? [fmt(r.energy_true), fmt(r.offline_energy_true),
+      fmt(r.energy_ratio), fmt(r.cycles)] : [])), {id: "methods", class: "cases"});
+    return section("Methods side by side", "side-by-side", el("div", {class: "scroll"}, rows));
+  }
+
   function problemPage() {
     document.title = `${D.problem}: OCPBench report`;
     const refs = D.references.map((r) => [fmt(r.value), r.quantity, r.scheme === "continuous"
       ? "continuous" : `${r.scheme}, N = ${r.N}`, r.source]);
     const runs = D.runs;
     runs.forEach((r, i) => { r.color = COLORS[i % COLORS.length]; });
-    const online = runs.some((r) => r.kind === "online");
-    const sideBySide = table(["method", "seed", "N", "terminal", "status", "solver status",
-      "J fine", "Jbar fine", "rel. error vs ref.", "terminal viol. fine", "control viol.",
-      "path viol.", "discretization gap", "costate error", "iterations", "CPU s",
-      "time to target s", "warnings"].concat(online
-      ? ["energy true", "offline energy true", "energy ratio", "cycles"] : []),
-    runs.map((r) => [r.method, String(r.seed), String(r.N), r.terminal, r.status, r.solver_status,
-      fmt(r.J_fine), fmt(r.Jbar_fine), fmt(r.ref_error), fmt(r.terminal_violation_fine),
-      fmt(r.control_violation), fmt(r.path_violation), fmt(r.discretization_gap),
-      fmt(r.costate_error), fmt(r.iterations), fmt(r.cpu), fmt(r.time_to_target),
-      r.warnings.join(", ")].concat(online ? [fmt(r.energy_true), fmt(r.offline_energy_true),
-      fmt(r.energy_ratio), fmt(r.cycles)] : [])), {id: "methods", class: "cases"});
     fill(el("p", {}, el("a", {href: "index.html"}, `← suite ${D.suite}`)),
       el("h1", {}, D.problem),
       section("The problem", "problem",
@@ -620,17 +626,16 @@
         D.hamiltonian_note ? el("p", {}, "Hamiltonian descent: " + D.hamiltonian_note) : null,
         refs.length ? table(["reference", "quantity", "optimum of", "source"], refs)
           : el("p", {}, "No published reference value.")),
-      section("Methods side by side", "side-by-side", el("div", {class: "scroll"}, sideBySide)),
-      warningsSection(runs), runFigures(runs));
+      runViews(runs));
   }
 
-  // The figures of a problem's runs, drawn for the runs a menu picks (a seed, a setting) when
-  // there are several: fifty curves of five seeds overlaid tell nothing. The first seed is shown
-  // first; every run keeps its colour whichever are shown.
-  function runFigures(runs) {
+  // The runs' tables and figures, for the runs the menus pick (a seed, a setting) when there are
+  // several: fifty curves of five seeds overlaid tell nothing, and 160 rows hide the one wanted.
+  // The first seed and setting are shown first; every run keeps its colour whichever are shown.
+  function runViews(runs) {
     const seeds = [...new Set(runs.map((r) => String(r.seed)))];
     const sections = [...new Set(runs.map((r) => r.section))];
-    const holder = el("div", {id: "figures"});
+    const holder = el("div", {id: "runs"});
     const menus = el("div", {class: "filters"});
     const pick = {};
     const menu = (key, title, values, first) => {
@@ -643,17 +648,20 @@
       menus.appendChild(el("label", {}, "show " + title + " ", s));
     };
     menu("seed", "seed", seeds, seeds[0]);
-    menu("section", "setting", sections, "");
+    menu("section", "setting", sections, sections[0]);
     function draw() {
       const shown = runs.filter((r) =>
         (!pick.seed || !pick.seed.value || String(r.seed) === pick.seed.value) &&
         (!pick.section || !pick.section.value || r.section === pick.section.value));
       holder.textContent = "";
-      holder.append(...[trajectorySection(shown, D.bounds), convergenceSection(shown),
-        meshSection(shown), onlineSection(shown)].filter((x) => x));
+      holder.append(...[sideBySideSection(shown), warningsSection(shown),
+        trajectorySection(shown, D.bounds), convergenceSection(shown), meshSection(shown),
+        onlineSection(shown)].filter((x) => x));
     }
     draw();
-    return el("div", {}, menus.children.length ? menus : null, holder);
+    const note = menus.children.length ? el("p", {}, `${runs.length} runs of this problem; the ` +
+      "menus choose which the tables and figures below show.") : null;
+    return el("div", {}, note, menus.children.length ? menus : null, holder);
   }
 
   // ---- the compare page: two runs of one suite ------------------------------------------------
