@@ -629,8 +629,8 @@
       runViews(runs));
   }
 
-  // The runs' tables and figures, for the runs the menus pick (a seed, a setting) when there are
-  // several: fifty curves of five seeds overlaid tell nothing, and 160 rows hide the one wanted.
+  // The problem's warnings, then the runs' table and figures for the runs the menus pick (a seed,
+  // a setting) when there are several: fifty curves of five seeds overlaid tell nothing, and 160 rows hide the one wanted.
   // The first seed and setting are shown first; every run keeps its colour whichever are shown.
   function runViews(runs) {
     const seeds = [...new Set(runs.map((r) => String(r.seed)))];
@@ -654,14 +654,15 @@
         (!pick.seed || !pick.seed.value || String(r.seed) === pick.seed.value) &&
         (!pick.section || !pick.section.value || r.section === pick.section.value));
       holder.textContent = "";
-      holder.append(...[sideBySideSection(shown), warningsSection(shown),
-        trajectorySection(shown, D.bounds), convergenceSection(shown), meshSection(shown),
+      holder.append(...[sideBySideSection(shown), trajectorySection(shown, D.bounds), convergenceSection(shown), meshSection(shown),
         onlineSection(shown)].filter((x) => x));
     }
     draw();
     const note = menus.children.length ? el("p", {}, `${runs.length} runs of this problem; the ` +
       "menus choose which the tables and figures below show.") : null;
-    return el("div", {}, note, menus.children.length ? menus : null, holder);
+    // Every warning of the problem, whatever the menus show.
+    return el("div", {}, warningsSection(runs), note, menus.children.length ? menus : null,
+      holder);
   }
 
   // ---- the compare page: two runs of one suite ------------------------------------------------
