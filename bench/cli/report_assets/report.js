@@ -307,6 +307,11 @@
       plot({series: series, logx: true, xlabel: "tau", ylabel: "rho(tau)"}));
   }
 
+  // A case's problem page, its menus set to the case's seed and setting (read by runViews).
+  function caseLink(c) {
+    return `${c.page}#seed=${encodeURIComponent(c.seed)}&setting=${encodeURIComponent(c.section)}`;
+  }
+
   function casesSection(cases, online) {
     const cols = online ? COLUMNS.concat(ONLINE_COLUMNS) : COLUMNS;
     const filters = [
@@ -381,7 +386,7 @@
         for (const col of cols) {
           const text = cellText(c, col);
           tr.appendChild(el("td", {class: col.num ? "num" : null},
-            col.link ? el("a", {href: c.page}, text) : text));
+            col.link ? el("a", {href: caseLink(c)}, text) : text));
         }
         tbody.appendChild(tr);
       }
@@ -647,8 +652,11 @@
       pick[key] = s;
       menus.appendChild(el("label", {}, "show " + title + " ", s));
     };
-    menu("seed", "seed", seeds, seeds[0]);
-    menu("section", "setting", sections, sections[0]);
+    // A link from the index's table names the case's seed and setting (#seed=S&setting=X).
+    const asked = new URLSearchParams(window.location.hash.slice(1));
+    const first = (values, key) => values.includes(asked.get(key)) ? asked.get(key) : values[0];
+    menu("seed", "seed", seeds, first(seeds, "seed"));
+    menu("section", "setting", sections, first(sections, "setting"));
     function draw() {
       const shown = runs.filter((r) =>
         (!pick.seed || !pick.seed.value || String(r.seed) === pick.seed.value) &&
