@@ -61,7 +61,11 @@
   function niceTicks(lo, hi, log) {
     if (log) {
       const out = [];
-      for (let e = Math.floor(Math.log10(lo)); e <= Math.ceil(Math.log10(hi)); ++e) {
+      const e0 = Math.floor(Math.log10(lo)), e1 = Math.ceil(Math.log10(hi));
+      if (!isFinite(e0) || !isFinite(e1)) return [lo, hi];
+      // A range of many decades gets every k-th power of ten, not a crowd of labels.
+      const every = Math.max(1, Math.ceil((e1 - e0) / 8));
+      for (let e = e0; e <= e1; e += every) {
         const v = Math.pow(10, e);
         if (v >= lo * 0.999 && v <= hi * 1.001) out.push(v);
       }
@@ -126,7 +130,8 @@
         s.x.forEach((x, k) => { if (x >= x0 && x <= x1) ys.push(s.y[k]); });
       }
       for (const h of opts.hlines || []) ys.push(h.y);
-      const ye = extent(ys, opts.logy) || [0, 1];
+      // No value to place (a log axis of zeros): an empty frame, never an endless tick loop.
+      const ye = extent(ys, opts.logy) || (opts.logy ? [0.1, 1] : [0, 1]);
       const [y0, y1] = ye;
       const tx = (v) => opts.logx ? Math.log10(v) : v;
       const ty = (v) => opts.logy ? Math.log10(v) : v;
