@@ -201,8 +201,11 @@ void RunReport(const ReportArgs& args) {
   options.ignore_options = args.ignore_options;
   std::vector<ReportInput> inputs;
   for (const std::string& d : args.dirs) inputs.push_back(LoadReportInput(d));
-  const ReportInput& shown = inputs.back();  // the site shows NEW; BASE only in the comparison
-  if (inputs.size() == 2 && inputs[0].suite != inputs[1].suite) {
+  ReportInput& shown = inputs.back();  // the site shows NEW; BASE only in the comparison
+  // A records file names no suite (its name stands in): only two named suites can differ, as
+  // in `ocpbench compare`.
+  if (inputs.size() == 2 && inputs[0].suite_named && inputs[1].suite_named &&
+      inputs[0].suite != inputs[1].suite) {
     throw std::invalid_argument(fmt::format(
         "report: BASE {} is suite '{}', NEW {} is suite '{}': a compare view needs two runs of "
         "one suite (mixed suites)",
@@ -210,6 +213,9 @@ void RunReport(const ReportArgs& args) {
         inputs[0].suite,
         inputs[1].path,
         inputs[1].suite));
+  }
+  if (inputs.size() == 2 && !shown.suite_named && inputs[0].suite_named) {
+    shown.suite = inputs[0].suite;  // NEW is a records file: the suite is BASE's
   }
   std::optional<json> comparison;
   if (!args.compare_json.empty()) comparison = LoadCompareJson(args.compare_json, shown);

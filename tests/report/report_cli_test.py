@@ -107,6 +107,9 @@ def main():
     p = run(args, "report", w("base"), w("new"), "--out", w("site"))
     if p.returncode != 0 or not os.path.isfile(w("site", "compare.html")):
         fail(f"report base new: {p.returncode} {p.stderr}")
+    p = run(args, "report", w("base"), w("new", "records.jsonl"), "--out", w("site4"))
+    if p.returncode != 0 or not os.path.isfile(w("site4", "compare.html")):
+        fail(f"report base new/records.jsonl (a records file names no suite): {p.stderr}")
     run(args, "compare", w("base"), w("new"), "--json", w("compare.json"))
     p = run(args, "report", w("new"), "--compare-json", w("compare.json"), "--out", w("site2"))
     if p.returncode != 0 or not os.path.isfile(w("site2", "compare.html")):
