@@ -70,7 +70,7 @@ void CheckOutPlace(const std::string& out,
     for (const std::string& f : InputFiles(in)) plan.Input(f, "DIR " + in.path);
   }
   if (!compare_json.empty()) plan.Input(compare_json, "--compare-json");
-  plan.Output((fs::path(out) / "index.html").string(), "--out " + out);
+  plan.Output((fs::path(out) / "index.html").string(), "--out");
   plan.Check();
   const std::string site = Absolute(out);
   for (const ReportInput& in : inputs) {
@@ -195,7 +195,9 @@ void RunReport(const ReportArgs& args) {
         "report: the compare flags (--cost, --cpu-ratio, ..., --ignore-option) apply to BASE NEW "
         "only (a --compare-json file was computed with its own)");
   }
-  for (const std::string& d : args.dirs) FilePlan().Input(d, "DIR");  // empty, link loops
+  for (const std::string& d : args.dirs) FilePlan().Input(d, "DIR");
+  if (!args.compare_json.empty())
+    FilePlan().Input(args.compare_json, "--compare-json");  // empty, link loops
   CompareOptions options;
   options.thresholds = ResolveCompareThresholds(args.thresholds);
   options.ignore_options = args.ignore_options;

@@ -81,6 +81,15 @@ def main():
     expect_error(args, "apply to BASE NEW only", "report", w("base"), "--cpu-ratio", "2",
                  "--out", w("site"))
     expect_error(args, "--out: required", "report", w("base", "records.jsonl"))
+    # Loops of symbolic links as any path: refused by the same check as every command's.
+    os.symlink("loop-b", w("loop-a"))
+    os.symlink("loop-a", w("loop-b"))
+    os.symlink("self", w("self"))
+    for command in (["report", w("loop-a")], ["report", w("self")],
+                    ["report", w("base"), "--out", w("loop-a")],
+                    ["report", w("base"), "--out", w("self", "x")],
+                    ["report", w("base"), "--compare-json", w("loop-b"), "--out", w("site")]):
+        expect_error(args, "a loop of symbolic links", *command)
     if os.path.exists(w("site")):
         fail("a refused run wrote the site")
 
