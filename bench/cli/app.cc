@@ -90,6 +90,7 @@ int Main(int argc, char** argv) {
   AddChannelCommand(app);
   AddOnlineCommand(app);
   AddCompareCommand(app);
+  AddReportCommand(app);
   try {
     // Name an unknown command plainly (CLI11 alone would say "A subcommand is required").
     if (argc >= 2 && argv[1][0] != '-') {

@@ -42,6 +42,9 @@ void AddOnlineCommand(CLI::App& app);
 /// `ocpbench compare BASE NEW [...]`: two runs of one suite, case by case
 /// (bench/cli/compare_command.cc).
 void AddCompareCommand(CLI::App& app);
+/// `ocpbench report DIR [NEW] [--out SITE]`: a suite's results as a static web site
+/// (bench/cli/report_command.cc).
+void AddReportCommand(CLI::App& app);
 
 /// ParseIntegrator with the flag's name in the message: "--evaluate-with: unknown integrator
 /// 'rk45' (valid: euler, rk4)".
