@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
-"""Writes the library suite: every registered problem but the paper's (they have their own
-suites), every method family that may take it, at each problem's default grid.
+"""Writes the library suites: every registered problem but the paper's (they have their own
+suites), every method family that may take it.
 
   python3 bench/suites/make_library.py build/bin/ocpbench > bench/suites/library.json
+  python3 bench/suites/make_library.py --peers build/bin/ocpbench > bench/suites/library-peers.json
 
-Per problem, one group in the hard terminal form:
-  - Ipopt on euler, trapezoid, hermite-simpson and lgr (degree 3) at the default N (`ocpbench
-    describe problem P`), the families a user compares first;
+library.json (the main job's): per problem, one group in the hard terminal form:
+  - Ipopt on euler, trapezoid, hermite-simpson and lgr (degree 3) at N = min(the problem's
+    default N (`ocpbench describe problem P`), 100), the families a user compares first;
   - riccati-ip (Euler NLP, the stage-structured interior point) at the same N;
   - NLopt SLSQP on Hermite-Simpson at N = 20 where the problem has at most 6 states (SLSQP's
     dense quasi-Newton matrix grows with the square of the NLP's size);
@@ -37,8 +38,27 @@ def describe(ocpbench, name):
     return n, nx, peers
 
 
+MAIN_JOB_N = 100       # the families' grid in the main job's suite (at most)
+MAIN_JOB_PEER_N = 200  # the largest peer NLP the main job's suite checks
+
+
+def family_methods(n, nx):
+    methods = [{"solver": "ipopt", "transcription": s, "N": n} for s in SCHEMES]
+    methods.append({"solver": "riccati-ip", "transcription": "euler", "N": n})
+    if nx <= 6:
+        methods.append({"solver": "nlopt", "transcription": "hermite-simpson",
+                        "algorithm": "LD_SLSQP", "N": 20})
+    methods.append({"solver": "hamiltonian-polish", "N": n})
+    methods.append({"solver": "indirect-newton", "N": n})
+    return methods
+
+
 def main():
-    ocpbench = sys.argv[1] if len(sys.argv) > 1 else "build/bin/ocpbench"
+    args = sys.argv[1:]
+    peers_suite = bool(args) and args[0] == "--peers"
+    if peers_suite:
+        args = args[1:]
+    ocpbench = args[0] if args else "build/bin/ocpbench"
     names = subprocess.run([ocpbench, "list", "problems"], check=True, capture_output=True,
                            text=True).stdout.split()
     schemes = subprocess.run([ocpbench, "list", "transcriptions"], check=True,
@@ -48,32 +68,45 @@ def main():
         if name in SKIP:
             continue
         n, nx, peers = describe(ocpbench, name)
-        methods = [{"solver": "ipopt", "transcription": s, "N": n} for s in SCHEMES]
-        methods.append({"solver": "riccati-ip", "transcription": "euler", "N": n})
-        if nx <= 6:
-            methods.append({"solver": "nlopt", "transcription": "hermite-simpson",
-                            "algorithm": "LD_SLSQP", "N": 20})
-        methods.append({"solver": "hamiltonian-polish", "N": n})
-        methods.append({"solver": "indirect-newton", "N": n})
+        # A peer's scheme OCPBench does not have (COPS' Gauss-Legendre) is left out.
+        peers = [(scheme, n_peer) for scheme, n_peer in peers if scheme in schemes]
+        if peers_suite:
+            if not peers:
+                continue
+            methods = [{"solver": "ipopt", "transcription": s, "N": n}
+                       for s in ("hermite-simpson", "lgr")]
+        else:
+            methods = family_methods(min(n, MAIN_JOB_N), nx)
+            peers = [(scheme, n_peer) for scheme, n_peer in peers if n_peer <= MAIN_JOB_PEER_N]
         for scheme, n_peer in peers:
-            if scheme not in schemes:
-                continue  # a peer's scheme OCPBench does not have (COPS' Gauss-Legendre)
             case = {"solver": "ipopt", "transcription": scheme, "N": n_peer}
             if case not in methods:
                 methods.append(case)
         groups.append({"problem": name, "terminal": "hard", "keep_trajectory": False,
                        "methods": methods})
-    suite = {
-        "name": "library",
-        "description": (
-            "The reference library (docs/problems.md): every registered problem but the "
-            "paper's, in the hard terminal form, with Ipopt on the four collocation schemes and "
-            "riccati-ip at the problem's default N, NLopt SLSQP (Hermite-Simpson, N = 20) on "
-            "problems of at most 6 states, hamiltonian-polish and indirect-newton (not_applicable "
-            "where they do not take the problem), and Ipopt on each peer's published NLP (its "
-            "scheme and N) for the 'NLP vs peer' column. Written by bench/suites/make_library.py."),
-        "groups": groups,
-    }
+    if peers_suite:
+        suite = {
+            "name": "library-peers",
+            "description": (
+                "The library's problems with a peer's published discrete optima: Ipopt on every "
+                "such NLP (its scheme and N, up to CTBenchmarks' N = 2000) for the column 'NLP vs "
+                "peer', and Ipopt on Hermite-Simpson and LGR at the problem's default N. A sweep: "
+                "run sharded (docs/problems.md). Written by bench/suites/make_library.py --peers."),
+            "groups": groups,
+        }
+    else:
+        suite = {
+            "name": "library",
+            "description": (
+                "The reference library (docs/problems.md): every registered problem but the "
+                "paper's, in the hard terminal form, with Ipopt on the four collocation schemes "
+                "and riccati-ip at N = min(the problem's default N, 100), NLopt SLSQP "
+                "(Hermite-Simpson, N = 20) on problems of at most 6 states, hamiltonian-polish "
+                "and indirect-newton (not_applicable where they do not take the problem), and "
+                "Ipopt on each peer's published NLP up to N = 200 for the 'NLP vs peer' column "
+                "(the larger ones: library-peers.json). Written by bench/suites/make_library.py."),
+            "groups": groups,
+        }
     json.dump(suite, sys.stdout, indent=1)
     sys.stdout.write("\n")
 
