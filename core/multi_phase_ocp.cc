@@ -1,7 +1,9 @@
 #include "core/multi_phase_ocp.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -54,9 +56,10 @@ MultiPhaseOcp::MultiPhaseOcp(std::string name,
     }
     if (!(std::isfinite(s.min_duration) && std::isfinite(s.max_duration) && s.min_duration > 0.0 &&
           s.min_duration <= s.max_duration)) {
-      throw std::invalid_argument(where + ": duration bounds [" + std::to_string(s.min_duration) +
-                                  ", " + std::to_string(s.max_duration) +
-                                  "] must be finite with 0 < min <= max");
+      std::ostringstream message;  // default stream format: 1e-07, not to_string's 0.000000
+      message << where << ": duration bounds [" << s.min_duration << ", " << s.max_duration
+              << "] must be finite with 0 < min <= max";
+      throw std::invalid_argument(message.str());
     }
     state_offset_.push_back(nx);
     control_offset_.push_back(nu);
@@ -68,6 +71,7 @@ MultiPhaseOcp::MultiPhaseOcp(std::string name,
       has_initial_cost_ = true;
   }
   for (int i = 0; i + 1 < P; ++i) {
+    std::vector<bool> linked(phase(i + 1).nx(), false);
     for (const PhaseLink& l : links_[i]) {
       if (l.from_state < 0 || l.from_state >= phase(i).nx() || l.to_state < 0 ||
           l.to_state >= phase(i + 1).nx() || !std::isfinite(l.jump)) {
@@ -77,6 +81,13 @@ MultiPhaseOcp::MultiPhaseOcp(std::string name,
             " state " + std::to_string(l.to_state) + ": index outside the phase's state (or " +
             "a jump that is not finite)");
       }
+      // Two links into one state would be duplicate or contradictory equality rows.
+      if (linked[l.to_state]) {
+        throw std::invalid_argument("multi-phase problem '" + name_ + "': phase " +
+                                    std::to_string(i + 2) + " state " + std::to_string(l.to_state) +
+                                    " is linked twice");
+      }
+      linked[l.to_state] = true;
     }
   }
   duration_offset_ = nx;
@@ -100,6 +111,11 @@ MultiPhaseOcp::MultiPhaseOcp(std::string name,
       const VectorBounds b = p.InitialNodeBounds();
       lo.segment(0, p.nx()) = b.lower;
       hi.segment(0, p.nx()) = b.upper;
+    } else if (p.state_bounds()) {
+      // A later phase's start is a decision (the links set it): its state bounds hold there
+      // too (the initial node takes the initial-state bounds alone).
+      lo.segment(state_offset(i), p.nx()) = p.state_bounds()->lower;
+      hi.segment(state_offset(i), p.nx()) = p.state_bounds()->upper;
     }
     if (p.state_bounds()) {
       any_state_bounds = true;

@@ -54,8 +54,9 @@ struct PhaseLink {
 /// independent of t: its times are scaled), with a fixed horizon of its own (no free final
 /// time: the duration is the phase's decision here) and no static parameters of its own; 0 <
 /// min_duration <= max_duration, finite; links[i] joins phase i and i + 1 (links.size() == P -
-/// 1), each index inside its phase's state; the last phase's terminal weights are the
-/// problem's. A phase whose dynamics do depend on t is solved with t = its nominal time, which
+/// 1), each index inside its phase's state, no state of phase i + 1 linked twice; a later
+/// phase's x0 inside its state bounds (its start takes them); the last phase's terminal weights are
+/// the problem's. A phase whose dynamics do depend on t is solved with t = its nominal time, which
 /// is wrong: the caller promises autonomy, as for SetFreeFinalTime.
 ///
 /// What is shared: every phase gets the same number of intervals of the request's grid in tau

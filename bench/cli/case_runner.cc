@@ -564,7 +564,11 @@ Record RunCase(const CaseSpec& given) {
     ref.N = pinfo.reference_intervals;
     rec.reference = ref;
   }
+  // A peer's NLP is the problem as posed (default parameters, hard terminal conditions) on the
+  // peer's scheme and grid; any other case solves another NLP.
+  const bool as_posed = spec.terminal == TerminalMode::kHard && spec.set.empty();
   for (const ProblemReference& peer : pinfo.additional_references) {
+    if (!as_posed) break;
     if (peer.scheme == rec.transcription && peer.intervals == rec.N && peer.quantity == "J") {
       rec.nlp_reference =
           RecordReference{peer.value, peer.quantity, peer.source, peer.scheme, peer.intervals};

@@ -24,6 +24,15 @@ namespace ocpb {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The site folder as an absolute, normal path without a trailing separator: "site/", "." and
+// "a/.." name a folder whose own name the temporary and the aside folders are made from.
+fs::path SiteFolder(const std::string& out) {
+  fs::path p = fs::absolute(out).lexically_normal();
+  if (p.filename().empty() && p.has_parent_path() && p != p.root_path()) p = p.parent_path();
+  return p;
+}
+
 using json = nlohmann::json;
 
 struct ReportArgs {
@@ -101,7 +110,7 @@ void CheckOutPlace(const std::string& out,
           kReportMarker));
     }
   }
-  const fs::path parent = fs::absolute(out).lexically_normal().parent_path();
+  const fs::path parent = SiteFolder(out).parent_path();
   CheckOutputFolder(parent.string(), "--out");
 }
 
@@ -152,7 +161,7 @@ CompareSide SideOf(const ReportInput& in) {
 void WriteInPlace(const std::string& out,
                   const ReportInput& input,
                   const std::optional<json>& comparison) {
-  const fs::path target = fs::absolute(out).lexically_normal();
+  const fs::path target = SiteFolder(out);
   const fs::path parent = target.parent_path();
   const std::string stem = "." + target.filename().string();
   const fs::path temp = parent / fmt::format("{}.tmp-{}", stem, getpid());
@@ -168,7 +177,12 @@ void WriteInPlace(const std::string& out,
   }
   std::error_code ec;
   const bool replace = fs::exists(target, ec);
-  if (replace) fs::rename(target, old);
+  try {
+    if (replace) fs::rename(target, old);
+  } catch (...) {
+    fs::remove_all(temp, ec);
+    throw;
+  }
   try {
     fs::rename(temp, target);
   } catch (...) {

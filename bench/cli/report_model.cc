@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <ctime>
 #include <filesystem>
 #include <map>
@@ -29,19 +30,9 @@ using json = nlohmann::json;
 json Num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json Count(int v) { return v >= 0 ? json(v) : json(nullptr); }
 
-// The rule of summary.md's "rel. error vs reference" column (its ReferenceNote says it in
-// words): a continuous optimum is compared with every record's Jbar fine; an optimum of one
-// discrete NLP only with the record that solved that NLP (scheme, N, hard form), by its own
-// objective. Anything else has no error.
+// The rule of summary.md's "rel. error vs reference" column (one rule: summary.h).
 double ReferenceError(const Record& r) {
-  if (!r.reference) return NAN;
-  const RecordReference& ref = *r.reference;
-  if (!std::isfinite(ref.value) || ref.value == 0.0) return NAN;
-  if (ref.scheme == "continuous") return std::abs(r.Jbar_fine - ref.value) / std::abs(ref.value);
-  if (ref.scheme.empty() || r.transcription != ref.scheme || r.terminal != "hard" || r.N != ref.N) {
-    return NAN;
-  }
-  return std::abs(r.objective - ref.value) / std::abs(ref.value);
+  return r.reference ? ocpb::ReferenceError(r, *r.reference) : NAN;
 }
 
 // The registry's entry, or null for a problem this build does not know (records of a user's own
@@ -227,9 +218,19 @@ json Profiles(const std::vector<Record>& records, const std::vector<DerivedField
 
 std::string ProblemPageName(const std::string& problem) {
   std::string name = problem;
+  bool replaced = false;
   for (char& c : name) {
     const bool ok = std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_';
-    if (!ok) c = '_';
+    if (!ok) {
+      c = '_';
+      replaced = true;
+    }
+  }
+  if (replaced) {
+    // "a.b" and "a_b" must not share a page: a name that needed replacing gets its own hash.
+    std::uint64_t hash = 1469598103934665603ull;  // FNV-1a
+    for (const char c : problem) hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+    name += fmt::format("-{:08x}", static_cast<std::uint32_t>(hash));
   }
   return "problem-" + name + ".html";
 }

@@ -54,10 +54,6 @@ std::string ParametersText(const Record& r) {
   return p.dump();
 }
 
-std::string GroupKey(const Record& r) {
-  return fmt::format("{}|seed={}|{}|{}", r.problem, r.seed, ParametersText(r), r.terminal);
-}
-
 // The section (table) and row label of every record. A problem's table splits by the
 // parameters that differ between its records (for example the penalty weights C), so no row
 // averages two different problems. Options name a row only where they tell two rows of the same
@@ -168,6 +164,10 @@ std::string ReferenceNote(const RecordReference& ref) {
 }
 
 }  // namespace
+
+std::string GroupKey(const Record& r) {
+  return fmt::format("{}|seed={}|{}|{}", r.problem, r.seed, ParametersText(r), r.terminal);
+}
 
 double ReferenceError(const Record& r, const RecordReference& ref) {
   const double value = ref.value;

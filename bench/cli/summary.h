@@ -34,6 +34,9 @@ struct DerivedFields {
   double time_to_target = NAN;
 };
 
+/// The cases that solve the same problem: "problem|seed=S|{parameters}|terminal form".
+std::string GroupKey(const Record& r);
+
 /// |the record's value - reference| / |reference|: for a continuous optimum the record's Jbar
 /// fine (the continuous-time cost of its controls), for a discrete one (a scheme's NLP at a
 /// grid) its own objective, only when the record solved that NLP (same transcription and N,

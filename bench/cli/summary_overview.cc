@@ -16,7 +16,7 @@ namespace {
 
 constexpr double kOverviewNaN = std::numeric_limits<double>::quiet_NaN();
 
-size_t IndexOf(std::vector<std::string>* names, const std::string& name) {
+size_t OverviewIndexOf(std::vector<std::string>* names, const std::string& name) {
   const auto it = std::find(names->begin(), names->end(), name);
   if (it != names->end()) return static_cast<size_t>(it - names->begin());
   names->push_back(name);
@@ -30,7 +30,7 @@ double ContinuousError(const Record& r) {
 }
 
 // Orders two cases of one family on one problem: is `a` the better one?
-bool Better(const Record& a, double ea, const Record& b, double eb) {
+bool OverviewBetter(const Record& a, double ea, const Record& b, double eb) {
   const bool ca = a.status == "converged", cb = b.status == "converged";
   if (ca != cb) return ca;
   const bool fa = std::isfinite(ea), fb = std::isfinite(eb);
@@ -39,7 +39,7 @@ bool Better(const Record& a, double ea, const Record& b, double eb) {
   return a.cpu_seconds < b.cpu_seconds;
 }
 
-std::string Number(double v) {
+std::string OverviewNumber(double v) {
   if (std::isnan(v)) return "-";
   return fmt::format("{:.2g}", v);
 }
@@ -57,21 +57,22 @@ Overview BuildOverview(const std::vector<Record>& records) {
   Overview o;
   for (const Record& r : records) {
     if (r.kind == "online") continue;
-    IndexOf(&o.problems, r.problem);
-    IndexOf(&o.families, MethodFamily(r));
+    OverviewIndexOf(&o.problems, r.problem);
+    OverviewIndexOf(&o.families, MethodFamily(r));
   }
   o.cell.assign(o.problems.size(), std::vector<OverviewCell>(o.families.size()));
-  // Without a continuous reference a problem's error is measured against the best converged J
-  // fine of any family (hard and penalty forms apart: they are different problems).
+  // Without a continuous reference a case's error is measured against the best converged J
+  // fine of any family on the same problem, seed, parameters and terminal form (GroupKey:
+  // different seeds, settings or forms are different problems).
   std::map<std::string, double> best_J;
   for (const Record& r : records) {
     if (r.kind == "online" || r.status != "converged" || !std::isfinite(r.J_fine)) continue;
-    const std::string key = r.problem + "|" + r.terminal;
+    const std::string key = GroupKey(r);
     if (!best_J.count(key) || r.J_fine < best_J[key]) best_J[key] = r.J_fine;
   }
   const auto error_of = [&](const Record& r) {
     if (r.reference && r.reference->scheme == "continuous") return ContinuousError(r);
-    const auto it = best_J.find(r.problem + "|" + r.terminal);
+    const auto it = best_J.find(GroupKey(r));
     if (it == best_J.end() || !std::isfinite(r.J_fine)) return kOverviewNaN;
     return std::abs(r.J_fine - it->second) / std::max(1.0, std::abs(it->second));
   };
@@ -79,12 +80,12 @@ Overview BuildOverview(const std::vector<Record>& records) {
       o.problems.size(), std::vector<const Record*>(o.families.size(), nullptr));
   for (const Record& r : records) {
     if (r.kind == "online") continue;
-    const size_t p = IndexOf(&o.problems, r.problem);
-    const size_t f = IndexOf(&o.families, MethodFamily(r));
+    const size_t p = OverviewIndexOf(&o.problems, r.problem);
+    const size_t f = OverviewIndexOf(&o.families, MethodFamily(r));
     OverviewCell& c = o.cell[p][f];
     ++c.cases;
     const Record*& b = best[p][f];
-    if (!b || Better(r, error_of(r), *b, error_of(*b))) b = &r;
+    if (!b || OverviewBetter(r, error_of(r), *b, error_of(*b))) b = &r;
   }
   for (size_t p = 0; p < o.problems.size(); ++p) {
     for (size_t f = 0; f < o.families.size(); ++f) {
@@ -106,10 +107,11 @@ std::string OverviewMarkdown(const std::vector<Record>& records, size_t min_prob
   std::ostringstream md;
   md << "## Overview: problems x method families\n\n"
      << fmt::format(
-            "Each cell is a family's best case on the problem (converged first, then the "
-            "smallest error, then the least CPU): its rel. error vs the problem's continuous "
-            "reference (|Jbar fine - reference| / |reference|; for a problem without one, |J "
-            "fine - best converged J fine of any family| / max(1, |best|)) and its CPU seconds; "
+            "Each cell is a family's best case on the problem, over its seeds and settings "
+            "(converged first, then the smallest error, then the least CPU): its rel. error vs "
+            "the problem's continuous reference (|Jbar fine - reference| / |reference|; for a "
+            "problem without one, |J fine - best converged J fine of any family on the same "
+            "seed, parameters and terminal form| / max(1, |best|)) and its CPU seconds; "
             "a status other than converged is named; n/a = not_applicable (the method does not "
             "take the problem; the record says why). A family *solves* a problem when that case "
             "converged within {:g}. The tables below break every cell down by N and terminal "
@@ -128,7 +130,7 @@ std::string OverviewMarkdown(const std::vector<Record>& records, size_t min_prob
       } else if (c.status == "not_applicable") {
         md << " n/a |";
       } else {
-        md << " " << (c.solved ? "**" : "") << Number(c.error) << (c.solved ? "**" : "")
+        md << " " << (c.solved ? "**" : "") << OverviewNumber(c.error) << (c.solved ? "**" : "")
            << fmt::format(" ({:.2g} s)", c.cpu_seconds)
            << (c.status == "converged" ? "" : " " + c.status) << " |";
       }

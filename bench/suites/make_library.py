@@ -24,18 +24,18 @@ import re
 import subprocess
 import sys
 
-SKIP = {"comm-path2d", "comm-fixed-path"}  # the paper's problems: bench/suites/paper.json
 SCHEMES = ["euler", "trapezoid", "hermite-simpson", "lgr"]
 
 
 def describe(ocpbench, name):
     text = subprocess.run([ocpbench, "describe", "problem", name], check=True,
                           capture_output=True, text=True).stdout
+    tags = re.search(r"^tags: (.*)$", text, re.M).group(1).split(", ")
     n = int(re.search(r"^default grid: N = (\d+)", text, re.M).group(1))
     nx = int(re.search(r"^sizes: nx = (\d+)", text, re.M).group(1))
     peers = [(m.group(2), int(m.group(3))) for m in
              re.finditer(r"^reference (\S+) = \S+ \((\S+) NLP at N = (\d+);", text, re.M)]
-    return n, nx, peers
+    return n, nx, peers, tags
 
 
 MAIN_JOB_N = 100       # the families' grid in the main job's suite (at most)
@@ -65,9 +65,9 @@ def main():
                              capture_output=True, text=True).stdout.split()
     groups = []
     for name in names:
-        if name in SKIP:
-            continue
-        n, nx, peers = describe(ocpbench, name)
+        n, nx, peers, tags = describe(ocpbench, name)
+        if "paper" in tags:
+            continue  # the paper's problems have their own suites (bench/suites/paper.json)
         # A peer's scheme OCPBench does not have (COPS' Gauss-Legendre) is left out.
         peers = [(scheme, n_peer) for scheme, n_peer in peers if scheme in schemes]
         if peers_suite:

@@ -2,6 +2,8 @@
 // which case stands for a family on a problem, what counts as solved, and the profile's rho.
 #include "bench/cli/summary_overview.h"
 
+#include "bench/cli/summary.h"
+
 #include <string>
 #include <vector>
 
@@ -65,6 +67,24 @@ TEST(SummaryOverview, BestCaseSolvedStatusAndProfile) {
   EXPECT_NE(md.find("| c | **0** (1 s) | n/a |"), std::string::npos) << md;
   // A suite of fewer problems than asked for gets no overview.
   EXPECT_EQ(OverviewMarkdown(records, 4), "");
+}
+
+// A record's nlp_reference (a peer's optimum of the very NLP it solved) survives the record's
+// JSON, and the summary compares the record's own objective with it in "NLP vs peer".
+TEST(SummaryOverview, NlpReferenceRoundTripsAndIsCompared) {
+  Record r = Case("p", "ipopt", "trapezoid", "converged", 1.0, 0.1);
+  r.N = 200;
+  r.objective = 2.0 * (1.0 + 3e-9);
+  r.nlp_reference = RecordReference{2.0, "J", "peer, trapezoid N = 200", "trapezoid", 200};
+  const Record back = Record::FromJson(r.ToJson());
+  ASSERT_TRUE(back.nlp_reference.has_value());
+  EXPECT_EQ(back.nlp_reference->value, 2.0);
+  EXPECT_EQ(back.nlp_reference->scheme, "trapezoid");
+  EXPECT_EQ(back.nlp_reference->N, 200);
+  EXPECT_EQ(back.nlp_reference->source, "peer, trapezoid N = 200");
+  const std::string md = SummaryMarkdown("s", {back});
+  EXPECT_NE(md.find(" NLP vs peer |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 3e-09 |"), std::string::npos) << md;
 }
 
 }  // namespace

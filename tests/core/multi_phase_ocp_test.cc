@@ -89,6 +89,34 @@ class PhaseB final : public AutoDiffOcp<PhaseB, 3, 2, 2, 0> {
   }
 };
 
+// A phase with a free final time of its own (refused: the duration is the phases' decision).
+class FreeTimePhase final : public AutoDiffOcp<FreeTimePhase, 1, 1, 0, 0> {
+ public:
+  FreeTimePhase() {
+    SetHorizon(0.0, 1.0);
+    SetFreeFinalTime(0.5, 2.0);
+  }
+  std::string name() const override { return "free-time-phase"; }
+  template <class T>
+  void EvalDynamics(double, const VecT<T, 1>&, const VecT<T, 1>& u, VecT<T, 1>* f) const {
+    (*f)[0] = u[0];
+  }
+};
+
+// One state in [0, 2], starting at 0.5.
+class BoundedPhase final : public AutoDiffOcp<BoundedPhase, 1, 1, 0, 0> {
+ public:
+  BoundedPhase() {
+    SetHorizon(0.0, 1.0);
+    SetInitialState(Vec::Constant(1, 0.5));
+    SetStateBounds(Vec::Constant(1, 0.0), Vec::Constant(1, 2.0));
+  }
+  std::string name() const override { return "bounded-phase"; }
+  template <class T>
+  void EvalDynamics(double, const VecT<T, 1>&, const VecT<T, 1>& u, VecT<T, 1>* f) const {
+    (*f)[0] = u[0];
+  }
+};
 std::unique_ptr<MultiPhaseOcp> MakeAb() {
   std::vector<PhaseSpec> phases = {{std::make_shared<PhaseA>(), 0.5, 4.0},
                                    {std::make_shared<PhaseB>(), 0.2, 3.0}};
@@ -127,6 +155,19 @@ TEST(MultiPhaseOcp, LayoutAndBounds) {
   EXPECT_EQ(ocp->control_set().blocks()[1].kind, ControlSet::Kind::kBall);
   EXPECT_EQ(ocp->control_set().blocks()[1].offset, 1);
   EXPECT_NO_THROW(ocp->CheckStaticParameterDynamics());
+}
+
+// A later phase's start is a decision: its state bounds hold there (the initial node takes the
+// initial-state bounds alone).
+TEST(MultiPhaseOcp, LaterPhasesStartInsideTheirStateBounds) {
+  const auto p = std::make_shared<BoundedPhase>();
+  const MultiPhaseOcp ocp("p", {{p, 1, 2}, {p, 1, 2}}, {MultiPhaseOcp::Continuity(1)});
+  const VectorBounds b0 = ocp.InitialNodeBounds();
+  EXPECT_EQ(b0.lower[0], 0.5);  // phase 1: its fixed x0
+  EXPECT_EQ(b0.lower[1], 0.0);  // phase 2: its state bounds
+  EXPECT_EQ(b0.upper[1], 2.0);
+  ASSERT_TRUE(ocp.state_bounds().has_value());
+  EXPECT_EQ(ocp.state_bounds()->upper[1], 2.0);
 }
 
 TEST(MultiPhaseOcp, DerivativesMatchFiniteDifferences) {
@@ -263,8 +304,19 @@ TEST(MultiPhaseOcp, RefusesInconsistentDefinitions) {
       [&] {
         MultiPhaseOcp("p", {{a, 0, 2}}, {});
       },
-      "phase 1: duration bounds [0.000000, 2.000000] must be finite with 0 < min <= max");
+      "phase 1: duration bounds [0, 2] must be finite with 0 < min <= max");
   expect_error([&] { MultiPhaseOcp("p", {{a, 3, 2}}, {}); }, "0 < min <= max");
+  expect_error([&] { MultiPhaseOcp("p", {{a, -1e-7, 2}}, {}); }, "bounds [-1e-07, 2]");
+  expect_error(
+      [&] {
+        MultiPhaseOcp("p", {{a, 1, 2}, {b, 1, 2}}, {{{0, 0, 0.0}, {1, 0, 0.0}}});
+      },
+      "phase 2 state 0 is linked twice");
+  expect_error(
+      [] {
+        MultiPhaseOcp("p", {{std::make_shared<FreeTimePhase>(), 1, 2}}, {});
+      },
+      "phase 1: has a free final time of its own");
   expect_error([&] { MultiPhaseOcp("p", {{nullptr, 1, 2}}, {}); }, "phase 1: no problem");
   expect_error([] { MultiPhaseOcp::Continuity(2, Vec::Ones(3)); }, "jump has 3 entries");
 }

@@ -127,6 +127,16 @@ def main():
                  "--out", w("site3"))
     expect_error(args, "--compare-json", "report", w("base"), w("new"), "--compare-json",
                  w("compare.json"), "--out", w("site3"))
+    # An output folder named with a trailing separator, twice (the second replaces the first):
+    # the site lands in that folder and no temporary or aside folder is left beside or in it.
+    for attempt in range(2):
+        p = run(args, "report", w("base"), "--out", w("slash") + os.sep)
+        if p.returncode != 0 or not os.path.isfile(w("slash", "index.html")):
+            fail(f"report --out slash/ (run {attempt + 1}): {p.returncode} {p.stderr}")
+    leftovers = [n for n in os.listdir(args.work) + os.listdir(w("slash"))
+                 if ".tmp-" in n or ".old-" in n]
+    if leftovers:
+        fail(f"--out with a trailing separator left: {leftovers}")
     print("report_cli: every rule held")
 
 
