@@ -1,7 +1,18 @@
+#include "problems/library/classic/alp_rider.h"
+#include "problems/library/classic/hypersensitive.h"
+#include "problems/library/classic/lotka_volterra_fishing.h"
+#include "problems/library/classic/singular_double_integrator.h"
+#include "problems/library/classic/tumor_antiangiogenesis.h"
 #include "problems/library/library_groups.h"
 
 namespace ocpb {
 
-void AppendClassicProblems(std::vector<ProblemInfo>* /*list*/) {}
+void AppendClassicProblems(std::vector<ProblemInfo>* list) {
+  list->push_back(HypersensitiveProblemInfo());
+  list->push_back(AlpRiderProblemInfo());
+  list->push_back(SingularDoubleIntegratorProblemInfo());
+  list->push_back(LotkaVolterraFishingProblemInfo());
+  list->push_back(TumorAntiangiogenesisProblemInfo());
+}
 
 }  // namespace ocpb
