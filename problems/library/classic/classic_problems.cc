@@ -1,8 +1,10 @@
 #include "problems/library/classic/alp_rider.h"
+#include "problems/library/classic/f8_aircraft.h"
 #include "problems/library/classic/hypersensitive.h"
 #include "problems/library/classic/lotka_volterra_fishing.h"
 #include "problems/library/classic/singular_double_integrator.h"
 #include "problems/library/classic/tumor_antiangiogenesis.h"
+#include "problems/library/classic/vanderpol_state_constrained.h"
 #include "problems/library/library_groups.h"
 
 namespace ocpb {
@@ -13,6 +15,8 @@ void AppendClassicProblems(std::vector<ProblemInfo>* list) {
   list->push_back(SingularDoubleIntegratorProblemInfo());
   list->push_back(LotkaVolterraFishingProblemInfo());
   list->push_back(TumorAntiangiogenesisProblemInfo());
+  list->push_back(VanDerPolStateConstrainedProblemInfo());
+  list->push_back(F8AircraftProblemInfo());
 }
 
 }  // namespace ocpb
