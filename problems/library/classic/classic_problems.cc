@@ -2,6 +2,9 @@
 #include "problems/library/classic/f8_aircraft.h"
 #include "problems/library/classic/hypersensitive.h"
 #include "problems/library/classic/lotka_volterra_fishing.h"
+#include "problems/library/classic/min_energy_free_velocity.h"
+#include "problems/library/classic/min_energy_target_line.h"
+#include "problems/library/classic/neuenhofen_kerrigan_x1.h"
 #include "problems/library/classic/singular_double_integrator.h"
 #include "problems/library/classic/tumor_antiangiogenesis.h"
 #include "problems/library/classic/vanderpol_state_constrained.h"
@@ -17,6 +20,9 @@ void AppendClassicProblems(std::vector<ProblemInfo>* list) {
   list->push_back(TumorAntiangiogenesisProblemInfo());
   list->push_back(VanDerPolStateConstrainedProblemInfo());
   list->push_back(F8AircraftProblemInfo());
+  list->push_back(NeuenhofenKerriganX1ProblemInfo());
+  list->push_back(MinEnergyFreeVelocityProblemInfo());
+  list->push_back(MinEnergyTargetLineProblemInfo());
 }
 
 }  // namespace ocpb
