@@ -9,7 +9,11 @@ namespace ocpb {
 std::vector<ParameterSpec> F8Aircraft::ParameterSpecs() {
   return {
       {"C", {1000.0}, "terminal penalty weight (penalty form)", 0.0, 1e300, true},
-      {"tf", {4.0}, "nominal final time: where methods start (within [tf_min, tf_max])", 0.0, 1e6,
+      {"tf",
+       {4.0},
+       "nominal final time: where methods start (within [tf_min, tf_max])",
+       0.0,
+       1e6,
        true},
       {"tf_min", {1.0}, "lower bound of the free final time", 0.0, 1e6, true},
       {"tf_max", {8.0}, "upper bound of the free final time", 0.0, 1e6, true},

@@ -7,7 +7,7 @@ namespace ocpb {
 
 double Hypersensitive::InfiniteHorizonCost() {
   auto antiderivative = [](double w) { return (w * std::sqrt(w * w + 1.0) + std::asinh(w)) / 4.0; };
-  const double leave = 2.0 * (antiderivative(1.0) - 0.25);           // V(1)
+  const double leave = 2.0 * (antiderivative(1.0) - 0.25);                 // V(1)
   const double arrive = 2.0 * (antiderivative(2.25) + 2.25 * 2.25 / 4.0);  // W(1.5)
   return leave + arrive;
 }

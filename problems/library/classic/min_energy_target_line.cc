@@ -7,8 +7,7 @@ namespace ocpb {
 ProblemInfo MinEnergyTargetLineProblemInfo() {
   ProblemInfo p;
   p.name = "min-energy-target-line";
-  p.description =
-      "minimum-energy double integrator from rest to the line x1 - 2 x2 = 1 at t = 1";
+  p.description = "minimum-energy double integrator from rest to the line x1 - 2 x2 = 1 at t = 1";
   p.parameters = MinEnergyTargetLine::ParameterSpecs();
   p.make = [](const Parameters& params, std::uint64_t) -> std::unique_ptr<Ocp> {
     return std::make_unique<MinEnergyTargetLine>(params);

@@ -9,8 +9,12 @@ namespace ocpb {
 std::vector<ParameterSpec> SingularDoubleIntegrator::ParameterSpecs() {
   return {
       {"C", {1000.0}, "terminal penalty weight (penalty form)", 0.0, 1e300, true},
-      {"tf", {5.0}, "nominal final time: where methods start (within [tf_min, tf_max])", 0.0,
-       1e6, true},
+      {"tf",
+       {5.0},
+       "nominal final time: where methods start (within [tf_min, tf_max])",
+       0.0,
+       1e6,
+       true},
       {"tf_min", {2.0}, "lower bound of the free final time", 0.0, 1e6, true},
       {"tf_max", {8.0}, "upper bound of the free final time", 0.0, 1e6, true},
   };
@@ -42,7 +46,10 @@ ProblemInfo SingularDoubleIntegratorProblemInfo() {
   p.reference_source =
       "analytic (Locatelli 2017, problem 11.2-1a; PSOPT example singular_di): u = +1 on [0, 1], "
       "0 on [1, 3], -1 on [3, 4]; T* = 4, J* = 10/3";
-  p.additional_references = {{SingularDoubleIntegrator::kOptimalTime, "tf", "continuous", 0,
+  p.additional_references = {{SingularDoubleIntegrator::kOptimalTime,
+                              "tf",
+                              "continuous",
+                              0,
                               "analytic (Locatelli 2017, problem 11.2-1a): T* = 4"}};
   p.origin = "Locatelli 2017, problem 11.2-1a; PSOPT example singular_di";
   p.hamiltonian_note =

@@ -9,7 +9,11 @@ namespace ocpb {
 
 std::vector<ParameterSpec> TumorAntiangiogenesis::ParameterSpecs() {
   return {
-      {"tf", {1.0}, "nominal final time: where methods start (within [tf_min, tf_max])", 0.0, 1e6,
+      {"tf",
+       {1.0},
+       "nominal final time: where methods start (within [tf_min, tf_max])",
+       0.0,
+       1e6,
        true},
       {"tf_min", {0.01}, "lower bound of the free final time", 0.0, 1e6, true},
       {"tf_max", {5.0}, "upper bound of the free final time", 0.0, 1e6, true},
@@ -46,9 +50,15 @@ ProblemInfo TumorAntiangiogenesisProblemInfo() {
       "Betts 2010 (Practical Methods for Optimal Control and Estimation Using Nonlinear "
       "Programming, 2nd ed.), example 10.141 (section 8.17): p(T*) = 7571.6712, T* = 1.1961336";
   p.additional_references = {
-      {TumorAntiangiogenesis::kReferenceTime, "tf", "continuous", 0,
+      {TumorAntiangiogenesis::kReferenceTime,
+       "tf",
+       "continuous",
+       0,
        "Betts 2010, example 10.141: T* = 1.1961336"},
-      {7571.67158, "J", "continuous", 0,
+      {7571.67158,
+       "J",
+       "continuous",
+       0,
        "Patterson & Rao, GPOPS-II (ACM TOMS 41(1), 2014), tumor anti-angiogenesis example: "
        "p(T) = 7571.67158"}};
   p.origin = "Ledzewicz & Schaettler; Betts 2010 example 10.141; GPOPS-II example";

@@ -36,8 +36,8 @@ class TumorAntiangiogenesis final : public AutoDiffOcp<TumorAntiangiogenesis, 3,
   static constexpr double kB = 5.85;
   static constexpr double kMu = 0.02;
   static constexpr double kD = 0.00873;
-  static constexpr double kMaxDose = 75.0;     // a
-  static constexpr double kTotalDose = 15.0;   // A
+  static constexpr double kMaxDose = 75.0;    // a
+  static constexpr double kTotalDose = 15.0;  // A
   static constexpr double kReferenceCost = 7571.6712;
   static constexpr double kReferenceTime = 1.1961336;
   /// pbar = qbar.
