@@ -300,6 +300,11 @@ TEST(RegisterProblem, AddsAUserProblemAndRejectsDuplicatesAndEmptyEntries) {
     return std::make_unique<DoubleIntegrator>(params, "registry-test-double-integrator");
   };
   info.reference_value = 6.0;
+  // A complete entry (description, source, tags): the registry's consistency tests in this
+  // binary may run after this one and see it.
+  info.description = "double-integrator registered by a test";
+  info.reference_source = "analytic (as double-integrator)";
+  info.tags = {"smooth"};
   const size_t before = Problems().size();
   RegisterProblem(info);
   EXPECT_EQ(Problems().size(), before + 1);
@@ -314,6 +319,10 @@ TEST(RegisterProblem, AddsAUserProblemAndRejectsDuplicatesAndEmptyEntries) {
   no_make.make = nullptr;
   EXPECT_THROW(RegisterProblem(no_make), std::invalid_argument);
   EXPECT_THROW(RegisterProblem(FindProblem("lqr")), std::invalid_argument);  // a built-in name
+  ProblemInfo bad_tag = info;
+  bad_tag.name = "registry-test-bad-tag";
+  bad_tag.tags = {"smoth"};
+  EXPECT_THROW(RegisterProblem(bad_tag), std::invalid_argument);  // a tag not in ProblemTags()
   EXPECT_EQ(Problems().size(), before + 1);
 }
 
