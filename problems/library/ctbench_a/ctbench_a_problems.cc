@@ -1,3 +1,4 @@
+#include "problems/library/ctbench_a/glider.h"
 #include "problems/library/ctbench_a/mountain_car.h"
 #include "problems/library/library_groups.h"
 
@@ -5,6 +6,7 @@ namespace ocpb {
 
 void AppendCtbenchProblemsA(std::vector<ProblemInfo>* list) {
   list->push_back(MountainCarProblemInfo());
+  list->push_back(GliderProblemInfo());
 }
 
 }  // namespace ocpb
