@@ -1,5 +1,6 @@
 #include "problems/library/ctbench_a/glider.h"
 #include "problems/library/ctbench_a/mountain_car.h"
+#include "problems/library/ctbench_a/space_shuttle.h"
 #include "problems/library/library_groups.h"
 
 namespace ocpb {
@@ -7,6 +8,7 @@ namespace ocpb {
 void AppendCtbenchProblemsA(std::vector<ProblemInfo>* list) {
   list->push_back(MountainCarProblemInfo());
   list->push_back(GliderProblemInfo());
+  list->push_back(SpaceShuttleProblemInfo());
 }
 
 }  // namespace ocpb
