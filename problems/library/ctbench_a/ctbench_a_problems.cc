@@ -1,3 +1,4 @@
+#include "problems/library/ctbench_a/cart_pendulum.h"
 #include "problems/library/ctbench_a/glider.h"
 #include "problems/library/ctbench_a/mountain_car.h"
 #include "problems/library/ctbench_a/space_shuttle.h"
@@ -9,6 +10,7 @@ void AppendCtbenchProblemsA(std::vector<ProblemInfo>* list) {
   list->push_back(MountainCarProblemInfo());
   list->push_back(GliderProblemInfo());
   list->push_back(SpaceShuttleProblemInfo());
+  list->push_back(CartPendulumProblemInfo());
 }
 
 }  // namespace ocpb
