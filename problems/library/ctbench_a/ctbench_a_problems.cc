@@ -1,5 +1,6 @@
 #include "problems/library/ctbench_a/cart_pendulum.h"
 #include "problems/library/ctbench_a/glider.h"
+#include "problems/library/ctbench_a/moonlander.h"
 #include "problems/library/ctbench_a/mountain_car.h"
 #include "problems/library/ctbench_a/space_shuttle.h"
 #include "problems/library/library_groups.h"
@@ -11,6 +12,7 @@ void AppendCtbenchProblemsA(std::vector<ProblemInfo>* list) {
   list->push_back(GliderProblemInfo());
   list->push_back(SpaceShuttleProblemInfo());
   list->push_back(CartPendulumProblemInfo());
+  list->push_back(MoonlanderProblemInfo());
 }
 
 }  // namespace ocpb
