@@ -2,6 +2,7 @@
 #include "problems/library/ctbench_a/glider.h"
 #include "problems/library/ctbench_a/moonlander.h"
 #include "problems/library/ctbench_a/mountain_car.h"
+#include "problems/library/ctbench_a/quadrotor.h"
 #include "problems/library/ctbench_a/space_shuttle.h"
 #include "problems/library/library_groups.h"
 
@@ -13,6 +14,7 @@ void AppendCtbenchProblemsA(std::vector<ProblemInfo>* list) {
   list->push_back(SpaceShuttleProblemInfo());
   list->push_back(CartPendulumProblemInfo());
   list->push_back(MoonlanderProblemInfo());
+  list->push_back(QuadrotorProblemInfo());
 }
 
 }  // namespace ocpb
