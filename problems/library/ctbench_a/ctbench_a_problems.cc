@@ -1,4 +1,5 @@
 #include "problems/library/ctbench_a/cart_pendulum.h"
+#include "problems/library/ctbench_a/dielectrophoretic_particle.h"
 #include "problems/library/ctbench_a/glider.h"
 #include "problems/library/ctbench_a/moonlander.h"
 #include "problems/library/ctbench_a/mountain_car.h"
@@ -15,6 +16,7 @@ void AppendCtbenchProblemsA(std::vector<ProblemInfo>* list) {
   list->push_back(CartPendulumProblemInfo());
   list->push_back(MoonlanderProblemInfo());
   list->push_back(QuadrotorProblemInfo());
+  list->push_back(DielectrophoreticParticleProblemInfo());
 }
 
 }  // namespace ocpb
