@@ -5,6 +5,7 @@
 #include "problems/library/ctbench_a/mountain_car.h"
 #include "problems/library/ctbench_a/quadrotor.h"
 #include "problems/library/ctbench_a/space_shuttle.h"
+#include "problems/library/ctbench_a/truck_trailer.h"
 #include "problems/library/library_groups.h"
 
 namespace ocpb {
@@ -17,6 +18,7 @@ void AppendCtbenchProblemsA(std::vector<ProblemInfo>* list) {
   list->push_back(MoonlanderProblemInfo());
   list->push_back(QuadrotorProblemInfo());
   list->push_back(DielectrophoreticParticleProblemInfo());
+  list->push_back(TruckTrailerProblemInfo());
 }
 
 }  // namespace ocpb
