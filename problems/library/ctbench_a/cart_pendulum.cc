@@ -53,7 +53,10 @@ ProblemInfo CartPendulumProblemInfo() {
       "OptimalControlProblems.jl cart_pendulum (after the FATROP example, Vanroye et al. 2023)";
   p.hamiltonian_note =
       "not applicable: free final time, free initial state, static parameter and state bounds";
-  p.tags = {"free-time", "free-initial-state", "static-parameters", "state-constrained",
+  p.tags = {"free-time",
+            "free-initial-state",
+            "static-parameters",
+            "state-constrained",
             "control-constrained"};
   return p;
 }

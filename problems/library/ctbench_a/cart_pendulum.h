@@ -31,7 +31,8 @@ class CartPendulum final : public AutoDiffOcp<CartPendulum, 5, 1, 2, 0> {
   static constexpr double kMass = 1.0;
   static constexpr double kCartMass = 0.5;
   static constexpr double kInertia = kMass * kLength * kLength / 12.0;
-  static constexpr double kK = 0.5 * kLength * kMass / (kInertia + 0.25 * kMass * kLength * kLength);
+  static constexpr double kK =
+      0.5 * kLength * kMass / (kInertia + 0.25 * kMass * kLength * kLength);
   static constexpr double kPi = 3.14159265358979323846;
   static std::vector<ParameterSpec> ParameterSpecs();
   explicit CartPendulum(const Parameters& params);

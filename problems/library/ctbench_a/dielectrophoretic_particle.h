@@ -17,8 +17,7 @@ namespace ocpb {
 /// (Chang, Petit, Rouchon 2006; OptimalControlProblems.jl's JuMP model
 /// `dielectrophoretic_particle`). The cost is L = 1 over the free horizon. The time-optimal
 /// control saturates at the bounds with a singular arc in between.
-class DielectrophoreticParticle final
-    : public AutoDiffOcp<DielectrophoreticParticle, 2, 1, 1, 0> {
+class DielectrophoreticParticle final : public AutoDiffOcp<DielectrophoreticParticle, 2, 1, 1, 0> {
  public:
   static constexpr double kAlpha = -0.75;
   static constexpr double kDamping = 1.0;  // c

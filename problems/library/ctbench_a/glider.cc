@@ -46,9 +46,15 @@ ProblemInfo GliderProblemInfo() {
   p.reference_scheme = "trapezoid";
   p.reference_intervals = 500;
   p.additional_references = {
-      {-1248.8963625894698, "J", "trapezoid", 200,
+      {-1248.8963625894698,
+       "J",
+       "trapezoid",
+       200,
        "CTBenchmarks.jl core-ubuntu-latest, glider, JuMP + Ipopt, grid_size = 200"},
-      {-1247.986999240766, "J", "trapezoid", 2000,
+      {-1247.986999240766,
+       "J",
+       "trapezoid",
+       2000,
        "CTBenchmarks.jl core-ubuntu-latest, glider, JuMP + Ipopt, grid_size = 2000"},
   };
   p.origin = "COPS 3.0 (Dolan, More, Munson 2004) glider, via OptimalControlProblems.jl";

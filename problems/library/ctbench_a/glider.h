@@ -25,15 +25,15 @@ namespace ocpb {
 /// `glider`). A Mayer problem with a free final time.
 class Glider final : public AutoDiffOcp<Glider, 4, 1, 3, 0> {
  public:
-  static constexpr double kUpdraftMax = 2.5;  // uc
+  static constexpr double kUpdraftMax = 2.5;       // uc
   static constexpr double kUpdraftRadius = 100.0;  // r0
   static constexpr double kMass = 100.0;
   static constexpr double kGravity = 9.81;
-  static constexpr double kDrag0 = 0.034;       // c0
-  static constexpr double kDrag1 = 0.069662;    // c1
-  static constexpr double kWingArea = 14.0;     // S
-  static constexpr double kAirDensity = 1.13;   // rho
-  static constexpr double kLiftMax = 1.4;       // cL_max
+  static constexpr double kDrag0 = 0.034;      // c0
+  static constexpr double kDrag1 = 0.069662;   // c1
+  static constexpr double kWingArea = 14.0;    // S
+  static constexpr double kAirDensity = 1.13;  // rho
+  static constexpr double kLiftMax = 1.4;      // cL_max
   static constexpr double kFinalHeight = 900.0;
   static constexpr double kSpeedX = 13.23;
   static constexpr double kSpeedY = -1.288;

@@ -37,8 +37,7 @@ ProblemInfo MoonlanderProblemInfo() {
   p.reference_scheme = "trapezoid";
   p.reference_intervals = 500;
   p.origin = "OptimalControlProblems.jl moonlander (after the FATROP example, Vanroye et al. 2023)";
-  p.hamiltonian_note =
-      "not applicable: free final time, and no pointwise Hamiltonian minimizer";
+  p.hamiltonian_note = "not applicable: free final time, and no pointwise Hamiltonian minimizer";
   p.tags = {"free-time", "bang-bang", "control-constrained"};
   return p;
 }

@@ -48,8 +48,8 @@ ProblemInfo MountainCarProblemInfo() {
   p.hamiltonian_note =
       "not applicable: free final time with state bounds and a boundary constraint, and no "
       "pointwise Hamiltonian minimizer";
-  p.tags = {"bang-bang", "free-time", "state-constrained", "control-constrained",
-            "boundary-constraints"};
+  p.tags = {
+      "bang-bang", "free-time", "state-constrained", "control-constrained", "boundary-constraints"};
   return p;
 }
 

@@ -23,9 +23,9 @@ namespace ocpb {
 /// constraint; no pointwise minimizer is offered).
 class MountainCar final : public AutoDiffOcp<MountainCar, 2, 1, 1, 0> {
  public:
-  static constexpr double kPower = 0.001;      // a
-  static constexpr double kGravity = 0.0025;   // b
-  static constexpr double kFrequency = 3.0;    // c
+  static constexpr double kPower = 0.001;     // a
+  static constexpr double kGravity = 0.0025;  // b
+  static constexpr double kFrequency = 3.0;   // c
   static constexpr double kTargetPosition = 0.5;
   /// The JuMP model's trapezoid optimum at N = 200 (OptimalControlProblems.jl docs, Ipopt).
   static constexpr double kTrapezoid200 = 102.39757015622749;

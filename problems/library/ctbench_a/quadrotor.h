@@ -50,8 +50,7 @@ class Quadrotor final : public AutoDiffOcp<Quadrotor, 8, 4, 6, 1> {
   }
   template <class T>
   T EvalRunningCost(double, const VecT<T, 8>& x, const VecT<T, 4>& u) const {
-    return 1.0 + 1e-8 * (u[0] * u[0] + x[6] * x[6] + x[7] * x[7] + u[3] * u[3]) +
-           1e2 * u[3] * u[3];
+    return 1.0 + 1e-8 * (u[0] * u[0] + x[6] * x[6] + x[7] * x[7] + u[3] * u[3]) + 1e2 * u[3] * u[3];
   }
   template <class T>
   void EvalTerminalConstraints(const VecT<T, 8>& x, VecT<T, 6>* psi) const {

@@ -36,8 +36,8 @@ TruckTrailer::TruckTrailer(const Parameters& params) {
   hi0[6] = hi[6];
   SetInitialStateBounds(lo0, hi0);
   SetTerminalWeights(Vec::Constant(5, params.Scalar("C")));
-  SetControlSet(ControlSet::Box(Eigen::Vector2d(-1.0, -kPi / 10.0),
-                                Eigen::Vector2d(1.0, kPi / 10.0)));
+  SetControlSet(
+      ControlSet::Box(Eigen::Vector2d(-1.0, -kPi / 10.0), Eigen::Vector2d(1.0, kPi / 10.0)));
   SetStateBounds(lo, hi);
 }
 
