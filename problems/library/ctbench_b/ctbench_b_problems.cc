@@ -1,5 +1,6 @@
 #include "problems/library/library_groups.h"
 
+#include "problems/library/ctbench_b/balanced_field.h"
 #include "problems/library/ctbench_b/beam.h"
 #include "problems/library/ctbench_b/chain.h"
 #include "problems/library/ctbench_b/double_oscillator.h"
@@ -10,6 +11,7 @@
 namespace ocpb {
 
 void AppendCtbenchProblemsB(std::vector<ProblemInfo>* list) {
+  list->push_back(BalancedFieldProblemInfo());
   list->push_back(BeamProblemInfo());
   list->push_back(HangingChainProblemInfo());
   list->push_back(DoubleOscillatorProblemInfo());
