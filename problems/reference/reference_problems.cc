@@ -12,6 +12,7 @@
 #include "problems/reference/goddard_three_phase.h"
 #include "problems/reference/hager.h"
 #include "problems/reference/lqr.h"
+#include "problems/reference/min_time_double_integrator.h"
 #include "problems/reference/rayleigh.h"
 #include "problems/reference/robot_arm.h"
 #include "problems/reference/steering.h"
@@ -42,6 +43,7 @@ void AppendReferenceProblems(std::vector<ProblemInfo>* list) {
   list->push_back(TimeParameterDoubleIntegratorProblemInfo());
   list->push_back(TwoPhaseDoubleIntegratorProblemInfo());
   list->push_back(GoddardThreePhaseProblemInfo());
+  list->push_back(MinTimeDoubleIntegratorProblemInfo());
 }
 
 }  // namespace ocpb
