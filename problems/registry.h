@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/field_sample.h"
@@ -80,6 +81,10 @@ struct ProblemInfo {
   /// of that transcription and grid may be compared with.
   std::string reference_scheme = "continuous";
   int reference_intervals = 0;  ///< the grid of a discrete reference (0 when continuous)
+  /// Ipopt options ("key", "value") a discrete primary reference needs to be reproduced
+  /// (another barrier strategy where the NLP has several stationary points close together);
+  /// empty: OCPBench's defaults. The NLP-level test adds them to a tight tol.
+  std::vector<std::pair<std::string, std::string>> reference_options;
   /// Further published values (see ProblemReference); the primary one above is not repeated.
   std::vector<ProblemReference> additional_references;
   /// What kind of problem it is, from ProblemTags() (a registry test checks every name).

@@ -5,9 +5,11 @@
 // kMaxTestedIntervals are left to the library suites (Release; their summaries' column "NLP vs
 // peer"), to bound the sanitizer build's test time.
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -37,16 +39,20 @@ const std::set<std::string>& PrintedToSixDigits() {
 TEST(LibraryPeerValues, TranscriptionsReproduceThePeersNlpOptima) {
   int checked = 0;
   for (const ProblemInfo& info : Problems()) {
-    std::vector<ProblemReference> discrete = info.additional_references;
+    // Each discrete reference with the Ipopt options it needs (the primary one may name some).
+    std::vector<std::pair<ProblemReference, std::vector<std::pair<std::string, std::string>>>>
+        discrete;
+    for (const ProblemReference& r : info.additional_references) discrete.push_back({r, {}});
     if (info.reference_value && info.reference_scheme != "continuous" &&
         !PrintedToSixDigits().count(info.name)) {
-      discrete.push_back({*info.reference_value,
-                          info.reference_quantity,
-                          info.reference_scheme,
-                          info.reference_intervals,
-                          info.reference_source});
+      discrete.push_back({{*info.reference_value,
+                           info.reference_quantity,
+                           info.reference_scheme,
+                           info.reference_intervals,
+                           info.reference_source},
+                          info.reference_options});
     }
-    for (const ProblemReference& peer : discrete) {
+    for (const auto& [peer, peer_options] : discrete) {
       if (peer.scheme == "continuous" || peer.quantity != "J") continue;
       if (peer.intervals > kMaxTestedIntervals) continue;
       // A scheme OCPBench does not have (COPS' Gauss-Legendre for catmix) is not checked.
@@ -54,16 +60,11 @@ TEST(LibraryPeerValues, TranscriptionsReproduceThePeersNlpOptima) {
       for (const TranscriptionInfo& t : Transcriptions()) known = known || t.name == peer.scheme;
       if (!known) continue;
       const std::unique_ptr<Ocp> ocp = info.make(Parameters(info.parameters), 1);
-      // The peers' own Ipopt settings where they matter (CTBenchmarks: adaptive barrier), with a
-      // tolerance tighter than theirs.
-      const SolveResult result =
-          SolveWith("ipopt",
-                    *ocp,
-                    Request(*ocp,
-                            peer.intervals,
-                            TerminalMode::kHard,
-                            peer.scheme,
-                            {{"tol", "1e-10"}, {"mu_strategy", "adaptive"}}));
+      // A tolerance tighter than the peers', and the options a reference says it needs.
+      std::map<std::string, std::string> options = {{"tol", "1e-10"}};
+      for (const auto& [key, value] : peer_options) options[key] = value;
+      const SolveResult result = SolveWith(
+          "ipopt", *ocp, Request(*ocp, peer.intervals, TerminalMode::kHard, peer.scheme, options));
       const std::string what = info.name + ", " + peer.scheme +
                                " N = " + std::to_string(peer.intervals) + " (" + peer.source + ")";
       EXPECT_EQ(result.status, SolveStatus::kConverged) << what << ": " << result.message;
