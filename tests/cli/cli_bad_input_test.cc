@@ -26,7 +26,7 @@ struct BadInput {
 // clang-format off
 const BadInput kBadInputs[] = {
     {"unknown subcommand", {"frobnicate"}, nullptr, "unknown command 'frobnicate' (valid: list, describe, solve, run"},
-    {"list of nothing", {"list", "foo"}, nullptr, "foo not in {problems,solvers,transcriptions}"},
+    {"list of nothing", {"list", "foo"}, nullptr, "foo not in {problems,solvers,transcriptions,tags}"},
     {"unknown problem", {"solve", "--problem", "nope", "--solver", "hamiltonian"}, nullptr,
      "unknown problem 'nope' (valid: "},
     {"unknown solver", {"solve", "--problem", "double-integrator", "--solver", "nope"}, nullptr,
