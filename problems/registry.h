@@ -91,7 +91,7 @@ struct ProblemInfo {
   std::vector<std::string> tags;
   /// Where the problem comes from (a suite, paper or book), when not the reference's source.
   std::string origin;
-  bool uses_seed = false;       ///< true when `seed` changes the problem
+  bool uses_seed = false;  ///< true when `seed` changes the problem
   /// How the Hamiltonian descent applies (for example "path constraint as penalty rho max(0,
   /// c)^2, rho = 1e4"), or why it does not (then the note says "not applicable"); empty when it
   /// applies to the problem as stated. Shown by `ocpbench describe problem`. Whether it applies

@@ -33,7 +33,10 @@ ProblemInfo BeamProblemInfo() {
       "analytic J* = 8/(9a) = 80/9 at a = 0.1: twice the Bryson-Denham optimum 4/(9l) (Bryson, "
       "Denham, Dreyfus, AIAA J. 1(11), 1963; Bryson & Ho 1975, Sec. 3.11)";
   p.additional_references = {
-      {8.89133522024639, "J", "trapezoid", 200,
+      {8.89133522024639,
+       "J",
+       "trapezoid",
+       200,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), beam, Ipopt + JuMP, trapeze, "
        "grid_size 200, tol 1e-8"},
   };

@@ -40,16 +40,28 @@ ProblemInfo HangingChainProblemInfo() {
       "digits with mpmath), J* = c^2 ((s1 - s0)/2 + (sinh 2s1 - sinh 2s0)/4) + d L = "
       "5.068480110993416 (derivation in problems/library/ctbench_b/chain.h)";
   p.additional_references = {
-      {5.068917341242299, "J", "trapezoid", 200,
+      {5.068917341242299,
+       "J",
+       "trapezoid",
+       200,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), chain, Ipopt + JuMP, trapeze, "
        "grid_size 200, tol 1e-8"},
-      {5.068577790026832, "J", "trapezoid", 500,
+      {5.068577790026832,
+       "J",
+       "trapezoid",
+       500,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), chain, Ipopt + JuMP, trapeze, "
        "grid_size 500, tol 1e-8"},
-      {5.068510095825627, "J", "trapezoid", 1000,
+      {5.068510095825627,
+       "J",
+       "trapezoid",
+       1000,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), chain, Ipopt + JuMP, trapeze, "
        "grid_size 1000, tol 1e-8"},
-      {5.068488912144199, "J", "trapezoid", 2000,
+      {5.068488912144199,
+       "J",
+       "trapezoid",
+       2000,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), chain, Ipopt + JuMP, trapeze, "
        "grid_size 2000, tol 1e-8"},
   };

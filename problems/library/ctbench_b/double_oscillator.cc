@@ -35,16 +35,28 @@ ProblemInfo DoubleOscillatorProblemInfo() {
       "CTBenchmarks' trapezoid values 9.1033618e-4 (N = 200) ... 9.1102787e-4 (N = 2000) "
       "approach it at second order";
   p.additional_references = {
-      {0.0009103361763707912, "J", "trapezoid", 200,
+      {0.0009103361763707912,
+       "J",
+       "trapezoid",
+       200,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), double_oscillator, Ipopt + JuMP, "
        "trapeze, grid_size 200, tol 1e-8"},
-      {0.0009109230332518871, "J", "trapezoid", 500,
+      {0.0009109230332518871,
+       "J",
+       "trapezoid",
+       500,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), double_oscillator, Ipopt + JuMP, "
        "trapeze, grid_size 500, tol 1e-8"},
-      {0.0009110069041873555, "J", "trapezoid", 1000,
+      {0.0009110069041873555,
+       "J",
+       "trapezoid",
+       1000,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), double_oscillator, Ipopt + JuMP, "
        "trapeze, grid_size 1000, tol 1e-8"},
-      {0.0009110278733863071, "J", "trapezoid", 2000,
+      {0.0009110278733863071,
+       "J",
+       "trapezoid",
+       2000,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), double_oscillator, Ipopt + JuMP, "
        "trapeze, grid_size 2000, tol 1e-8"},
   };

@@ -36,16 +36,28 @@ ProblemInfo ElectricVehicleProblemInfo() {
       "CTBenchmarks' trapezoid values 1228.69888 (N = 200) ... 1228.58148 (N = 2000) approach it "
       "at second order";
   p.additional_references = {
-      {1228.6988798308512, "J", "trapezoid", 200,
+      {1228.6988798308512,
+       "J",
+       "trapezoid",
+       200,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), electric_vehicle, Ipopt + JuMP, "
        "trapeze, grid_size 200, tol 1e-8"},
-      {1228.5992844813138, "J", "trapezoid", 500,
+      {1228.5992844813138,
+       "J",
+       "trapezoid",
+       500,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), electric_vehicle, Ipopt + JuMP, "
        "trapeze, grid_size 500, tol 1e-8"},
-      {1228.585040269533, "J", "trapezoid", 1000,
+      {1228.585040269533,
+       "J",
+       "trapezoid",
+       1000,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), electric_vehicle, Ipopt + JuMP, "
        "trapeze, grid_size 1000, tol 1e-8"},
-      {1228.581477701003, "J", "trapezoid", 2000,
+      {1228.581477701003,
+       "J",
+       "trapezoid",
+       2000,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), electric_vehicle, Ipopt + JuMP, "
        "trapeze, grid_size 2000, tol 1e-8"},
   };

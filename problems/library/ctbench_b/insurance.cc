@@ -43,10 +43,16 @@ ProblemInfo InsuranceProblemInfo() {
   // adaptive barrier of the peer's run reproduces the value (docs/problems/ctbench_b.md).
   p.reference_options = {{"mu_strategy", "adaptive"}};
   p.additional_references = {
-      {-2.0592143332578, "J", "trapezoid", 500,
+      {-2.0592143332578,
+       "J",
+       "trapezoid",
+       500,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), insurance, Ipopt + JuMP, trapeze, "
        "grid_size 500, tol 1e-8"},
-      {-2.05951147688163, "J", "trapezoid", 1000,
+      {-2.05951147688163,
+       "J",
+       "trapezoid",
+       1000,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), insurance, Ipopt + JuMP, trapeze, "
        "grid_size 1000, tol 1e-8"},
   };

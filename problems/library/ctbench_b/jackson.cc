@@ -33,10 +33,16 @@ ProblemInfo JacksonProblemInfo() {
   // adaptive barrier of the peer's run reproduces the value (docs/problems/ctbench_b.md).
   p.reference_options = {{"mu_strategy", "adaptive"}};
   p.additional_references = {
-      {-0.19182194736952385, "J", "trapezoid", 500,
+      {-0.19182194736952385,
+       "J",
+       "trapezoid",
+       500,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), jackson, Ipopt + JuMP, trapeze, "
        "grid_size 500, tol 1e-8 (objective reported as -x3(4))"},
-      {-0.19181482186966448, "J", "trapezoid", 2000,
+      {-0.19181482186966448,
+       "J",
+       "trapezoid",
+       2000,
        "CTBenchmarks.jl core-ubuntu-latest (2026-01-30), jackson, Ipopt + JuMP, trapeze, "
        "grid_size 2000, tol 1e-8 (objective reported as -x3(4))"},
   };
