@@ -793,7 +793,7 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
     }
   }
   d->dzl.setZero(nu, N);
-  d->dzu.setZero(nu, N);  // (no allocation once sized)
+  d->dzu.setZero(nu, N);
   for (int k = 0; k < N; ++k) {
     for (int j = 0; j < nu; ++j) {
       const double u = it_.U(j, k), du = d->dU(j, k);
@@ -811,12 +811,6 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
   return true;
 }
 
-// Ipopt's starting equality multipliers: the least-squares solution of the dual
-// infeasibility at the start (Wächter & Biegler, Sec. 3.6), i.e. the augmented system with the
-// identity in place of the Hessian, solved by the same recursion: with the slacks eliminated
-// (y = J_c w + v) it is the stage QP with Q_k = I + J_c^T J_c, q_k = grad f - z_l + z_u +
-// J_c^T v, no transition or terminal residuals. Discarded (zero) when its largest entry exceeds
-// 1000 (Ipopt's constr_mult_init_max) or the recursion fails.
 void RiccatiInteriorPoint::CondenseInequalities(int k, double mu, int n, Mat* H, Vec* g) {
   const StageEval& e = st_[k];
   const Vec& s = it_.s[k];
@@ -864,6 +858,12 @@ void RiccatiInteriorPoint::CondenseInequalities(int k, double mu, int n, Mat* H,
   }
 }
 
+// Ipopt's starting equality multipliers: the least-squares solution of the dual
+// infeasibility at the start (Wächter & Biegler, Sec. 3.6), i.e. the augmented system with the
+// identity in place of the Hessian, solved by the same recursion: with the slacks eliminated
+// (y = J_c w + v) it is the stage QP with Q_k = I + J_c^T J_c, q_k = grad f - z_l + z_u +
+// J_c^T v, no transition or terminal residuals. Discarded (zero) when its largest entry exceeds
+// 1000 (Ipopt's constr_mult_init_max) or the recursion fails.
 bool RiccatiInteriorPoint::StageBlocks(int k, const Mat& H, const Vec& g, RiccatiStage* q) const {
   const int N = S_.N, nx = S_.nx, nu = S_.nu;
   const StageEval& e = st_[k];

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "solvers/small_lu.h"
+#include "solvers/small_lu.h"  // SmallDim
 
 namespace ocpb {
 
@@ -70,9 +70,10 @@ void GemmNN(int m_runtime,
   }
 }
 
-// Cholesky factorization in place of the n x n matrix `a` (lower triangle read and written; L
-// with a^-1 on the diagonal is not stored: the diagonal holds L's). False when a pivot is not
-// positive or not finite (a is then partly overwritten).
+// Cholesky factorization a = L L^T in place of the n x n matrix `a`: its lower triangle, diagonal
+// included, is read and overwritten with L; the strict upper triangle is neither read nor
+// written. False when a pivot is not positive or not finite (a is then partly overwritten).
+// kN > 0 fixes n at compile time (small_lu.h's SmallDim), as in the kernels above.
 template <int kN = 0>
 bool CholeskyInPlace(double* a, int n_runtime) {
   const int n = SmallDim<kN>(n_runtime);
