@@ -10,6 +10,7 @@
 
 #include "core/option_binding.h"
 #include "core/timer.h"
+#include "solvers/all_finite.h"
 #include "solvers/riccati_kkt.h"
 #include "transcriptions/collocation_nlp.h"
 #include "transcriptions/registry.h"
@@ -77,6 +78,11 @@ constexpr double kRipInf = std::numeric_limits<double>::infinity();
 constexpr double kRipEps = std::numeric_limits<double>::epsilon();
 
 bool RipFinite(double v) { return std::isfinite(v); }
+
+template <class Derived>
+bool RipAllFinite(const Eigen::PlainObjectBase<Derived>& m) {
+  return AllFinite(m.data(), static_cast<int>(m.size()));
+}
 
 }  // namespace
 
@@ -167,7 +173,8 @@ class EulerStages {
     return k < N ? Eigen::Ref<const Vec>(it.U.col(k)) : Eigen::Ref<const Vec>(it.V);
   }
 
-  Values EvalValues(const Iterate& it) const;
+  // Values at `it` into `v` (its storage reused).
+  void EvalValues(const Iterate& it, Values* v) const;
   // First derivatives at every node; false when one is not finite.
   bool EvalDerivatives(const Iterate& it, std::vector<StageEval>* st, TerminalEval* te) const;
   // Lagrangian Hessians with the multipliers of `it` (sigma: objective scale).
@@ -187,6 +194,10 @@ class EulerStages {
 
   void ToIterate(const Vec& z, Iterate* it) const;
   Vec ToNlp(const Iterate& it) const;
+
+ private:
+  // Scratch of the evaluations (one EulerStages per solve, used by one thread).
+  mutable Vec f_scratch_, lam_scratch_, zero_scratch_;
 };
 
 std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::string* why_not) {
@@ -280,11 +291,12 @@ Vec EulerStages::ToNlp(const Iterate& it) const {
   return z;
 }
 
-EulerStages::Values EulerStages::EvalValues(const Iterate& it) const {
-  Values v;
+void EulerStages::EvalValues(const Iterate& it, Values* out) const {
+  Values& v = *out;
   v.c.resize(N + 1);
   v.defects.resize(nx, N);
-  Vec f(nx);
+  Vec& f = f_scratch_;
+  f.resize(nx);
   double J = 0.0;
   for (int k = 0; k < N; ++k) {
     const auto x = it.X.col(k);
@@ -315,10 +327,11 @@ EulerStages::Values EulerStages::EvalValues(const Iterate& it) const {
     v.psi.resize(npsi);
     ocp.TerminalConstraints(it.X.col(N), v.psi);
   }
+  if (!hard) v.psi.resize(0);
+  if (!copy) v.copy_row.resize(0);
   v.f = J;
-  v.ok = RipFinite(J) && v.defects.allFinite() && v.psi.allFinite() && v.copy_row.allFinite();
-  for (const Vec& c : v.c) v.ok = v.ok && c.allFinite();
-  return v;
+  v.ok = RipFinite(J) && RipAllFinite(v.defects) && RipAllFinite(v.psi) && RipAllFinite(v.copy_row);
+  for (const Vec& c : v.c) v.ok = v.ok && RipAllFinite(c);
 }
 
 bool EulerStages::EvalDerivatives(const Iterate& it,
@@ -349,17 +362,21 @@ bool EulerStages::EvalDerivatives(const Iterate& it,
       }
       for (int b = 0; b < nball; ++b) {
         const auto& B = balls[b];
-        const Vec d = u.segment(B.offset, B.size) - B.center;
-        s.c[nc + b] = d.squaredNorm() - B.radius * B.radius - relax_ball[b];
-        s.cu.block(nc + b, B.offset, 1, B.size) = 2.0 * d.transpose();
+        double d2 = 0.0;
+        for (int i = 0; i < B.size; ++i) {
+          const double d = u[B.offset + i] - B.center[i];
+          d2 += d * d;
+          s.cu(nc + b, B.offset + i) = 2.0 * d;
+        }
+        s.c[nc + b] = d2 - B.radius * B.radius - relax_ball[b];
       }
-      ok = ok && s.f.allFinite() && s.fx.allFinite() && s.fu.allFinite() && RipFinite(s.L) &&
-           s.Lx.allFinite() && s.Lu.allFinite();
+      ok = ok && RipAllFinite(s.f) && RipAllFinite(s.fx) && RipAllFinite(s.fu) && RipFinite(s.L) &&
+           RipAllFinite(s.Lx) && RipAllFinite(s.Lu);
     } else if (copy) {
       ocp.PathConstraintsJacobian(t[k], x, u, s.c, s.cx, s.cu);
       s.c.array() -= relax_path;
     }
-    ok = ok && s.c.allFinite() && s.cx.allFinite() && s.cu.allFinite();
+    ok = ok && RipAllFinite(s.c) && RipAllFinite(s.cx) && RipAllFinite(s.cu);
   }
   const auto xN = it.X.col(N);
   te->grad.resize(nx);
@@ -374,8 +391,8 @@ bool EulerStages::EvalDerivatives(const Iterate& it,
       te->grad += 2.0 * te->psix.transpose() * w.cwiseProduct(te->psi);
     }
   }
-  ok = ok && RipFinite(te->Phi) && te->grad.allFinite() && te->psi.allFinite() &&
-       te->psix.allFinite();
+  ok = ok && RipFinite(te->Phi) && RipAllFinite(te->grad) && RipAllFinite(te->psi) &&
+       RipAllFinite(te->psix);
   return ok;
 }
 
@@ -385,25 +402,26 @@ bool EulerStages::EvalHessians(const Iterate& it,
                                TerminalEval* te) const {
   auto& st = *stv;
   bool ok = true;
-  const Vec none;
+  Vec& lam_f = lam_scratch_;
   for (int k = 0; k <= N; ++k) {
     StageEval& s = st[k];
     if (k == N && !copy) break;
     s.H.resize(nx + nu, nx + nu);
     const auto x = it.X.col(k);
     const auto u = StageControl(it, k);
-    const Vec mu_path = nc > 0 ? Vec(it.y[k].head(nc)) : Vec::Zero(0);
+    const auto mu_path = it.y[k].head(nc);
     if (k < N) {
-      const Vec lam_f = -h[k] * it.lam.col(k);
+      lam_f = -h[k] * it.lam.col(k);
       ocp.PointHessian(t[k], x, u, sigma * h[k], lam_f, mu_path, s.H);
       for (int b = 0; b < nball; ++b) {
         const auto& B = balls[b];
         s.H.diagonal().segment(nx + B.offset, B.size).array() += 2.0 * it.y[k][nc + b];
       }
     } else {
-      ocp.PointHessian(t[k], x, u, 0.0, Vec::Zero(nx), mu_path, s.H);
+      zero_scratch_.setZero(nx);
+      ocp.PointHessian(t[k], x, u, 0.0, zero_scratch_, mu_path, s.H);
     }
-    ok = ok && s.H.allFinite();
+    ok = ok && RipAllFinite(s.H);
   }
   te->H.resize(nx, nx);
   const auto xN = it.X.col(N);
@@ -416,7 +434,7 @@ bool EulerStages::EvalHessians(const Iterate& it,
   if (!hard && ocp.num_terminal() > 0) {
     te->H += 2.0 * sigma * te->psix.transpose() * ocp.terminal_weights().asDiagonal() * te->psix;
   }
-  return ok && te->H.allFinite();
+  return ok && RipAllFinite(te->H);
 }
 
 void EulerStages::LagrangianGradient(const Iterate& it,
@@ -431,14 +449,32 @@ void EulerStages::LagrangianGradient(const Iterate& it,
   for (int k = 0; k < N; ++k) {
     const StageEval& s = st[k];
     const auto lam = it.lam.col(k);
-    auto gx = rx->col(k);
-    gx = sigma * h[k] * s.Lx - lam - h[k] * s.fx.transpose() * lam;
-    if (k > 0) gx += it.lam.col(k - 1);
-    auto gu = ru->col(k);
-    gu = sigma * h[k] * s.Lu - h[k] * s.fu.transpose() * lam;
-    if (ni(k) > 0) {
-      gx.noalias() += s.cx.transpose() * it.y[k];
-      gu.noalias() += s.cu.transpose() * it.y[k];
+    // Plain loops: the columns of f_x, f_u, c_x, c_u are a few entries long.
+    double* gx = rx->col(k).data();
+    double* gu = ru->col(k).data();
+    const double* l = lam.data();
+    const double* lp = k > 0 ? it.lam.col(k - 1).data() : nullptr;
+    const double sh = sigma * h[k];
+    const int m = ni(k);
+    const double* y = m > 0 ? it.y[k].data() : nullptr;
+    for (int j = 0; j < nx; ++j) {
+      const double* fj = s.fx.data() + static_cast<long>(j) * nx;
+      double d = 0.0;
+      for (int i = 0; i < nx; ++i) d += fj[i] * l[i];
+      double g = sh * s.Lx[j] - l[j] - h[k] * d;
+      if (lp != nullptr) g += lp[j];
+      const double* cj = s.cx.data() + static_cast<long>(j) * m;
+      for (int i = 0; i < m; ++i) g += cj[i] * y[i];
+      gx[j] = g;
+    }
+    for (int j = 0; j < nu; ++j) {
+      const double* fj = s.fu.data() + static_cast<long>(j) * nx;
+      double d = 0.0;
+      for (int i = 0; i < nx; ++i) d += fj[i] * l[i];
+      double g = sh * s.Lu[j] - h[k] * d;
+      const double* cj = s.cu.data() + static_cast<long>(j) * m;
+      for (int i = 0; i < m; ++i) g += cj[i] * y[i];
+      gu[j] = g;
     }
   }
   auto gN = rx->col(N);
@@ -446,7 +482,8 @@ void EulerStages::LagrangianGradient(const Iterate& it,
   if (hard && npsi > 0) gN.noalias() += te.psix.transpose() * it.nu;
   if (copy) {
     gN.noalias() += st[N].cx.transpose() * it.y[N];
-    *rv = st[N].cu.transpose() * it.y[N] + it.lamV;
+    *rv = it.lamV;
+    rv->noalias() += st[N].cu.transpose() * it.y[N];
     ru->col(N - 1) -= it.lamV;
   } else {
     rv->resize(0);
@@ -505,6 +542,10 @@ class RiccatiInteriorPoint {
   // last stage with the copy of u_{N-1} its identity rows. True on that stage. The right-hand
   // side b is the caller's (the Newton step's defects, or zero for the multiplier start).
   bool StageBlocks(int k, const Mat& H, const Vec& g, RiccatiStage* q) const;
+  // Adds stage k's inequalities with their slacks and multipliers eliminated to the (x, u)
+  // Hessian H and gradient g (n = nx + nu): J^T S^-1 V J and J^T (mu S^-1 e - kappa_d mu e +
+  // S^-1 V (c + s)), J = [c_x c_u].
+  void CondenseInequalities(int k, double mu, int n, Mat* H, Vec* g);
   NlpSolution Finish(SolveStatus status, const std::string& solver_status, std::string message);
 
   const EulerStages& S_;
@@ -522,6 +563,10 @@ class RiccatiInteriorPoint {
   RiccatiProblem qp_;
   RiccatiSolver riccati_;
   RiccatiSolution sol_;
+  // Workspace of BuildAndSolve (sized once).
+  Mat H_;
+  Vec g_, jd_, w_, r_;
+  std::vector<int> nonzero_;
   double delta_last_ = 0.0;
   int iterations_ = 0, regularizations_ = 0, factorizations_ = 0, trials_ = 0;
   double kkt_cpu_ = 0.0, callback_cpu_ = 0.0, mu_ = 0.1;
@@ -576,9 +621,11 @@ void RiccatiInteriorPoint::Measure(double mu) {
     if (s.size() == 0) continue;
     dual = std::max(dual, (it_.y[k] - it_.v[k]).lpNorm<Eigen::Infinity>());
     cv = std::max(cv, (vals_.c[k] + s).lpNorm<Eigen::Infinity>());
-    const Vec sv = s.cwiseProduct(it_.v[k]);
-    compl0 = std::max(compl0, sv.lpNorm<Eigen::Infinity>());
-    complmu = std::max(complmu, (sv.array() - mu).abs().maxCoeff());
+    for (int i = 0; i < s.size(); ++i) {
+      const double sv = s[i] * it_.v[k][i];
+      compl0 = std::max(compl0, std::abs(sv));
+      complmu = std::max(complmu, std::abs(sv - mu));
+    }
     mult_sum += it_.y[k].lpNorm<1>() + it_.v[k].lpNorm<1>();
     bound_sum += it_.v[k].lpNorm<1>();
     m += static_cast<int>(s.size());
@@ -624,37 +671,29 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
   for (int k = 0; k < N; ++k) {
     const StageEval& e = st_[k];
     RiccatiStage& q = qp_.stages[k];
-    Mat H = e.H;
-    Vec g(nx + nu);
-    g.head(nx) = sigma_ * S_.h[k] * e.Lx;
-    g.tail(nu) = sigma_ * S_.h[k] * e.Lu;
-    const Vec& s = it_.s[k];
-    if (s.size() > 0) {
-      Mat J(s.size(), nx + nu);
-      J << e.cx, e.cu;
-      const Vec sig = it_.v[k].cwiseQuotient(s);
-      const Vec rc = vals_.c[k] + s;
-      H.noalias() += J.transpose() * sig.asDiagonal() * J;
-      g.noalias() +=
-          J.transpose() *
-          ((mu * s.cwiseInverse()).array() - kKappaD * mu + sig.cwiseProduct(rc).array()).matrix();
-    }
+    // The stage's (x_k, u_k) Hessian and gradient with the slacks and bound multipliers
+    // eliminated, in the workspace H_, g_; then cut into Q, q, A, B.
+    H_ = e.H;
+    g_.resize(nx + nu);
+    g_.head(nx) = sigma_ * S_.h[k] * e.Lx;
+    g_.tail(nu) = sigma_ * S_.h[k] * e.Lu;
+    if (it_.s[k].size() > 0) CondenseInequalities(k, mu, nx + nu, &H_, &g_);
     for (int j = 0; j < nu; ++j) {
       const double u = it_.U(j, k);
       if (HasLb(j)) {
         const double dl = u - S_.lb[j];
-        H(nx + j, nx + j) += it_.zl(j, k) / dl;
-        g[nx + j] -= mu / dl;
-        if (!HasUb(j)) g[nx + j] += kKappaD * mu;
+        H_(nx + j, nx + j) += it_.zl(j, k) / dl;
+        g_[nx + j] -= mu / dl;
+        if (!HasUb(j)) g_[nx + j] += kKappaD * mu;
       }
       if (HasUb(j)) {
         const double du = S_.ub[j] - u;
-        H(nx + j, nx + j) += it_.zu(j, k) / du;
-        g[nx + j] += mu / du;
-        if (!HasLb(j)) g[nx + j] -= kKappaD * mu;
+        H_(nx + j, nx + j) += it_.zu(j, k) / du;
+        g_[nx + j] += mu / du;
+        if (!HasLb(j)) g_[nx + j] -= kKappaD * mu;
       }
     }
-    const bool last_copy = StageBlocks(k, H, g, &q);
+    const bool last_copy = StageBlocks(k, H_, g_, &q);
     q.b.resize(q.B.rows());
     q.b.head(nx) = -vals_.defects.col(k);
     if (last_copy) q.b.tail(nu) = -vals_.copy_row;
@@ -665,16 +704,8 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
   qp_.QN.topLeftCorner(nx, nx) = te_.H;
   qp_.qN.head(nx) = sigma_ * te_.grad;
   if (S_.copy) {
-    const StageEval& e = st_[N];
-    const Vec& s = it_.s[N];
-    Mat J(s.size(), nx + nu);
-    J << e.cx, e.cu;
-    const Vec sig = it_.v[N].cwiseQuotient(s);
-    const Vec rc = vals_.c[N] + s;
-    qp_.QN += e.H + J.transpose() * sig.asDiagonal() * J;
-    qp_.qN +=
-        J.transpose() *
-        ((mu * s.cwiseInverse()).array() - kKappaD * mu + sig.cwiseProduct(rc).array()).matrix();
+    qp_.QN += st_[N].H;
+    CondenseInequalities(N, mu, nxN, &qp_.QN, &qp_.qN);
   }
   qp_.C.setZero(S_.npsi, nxN);
   qp_.c.resize(S_.npsi);
@@ -713,7 +744,8 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
   }
 
   // The full direction.
-  d->dX.setZero(nx, N + 1);
+  d->dX.resize(nx, N + 1);
+  d->dX.col(0).setZero();
   d->dU.resize(nu, N);
   d->lam.resize(nx, N);
   for (int k = 0; k < N; ++k) {
@@ -741,14 +773,24 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
       continue;
     }
     const StageEval& e = st_[k];
-    const Vec du = k < N ? Vec(d->dU.col(k)) : d->dV;
-    const Vec Jd = e.cx * d->dX.col(k) + e.cu * du;
-    const Vec rc = vals_.c[k] + s;
-    const Vec sig = it_.v[k].cwiseQuotient(s);
-    const Vec mu_s = mu * s.cwiseInverse();
-    d->ds[k] = -rc - Jd;
-    d->dy[k] = (mu_s.array() - kKappaD * mu).matrix() - it_.y[k] + sig.cwiseProduct(rc + Jd);
-    d->dv[k] = mu_s - it_.v[k] - sig.cwiseProduct(d->ds[k]);
+    const auto du = k < N ? Eigen::Ref<const Vec>(d->dU.col(k)) : Eigen::Ref<const Vec>(d->dV);
+    const int m = static_cast<int>(s.size());
+    Vec& Jd = jd_;
+    Jd.resize(m);
+    Jd.noalias() = e.cx * d->dX.col(k);
+    Jd.noalias() += e.cu * du;
+    d->ds[k].resize(m);
+    d->dy[k].resize(m);
+    d->dv[k].resize(m);
+    for (int i = 0; i < m; ++i) {
+      const double rc = vals_.c[k][i] + s[i];
+      const double sig = it_.v[k][i] / s[i];
+      const double mu_s = mu / s[i];
+      const double ds = -rc - Jd[i];
+      d->ds[k][i] = ds;
+      d->dy[k][i] = (mu_s - kKappaD * mu) - it_.y[k][i] + sig * (rc + Jd[i]);
+      d->dv[k][i] = mu_s - it_.v[k][i] - sig * ds;
+    }
   }
   d->dzl.setZero(nu, N);
   d->dzu.setZero(nu, N);
@@ -767,6 +809,53 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
   }
   kkt_cpu_ += CpuSeconds() - cpu0;
   return true;
+}
+
+void RiccatiInteriorPoint::CondenseInequalities(int k, double mu, int n, Mat* H, Vec* g) {
+  const StageEval& e = st_[k];
+  const Vec& s = it_.s[k];
+  const int m = static_cast<int>(s.size());
+  const int nx = S_.nx;
+  w_.resize(m);
+  r_.resize(m);
+  for (int i = 0; i < m; ++i) {
+    const double sig = it_.v[k][i] / s[i];
+    w_[i] = sig;
+    r_[i] = mu / s[i] - kKappaD * mu + sig * (vals_.c[k][i] + s[i]);
+  }
+  const auto column = [&](int j) {
+    return j < nx ? e.cx.data() + static_cast<long>(j) * m
+                  : e.cu.data() + static_cast<long>(j - nx) * m;
+  };
+  // Only the columns of J with a nonzero entry contribute (a ball's row has them in its own
+  // controls only).
+  nonzero_.clear();
+  for (int j = 0; j < n; ++j) {
+    const double* cj = column(j);
+    for (int l = 0; l < m; ++l) {
+      if (cj[l] != 0.0) {
+        nonzero_.push_back(j);
+        break;
+      }
+    }
+  }
+  Mat& Hm = *H;
+  const int nnz = static_cast<int>(nonzero_.size());
+  for (int b = 0; b < nnz; ++b) {
+    const int j = nonzero_[b];
+    const double* cj = column(j);
+    double gj = 0.0;
+    for (int l = 0; l < m; ++l) gj += cj[l] * r_[l];
+    (*g)[j] += gj;
+    for (int a = b; a < nnz; ++a) {
+      const int i = nonzero_[a];
+      const double* ci = column(i);
+      double v = 0.0;
+      for (int l = 0; l < m; ++l) v += ci[l] * w_[l] * cj[l];
+      Hm(i, j) += v;
+      if (i != j) Hm(j, i) += v;
+    }
+  }
 }
 
 // Ipopt's starting equality multipliers: the least-squares solution of the dual
@@ -882,7 +971,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   }
   if (S_.copy) it_.V = it_.U.col(N - 1);
   double cpu0 = CpuSeconds();
-  vals_ = S_.EvalValues(it_);
+  S_.EvalValues(it_, &vals_);
   callback_cpu_ += CpuSeconds() - cpu0;
   if (!vals_.ok) {
     return Finish(SolveStatus::kNumericalFailure,
@@ -935,6 +1024,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   std::vector<std::pair<double, double>> filter;
   Direction d;
   Iterate trial;
+  Values tv;  // a trial point's values
 
   for (;;) {
     cpu0 = CpuSeconds();
@@ -1043,17 +1133,22 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     const bool tiny = rel < 10.0 * kRipEps && theta < 1e-4;
 
     double alpha = alpha_max;
-    Values tv;
     bool accepted = false, f_type = false;
+    // A trial point's primal variables (the only part of it the line search reads), written
+    // in place from it_ and the direction; swapped into it_ on acceptance.
+    trial.s.resize(N + 1);
     for (int backtracks = 0;; ++backtracks) {
       ++trials_;
-      trial = it_;
-      trial.X += alpha * d.dX;
-      trial.U += alpha * d.dU;
-      if (S_.copy) trial.V += alpha * d.dV;
-      for (int k = 0; k <= N; ++k) trial.s[k] += alpha * d.ds[k];
+      trial.X = it_.X + alpha * d.dX;
+      trial.U = it_.U + alpha * d.dU;
+      if (S_.copy) {
+        trial.V = it_.V + alpha * d.dV;
+      } else {
+        trial.V.resize(0);
+      }
+      for (int k = 0; k <= N; ++k) trial.s[k] = it_.s[k] + alpha * d.ds[k];
       cpu0 = CpuSeconds();
-      tv = S_.EvalValues(trial);
+      S_.EvalValues(trial, &tv);
       callback_cpu_ += CpuSeconds() - cpu0;
       if (tiny) {
         accepted = tv.ok;
@@ -1100,10 +1195,10 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     if (!f_type) filter.emplace_back((1.0 - kGammaTheta) * theta, phi - kGammaPhi * theta);
 
     // Accept: primal and equality multipliers with alpha, bound multipliers with alpha_z.
-    it_.X = trial.X;
-    it_.U = trial.U;
-    it_.V = trial.V;
-    it_.s = trial.s;
+    it_.X.swap(trial.X);
+    it_.U.swap(trial.U);
+    it_.V.swap(trial.V);
+    it_.s.swap(trial.s);
     it_.lam += alpha * (d.lam - it_.lam);
     if (S_.copy) it_.lamV += alpha * (d.lamV - it_.lamV);
     if (S_.npsi > 0) it_.nu += alpha * (d.nu - it_.nu);
@@ -1130,7 +1225,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
         }
       }
     }
-    vals_ = std::move(tv);
+    std::swap(vals_, tv);
     ++iterations_;
     cpu0 = CpuSeconds();
     ok = S_.EvalDerivatives(it_, &st_, &te_);
@@ -1291,7 +1386,8 @@ bool EulerStageLagrangian(const TranscribedNlp& nlp,
   }
   it.nu = S->npsi > 0 ? Vec(lambda.segment(S->nlp.terminal_row_begin(), S->npsi)) : Vec();
   it.lamV = Vec::Zero(S->copy ? nu : 0);
-  const Values v = S->EvalValues(it);
+  Values v;
+  S->EvalValues(it, &v);
   std::vector<StageEval> st;
   TerminalEval te;
   if (!v.ok || !S->EvalDerivatives(it, &st, &te) || !S->EvalHessians(it, 1.0, &st, &te)) {

@@ -1,10 +1,265 @@
 #include "solvers/riccati_kkt.h"
 
 #include <algorithm>
+#include <cmath>
 
-#include <Eigen/Cholesky>
+#include "solvers/small_lu.h"  // SmallDim
 
 namespace ocpb {
+
+namespace {
+
+// Plain-loop kernels on column-major storage with leading dimensions. The stage blocks are a
+// few rows and columns (nx + nu ~ 2..12): Eigen's dynamic-size products and triangular solves
+// spend more in dispatch, blocking and temporaries than in the arithmetic there, so the
+// recursion uses these, writing into the solver's workspace.
+
+// C (m x n) = beta C + alpha A^T B, A: k x m, B: k x n. beta == 0 does not read C.
+template <int kM = 0, int kN = 0, int kK = 0>
+void GemmTN(int m_runtime,
+            int n_runtime,
+            int k_runtime,
+            double alpha,
+            const double* A,
+            int lda,
+            const double* B,
+            int ldb,
+            double beta,
+            double* C,
+            int ldc) {
+  const int m = SmallDim<kM>(m_runtime), n = SmallDim<kN>(n_runtime), k = SmallDim<kK>(k_runtime);
+  for (int j = 0; j < n; ++j) {
+    const double* b = B + static_cast<long>(j) * ldb;
+    double* c = C + static_cast<long>(j) * ldc;
+    for (int i = 0; i < m; ++i) {
+      const double* a = A + static_cast<long>(i) * lda;
+      double s = 0.0;
+      for (int l = 0; l < k; ++l) s += a[l] * b[l];
+      c[i] = beta == 0.0 ? alpha * s : beta * c[i] + alpha * s;
+    }
+  }
+}
+
+// C (m x n) = beta C + alpha A B, A: m x k, B: k x n. beta == 0 does not read C.
+template <int kM = 0, int kN = 0, int kK = 0>
+void GemmNN(int m_runtime,
+            int n_runtime,
+            int k_runtime,
+            double alpha,
+            const double* A,
+            int lda,
+            const double* B,
+            int ldb,
+            double beta,
+            double* C,
+            int ldc) {
+  const int m = SmallDim<kM>(m_runtime), n = SmallDim<kN>(n_runtime), k = SmallDim<kK>(k_runtime);
+  for (int j = 0; j < n; ++j) {
+    double* c = C + static_cast<long>(j) * ldc;
+    if (beta == 0.0) {
+      for (int i = 0; i < m; ++i) c[i] = 0.0;
+    } else if (beta != 1.0) {
+      for (int i = 0; i < m; ++i) c[i] *= beta;
+    }
+    const double* b = B + static_cast<long>(j) * ldb;
+    for (int l = 0; l < k; ++l) {
+      const double t = alpha * b[l];
+      const double* a = A + static_cast<long>(l) * lda;
+      for (int i = 0; i < m; ++i) c[i] += t * a[i];
+    }
+  }
+}
+
+// Cholesky factorization a = L L^T in place of the n x n matrix `a`: its lower triangle, diagonal
+// included, is read and overwritten with L; the strict upper triangle is neither read nor
+// written. False when a pivot is not positive or not finite (a is then partly overwritten).
+// kN > 0 fixes n at compile time (small_lu.h's SmallDim), as in the kernels above.
+template <int kN = 0>
+bool CholeskyInPlace(double* a, int n_runtime) {
+  const int n = SmallDim<kN>(n_runtime);
+  for (int j = 0; j < n; ++j) {
+    double* cj = a + static_cast<long>(j) * n;
+    double d = cj[j];
+    for (int l = 0; l < j; ++l)
+      d -= a[j + static_cast<long>(l) * n] * a[j + static_cast<long>(l) * n];
+    if (!(d > 0.0) || !std::isfinite(d)) return false;
+    d = std::sqrt(d);
+    cj[j] = d;
+    for (int i = j + 1; i < n; ++i) {
+      double s = cj[i];
+      for (int l = 0; l < j; ++l) {
+        s -= a[i + static_cast<long>(l) * n] * a[j + static_cast<long>(l) * n];
+      }
+      cj[i] = s / d;
+    }
+  }
+  return true;
+}
+
+// X (n x m, leading dimension ldx) <- -(L L^T)^-1 X for the Cholesky factor in `l` (n x n).
+template <int kN = 0, int kM = 0>
+void CholeskySolveNegated(const double* l, int n_runtime, double* X, int m_runtime, int ldx) {
+  const int n = SmallDim<kN>(n_runtime), m = SmallDim<kM>(m_runtime);
+  for (int c = 0; c < m; ++c) {
+    double* x = X + static_cast<long>(c) * ldx;
+    for (int i = 0; i < n; ++i) {  // L y = x
+      double s = x[i];
+      for (int j = 0; j < i; ++j) s -= l[i + static_cast<long>(j) * n] * x[j];
+      x[i] = s / l[i + static_cast<long>(i) * n];
+    }
+    for (int i = n - 1; i >= 0; --i) {  // L^T z = y
+      double s = x[i];
+      for (int j = i + 1; j < n; ++j) s -= l[j + static_cast<long>(i) * n] * x[j];
+      x[i] = s / l[i + static_cast<long>(i) * n];
+    }
+    for (int i = 0; i < n; ++i) x[i] = -x[i];
+  }
+}
+
+// Calls `f.template operator()<kNx, kNu>()` with the stage dimensions as compile-time constants
+// for nx in 1..8 and nu in 1..4 (the registered problems' sizes, robot-arm's 7 and 4 with its
+// free-time scaling included), else `f.template operator()<0, 0>()` (run-time sizes): the
+// kernels' loops unroll at the sizes that occur (a wider range than solvers/small_dims.h's).
+template <class F>
+bool WithStageDims(int nx, int nu, F&& f) {
+  auto by_nu = [&]<int kNx>() {
+    switch (nu) {
+      case 1:
+        return f.template operator()<kNx, 1>();
+      case 2:
+        return f.template operator()<kNx, 2>();
+      case 3:
+        return f.template operator()<kNx, 3>();
+      case 4:
+        return f.template operator()<kNx, 4>();
+      default:
+        return f.template operator()<0, 0>();
+    }
+  };
+  switch (nx) {
+    case 1:
+      return by_nu.template operator()<1>();
+    case 2:
+      return by_nu.template operator()<2>();
+    case 3:
+      return by_nu.template operator()<3>();
+    case 4:
+      return by_nu.template operator()<4>();
+    case 5:
+      return by_nu.template operator()<5>();
+    case 6:
+      return by_nu.template operator()<6>();
+    case 7:
+      return by_nu.template operator()<7>();
+    case 8:
+      return by_nu.template operator()<8>();
+    default:
+      return f.template operator()<0, 0>();
+  }
+}
+
+}  // namespace
+
+// One stage of the backward recursion: V_k from V_{k+1}, and the factors of u_k. kNx, kNu > 0
+// fix nx = nx_{k+1} and nu at compile time (the interior stages); 0 takes them at run time.
+// False (failed_stage_ set) when the inertia is wrong.
+template <int kNx, int kNu>
+bool RiccatiSolver::BackwardStage(const RiccatiStage& s, int k, double dw, int npsi) {
+  const int nx = SmallDim<kNx>(static_cast<int>(s.A.cols()));
+  const int nu = SmallDim<kNu>(static_cast<int>(s.B.cols()));
+  const int nn = SmallDim<kNx>(static_cast<int>(s.A.rows()));  // nx_{k+1}
+  const int nw = nx + nu;
+  const ValueFunction& vn = values_[k + 1];
+  const double* Q = s.Q.data();
+
+  // P [A B] and P b + p.
+  PW_.resize(nn, nw);
+  GemmNN<kNx, kNx, kNx>(nn, nx, nn, 1.0, vn.P.data(), nn, s.A.data(), nn, 0.0, PW_.data(), nn);
+  GemmNN<kNx, kNu, kNx>(
+      nn, nu, nn, 1.0, vn.P.data(), nn, s.B.data(), nn, 0.0, PW_.data() + nn * nx, nn);
+  Pbp_ = vn.p;
+  GemmNN<kNx, 1, kNx>(nn, 1, nn, 1.0, vn.P.data(), nn, s.b.data(), nn, 1.0, Pbp_.data(), nn);
+  // H = Q + [A B]^T P [A B] (+ dw I), the blocks that are used.
+  Hxx_.resize(nx, nx);
+  Hux_.resize(nu, nx);
+  Huu_.resize(nu, nu);
+  for (int j = 0; j < nx; ++j) {
+    for (int i = 0; i < nx; ++i) Hxx_(i, j) = Q[i + j * nw];
+    for (int i = 0; i < nu; ++i) Hux_(i, j) = Q[nx + i + j * nw];
+  }
+  for (int j = 0; j < nu; ++j) {
+    for (int i = 0; i < nu; ++i) Huu_(i, j) = Q[nx + i + (nx + j) * nw];
+  }
+  GemmTN<kNx, kNx, kNx>(nx, nx, nn, 1.0, s.A.data(), nn, PW_.data(), nn, 1.0, Hxx_.data(), nx);
+  GemmTN<kNu, kNx, kNx>(nu, nx, nn, 1.0, s.B.data(), nn, PW_.data(), nn, 1.0, Hux_.data(), nu);
+  GemmTN<kNu, kNu, kNx>(
+      nu, nu, nn, 1.0, s.B.data(), nn, PW_.data() + nn * nx, nn, 1.0, Huu_.data(), nu);
+  for (int i = 0; i < nx; ++i) Hxx_(i, i) += dw;
+  for (int i = 0; i < nu; ++i) Huu_(i, i) += dw;
+  gx_ = s.q.head(nx);
+  gu_ = s.q.tail(nu);
+  GemmTN<kNx, 1, kNx>(nx, 1, nn, 1.0, s.A.data(), nn, Pbp_.data(), nn, 1.0, gx_.data(), nx);
+  GemmTN<kNu, 1, kNx>(nu, 1, nn, 1.0, s.B.data(), nn, Pbp_.data(), nn, 1.0, gu_.data(), nu);
+  BE_.resize(nu, npsi);
+  GemmTN<kNu, 0, kNx>(nu, npsi, nn, 1.0, s.B.data(), nn, vn.E.data(), nn, 0.0, BE_.data(), nu);
+
+  // u_k = K x_k + k + M nu.
+  StageFactor& f = factors_[k];
+  f.K = Hux_;
+  f.k = gu_;
+  f.M = BE_;
+  if (nu > 0) {
+    L_ = Huu_;
+    if (CholeskyInPlace<kNu>(L_.data(), nu)) {
+      CholeskySolveNegated<kNu, kNx>(L_.data(), nu, f.K.data(), nx, nu);
+      CholeskySolveNegated<kNu, 1>(L_.data(), nu, f.k.data(), 1, nu);
+      CholeskySolveNegated<kNu, 0>(L_.data(), nu, f.M.data(), npsi, nu);
+    } else {
+      // H_uu is not positive definite. With terminal rows that may still be the right
+      // inertia (a direction of negative curvature the terminal rows remove): count the
+      // negative eigenvalues and go on with the symmetric eigendecomposition, unless H_uu is
+      // singular or more negative directions appear than there are terminal rows.
+      eig_.compute(Huu_);
+      const Vec& lam = eig_.eigenvalues();
+      const double scale = std::max(1.0, lam.cwiseAbs().maxCoeff());
+      const int neg = static_cast<int>((lam.array() < 0.0).count());
+      negative_ += neg;
+      if (eig_.info() != Eigen::Success || lam.cwiseAbs().minCoeff() <= 1e-12 * scale ||
+          negative_ > npsi) {
+        failed_stage_ = k;
+        return false;
+      }
+      const Mat& V = eig_.eigenvectors();
+      Hinv_.noalias() = V * lam.cwiseInverse().asDiagonal() * V.transpose();
+      GemmNN<kNu, kNx, kNu>(
+          nu, nx, nu, -1.0, Hinv_.data(), nu, Hux_.data(), nu, 0.0, f.K.data(), nu);
+      GemmNN<kNu, 1, kNu>(nu, 1, nu, -1.0, Hinv_.data(), nu, gu_.data(), nu, 0.0, f.k.data(), nu);
+      GemmNN<kNu, 0, kNu>(
+          nu, npsi, nu, -1.0, Hinv_.data(), nu, BE_.data(), nu, 0.0, f.M.data(), nu);
+    }
+  }
+  // V_k: P = sym(H_xx + H_ux^T K), p = g_x + H_ux^T k, E = A^T E + H_ux^T M, and the
+  // parameter's e += E^T b + (B^T E)^T k, G += (B^T E)^T M.
+  ValueFunction& v = values_[k];
+  v.P = Hxx_;
+  GemmTN<kNx, kNx, kNu>(nx, nx, nu, 1.0, Hux_.data(), nu, f.K.data(), nu, 1.0, v.P.data(), nx);
+  for (int j = 0; j < nx; ++j) {
+    for (int i = j + 1; i < nx; ++i) {
+      const double m = 0.5 * (v.P(i, j) + v.P(j, i));
+      v.P(i, j) = m;
+      v.P(j, i) = m;
+    }
+  }
+  v.p = gx_;
+  GemmTN<kNx, 1, kNu>(nx, 1, nu, 1.0, Hux_.data(), nu, f.k.data(), nu, 1.0, v.p.data(), nx);
+  GemmTN<0, 1, kNx>(npsi, 1, nn, 1.0, vn.E.data(), nn, s.b.data(), nn, 1.0, e_.data(), npsi);
+  GemmTN<0, 1, kNu>(npsi, 1, nu, 1.0, BE_.data(), nu, f.k.data(), nu, 1.0, e_.data(), npsi);
+  GemmTN<0, 0, kNu>(npsi, npsi, nu, 1.0, BE_.data(), nu, f.M.data(), nu, 1.0, G_.data(), npsi);
+  v.E.resize(nx, npsi);
+  GemmTN<kNx, 0, kNx>(nx, npsi, nn, 1.0, s.A.data(), nn, vn.E.data(), nn, 0.0, v.E.data(), nx);
+  GemmTN<kNx, 0, kNu>(nx, npsi, nu, 1.0, Hux_.data(), nu, f.M.data(), nu, 1.0, v.E.data(), nx);
+  return true;
+}
 
 RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
                                     double dw,
@@ -15,92 +270,45 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
   failed_stage_ = -1;
   negative_ = 0;
   factors_.resize(N);
-  values_.resize(N);
+  values_.resize(N + 1);
 
   // V_N.
   const int nxN = static_cast<int>(problem.QN.rows());
-  Mat P = problem.QN;
-  P.diagonal().array() += dw;
-  Vec p = problem.qN;
-  // C is npsi x nxN; a caller without terminal rows may leave it empty (0 x 0).
-  Mat E = npsi > 0 ? Mat(problem.C.transpose()) : Mat::Zero(nxN, 0);
-  Vec e = problem.c;
-  Mat G = Mat::Zero(npsi, npsi);
+  {
+    ValueFunction& v = values_[N];
+    v.P = problem.QN;
+    v.P.diagonal().array() += dw;
+    v.p = problem.qN;
+    // C is npsi x nxN; a caller without terminal rows may leave it empty (0 x 0).
+    v.E.resize(nxN, npsi);
+    if (npsi > 0) v.E = problem.C.transpose();
+  }
+  e_ = problem.c;
+  G_.setZero(npsi, npsi);
 
-  Eigen::LLT<Mat> llt;
   for (int k = N - 1; k >= 0; --k) {
     const RiccatiStage& s = problem.stages[k];
     const int nx = static_cast<int>(s.A.cols());
     const int nu = static_cast<int>(s.B.cols());
-    ValueFunction& v = values_[k];
-    v.P = P;
-    v.p = p;
-    v.E = E;
-
-    const Vec Pb_p = P * s.b + p;
-    const Mat PA = P * s.A;
-    const Mat PB = P * s.B;
-    Mat Hxx = s.Q.topLeftCorner(nx, nx) + s.A.transpose() * PA;
-    Mat Hux = s.Q.bottomLeftCorner(nu, nx) + s.B.transpose() * PA;
-    Mat Huu = s.Q.bottomRightCorner(nu, nu) + s.B.transpose() * PB;
-    Hxx.diagonal().array() += dw;
-    Huu.diagonal().array() += dw;
-    const Vec gx = s.q.head(nx) + s.A.transpose() * Pb_p;
-    const Vec gu = s.q.tail(nu) + s.B.transpose() * Pb_p;
-    const Mat BE = s.B.transpose() * E;  // nu x npsi
-
-    StageFactor& f = factors_[k];
-    if (nu > 0) {
-      llt.compute(Huu);
-      if (llt.info() == Eigen::Success) {
-        // (Eigen's triangular solve must not see a right-hand side without columns.)
-        f.K = nx > 0 ? Mat(-llt.solve(Hux)) : Mat(nu, 0);
-        f.k = -llt.solve(gu);
-        f.M = npsi > 0 ? Mat(-llt.solve(BE)) : Mat(nu, 0);
-      } else {
-        // H_uu is not positive definite. With terminal rows that may still be the right
-        // inertia (a direction of negative curvature the terminal rows remove): count the
-        // negative eigenvalues and go on with the symmetric eigendecomposition, unless H_uu is
-        // singular or more negative directions appear than there are terminal rows.
-        eig_.compute(Huu);
-        const Vec& lam = eig_.eigenvalues();
-        const double scale = std::max(1.0, lam.cwiseAbs().maxCoeff());
-        const int neg = static_cast<int>((lam.array() < 0.0).count());
-        negative_ += neg;
-        if (eig_.info() != Eigen::Success || lam.cwiseAbs().minCoeff() <= 1e-12 * scale ||
-            negative_ > npsi) {
-          failed_stage_ = k;
-          return RiccatiOutcome::kNotPositiveDefinite;
-        }
-        const Mat& V = eig_.eigenvectors();
-        const Mat Hinv = V * lam.cwiseInverse().asDiagonal() * V.transpose();
-        f.K = -Hinv * Hux;
-        f.k = -Hinv * gu;
-        f.M = -Hinv * BE;
-      }
-    } else {
-      f.K = Mat::Zero(0, nx);
-      f.k = Vec::Zero(0);
-      f.M = Mat::Zero(0, npsi);
-    }
-    // V_k.
-    Mat Pk = Hxx + Hux.transpose() * f.K;
-    P = 0.5 * (Pk + Pk.transpose());
-    p = gx + Hux.transpose() * f.k;
-    e = e + E.transpose() * s.b + BE.transpose() * f.k;
-    G = G + BE.transpose() * f.M;
-    E = s.A.transpose() * E + Hux.transpose() * f.M;
+    const bool ok = s.A.rows() == nx
+                        ? WithStageDims(nx,
+                                        nu,
+                                        [&]<int kNx, int kNu>() {
+                                          return BackwardStage<kNx, kNu>(s, k, dw, npsi);
+                                        })
+                        : BackwardStage<0, 0>(s, k, dw, npsi);
+    if (!ok) return RiccatiOutcome::kNotPositiveDefinite;
   }
 
   // The terminal multiplier from the final Schur complement.
-  Vec nu = Vec::Zero(npsi);
+  nu_.setZero(npsi);
   if (npsi > 0) {
-    Mat S = -(G + G.transpose()) * 0.5;
-    S.diagonal().array() += dc;
+    S_ = -0.5 * (G_ + G_.transpose());
+    S_.diagonal().array() += dc;
     // The inertia of the whole KKT matrix is that of the dynamics pairs, plus the H_uu's, plus
     // that of G_0 - dc I (Haynsworth): it is right when -(G_0 - dc I) has exactly as many
     // negative eigenvalues as the H_uu's had, and no zero one.
-    eig_.compute(S);
+    eig_.compute(S_);
     const Vec& lam = eig_.eigenvalues();
     const double scale = std::max(1.0, lam.cwiseAbs().maxCoeff());
     if (eig_.info() != Eigen::Success || lam.cwiseAbs().minCoeff() <= 1e-13 * scale) {
@@ -111,10 +319,26 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
       return RiccatiOutcome::kNotPositiveDefinite;
     }
     const Mat& V = eig_.eigenvectors();
-    Vec rhs = e;
-    if (problem.x0.size() > 0) rhs += E.transpose() * problem.x0;
-    nu = V * (V.transpose() * rhs).cwiseQuotient(lam);  // (G - dc I) nu = -rhs <=> S nu = rhs
+    rhs_ = e_;
+    const int nx0 = static_cast<int>(problem.x0.size());
+    if (nx0 > 0) {
+      GemmTN(npsi,
+             1,
+             nx0,
+             1.0,
+             values_[0].E.data(),
+             nx0,
+             problem.x0.data(),
+             nx0,
+             1.0,
+             rhs_.data(),
+             npsi);
+    }
+    // (G - dc I) nu = -rhs <=> S nu = rhs.
+    nu_.noalias() = V * (V.transpose() * rhs_).cwiseQuotient(lam);
   }
+  solution->nu = nu_;
+  const double* nu = nu_.data();
 
   // Forward sweep.
   solution->x.resize(N + 1);
@@ -124,21 +348,25 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
   for (int k = 0; k < N; ++k) {
     const RiccatiStage& s = problem.stages[k];
     const StageFactor& f = factors_[k];
+    const ValueFunction& vn = values_[k + 1];
+    const int nx = static_cast<int>(s.A.cols());
+    const int nu_k = static_cast<int>(s.B.cols());
+    const int nn = static_cast<int>(s.A.rows());
     const Vec& xk = solution->x[k];
-    Vec uk = f.k;
-    if (xk.size() > 0) uk.noalias() += f.K * xk;
-    if (npsi > 0) uk.noalias() += f.M * nu;
-    Vec xn = s.b;
-    if (xk.size() > 0) xn.noalias() += s.A * xk;
-    if (uk.size() > 0) xn.noalias() += s.B * uk;
-    const ValueFunction& v = values_[k];
-    Vec lam = v.P * xn + v.p;
-    if (npsi > 0) lam.noalias() += v.E * nu;
-    solution->u[k] = std::move(uk);
-    solution->lambda[k] = -lam;
-    solution->x[k + 1] = std::move(xn);
+    Vec& uk = solution->u[k];
+    Vec& xn = solution->x[k + 1];
+    Vec& lam = solution->lambda[k];
+    uk = f.k;
+    GemmNN(nu_k, 1, nx, 1.0, f.K.data(), nu_k, xk.data(), nx, 1.0, uk.data(), nu_k);
+    GemmNN(nu_k, 1, npsi, 1.0, f.M.data(), nu_k, nu, npsi, 1.0, uk.data(), nu_k);
+    xn = s.b;
+    GemmNN(nn, 1, nx, 1.0, s.A.data(), nn, xk.data(), nx, 1.0, xn.data(), nn);
+    GemmNN(nn, 1, nu_k, 1.0, s.B.data(), nn, uk.data(), nu_k, 1.0, xn.data(), nn);
+    lam = vn.p;
+    GemmNN(nn, 1, nn, 1.0, vn.P.data(), nn, xn.data(), nn, 1.0, lam.data(), nn);
+    GemmNN(nn, 1, npsi, 1.0, vn.E.data(), nn, nu, npsi, 1.0, lam.data(), nn);
+    for (int i = 0; i < nn; ++i) lam[i] = -lam[i];
   }
-  solution->nu = nu;
   return RiccatiOutcome::kSolved;
 }
 

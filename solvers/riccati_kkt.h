@@ -88,19 +88,31 @@ class RiccatiSolver {
   int failed_stage() const { return failed_stage_; }
 
  private:
+  template <int kNx, int kNu>
+  bool BackwardStage(const RiccatiStage& s, int k, double dw, int npsi);
+
+  // The workspace, sized on the first call and reused (no heap allocation once the stage
+  // dimensions repeat): per stage the factors u_k = K x_k + k + M nu, and the cost-to-go of every
+  // stage (values_[k] = V_k, k = 0..N; V_k is written by stage k from V_{k+1}).
   struct StageFactor {
     Mat K, M;  // nu x nx, nu x npsi
     Vec k;     // nu
   };
   struct ValueFunction {
-    Mat P, E;
+    Mat P, E;  // nx_k x nx_k, nx_k x npsi
     Vec p;
   };
   std::vector<StageFactor> factors_;
-  std::vector<ValueFunction> values_;  // V_1 .. V_N (index k+1 -> values_[k])
+  std::vector<ValueFunction> values_;
+  // One stage's scratch: P [A B] (nx_{k+1} x (nx + nu)), P b + p, the blocks H_xx, H_ux, H_uu,
+  // the gradients g_x, g_u, B^T E, and the Cholesky factor of H_uu.
+  Mat PW_, Hxx_, Hux_, Huu_, BE_, L_;
+  Vec Pbp_, gx_, gu_, e_, rhs_, nu_;
+  Mat G_, S_;
   int failed_stage_ = -1;
   int negative_ = 0;  // negative eigenvalues of the H_uu's so far
   Eigen::SelfAdjointEigenSolver<Mat> eig_;
+  Mat Hinv_;
 };
 
 }  // namespace ocpb

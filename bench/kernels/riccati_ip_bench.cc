@@ -1,6 +1,6 @@
 // riccati-ip against Ipopt + MUMPS on the same Euler NLP (hard terminal form, the same start,
-// tol 1e-8): whole solves through the registered solvers, at N = 100 and 400. Results and
-// command: solvers/README-riccati-ip.md.
+// tol 1e-8): whole solves through the registered solvers, at N = 100, 400, 1600 and 6400.
+// Results and command: solvers/README-riccati-ip.md.
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -67,7 +67,7 @@ void BM_RiccatiIpVsIpopt(benchmark::State& state) {
 }
 BENCHMARK(BM_RiccatiIpVsIpopt)
     ->ArgNames({"problem", "N", "solver"})
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {100, 400}, {0, 1}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {100, 400, 1600, 6400}, {0, 1}})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
