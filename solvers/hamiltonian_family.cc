@@ -154,10 +154,11 @@ HamiltonianTarget ResolveFamilyTarget(const std::string& name,
                     ": the polish (Newton on the Euler maximum principle) needs "
                     "scheme=euler");
     }
-    if (request.terminal == TerminalMode::kHard || path_al) {
+    if (path_al) {
       return refuse(scheme +
-                    ": the augmented-Lagrangian loop (hard terminal form, path "
-                    "constraints by the loop) needs scheme=euler; the penalty form runs");
+                    ": path constraints by the augmented-Lagrangian loop need "
+                    "scheme=euler (the loop's path multipliers pair with the grid's "
+                    "intervals; path = reformulation runs)");
     }
   }
   if (t.ocp->free_final_time() && request.integrator != Integrator::kEuler) {
@@ -330,13 +331,22 @@ bool Polish(const FamilyRun& run,
 }
 
 // The family's descent on a Runge-Kutta scheme with one control per stage (scheme rk2, rk4;
-// ResolveFamilyTarget left the penalty form without the outer loop, polish or free time).
+// ResolveFamilyTarget left no polish, free time or path constraints for the outer loop): the
+// penalty form, or the hard terminal form by the outer loop on the terminal multipliers.
 GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
   const HamiltonianFamilyOptions& o = run.o;
   const Stopwatch& clock = run.clock;
   const double cpu_start = clock.cpu();
   const Ocp& problem = *run.target.ocp;
-  const StageRkOcp srk(problem, request.grid, SchemeTableau(o.scheme), TerminalMode::kPenalty);
+  const bool use_al = request.terminal == TerminalMode::kHard;
+  std::unique_ptr<AugmentedLagrangianOcp> al;
+  if (use_al) al = std::make_unique<AugmentedLagrangianOcp>(problem, request.grid);
+  const Ocp& descended = use_al ? static_cast<const Ocp&>(*al) : problem;
+  const StageRkOcp srk(descended,
+                       request.grid,
+                       SchemeTableau(o.scheme),
+                       use_al ? TerminalMode::kHard : TerminalMode::kPenalty);
+  // The outer loop changes the terminal cost only: the problem's proximal minimizer holds.
   StageDescentPasses passes(srk, dynamic_cast<const ProximalHamiltonianMinimizer*>(&problem));
   // The initial control of each interval at every one of its stages.
   const Mat U0 = request.initial_guess ? request.initial_guess->SampleIntervals(request.grid)
@@ -361,8 +371,25 @@ GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
   GridSolve out;
   SolveResult& r = out.result;
   r.solver = run.name;
-  const DescentLoopOutcome outcome = RunDescentLoop(loop, clock, &passes, &r.history);
   auto& stats = r.solver_stats;
+  DescentLoopOutcome outcome;
+  if (use_al) {
+    const AugmentedLagrangianOutcome al_outcome =
+        RunAugmentedLagrangian(o.augmented_lagrangian, loop, clock, al.get(), &passes, &r.history);
+    outcome.stop = al_outcome.stop;
+    outcome.iterations = al_outcome.descent_iterations;
+    outcome.theta = al_outcome.theta;
+    outcome.have_costates = al_outcome.have_costates;
+    stats["outer_iterations"] = al_outcome.outer_iterations;
+    stats["terminal_residual"] = al_outcome.terminal_residual;
+    stats["path_violation"] = al_outcome.path_violation;
+    stats["penalty"] = al->rho();
+    for (int i = 0; i < al->terminal_multipliers().size(); ++i) {
+      stats["nu_" + std::to_string(i)] = al->terminal_multipliers()[i];
+    }
+  } else {
+    outcome = RunDescentLoop(loop, clock, &passes, &r.history);
+  }
   stats["descent_iterations"] = outcome.iterations;
   stats["descent_cpu_seconds"] = clock.cpu() - cpu_start;
   stats["final_theta"] = outcome.theta;
@@ -380,7 +407,10 @@ GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
   r.state_grid = request.grid;
   r.states = passes.X();
   if (outcome.have_costates) r.costates = passes.Lambda();
-  r.objective = passes.J();
+  // J of the problem in the request's terminal form (hard: no penalty, no multiplier terms).
+  r.objective = use_al ? StageRkOcp(problem, request.grid, srk.tableau(), request.terminal)
+                             .Simulate(passes.U(), nullptr)
+                       : passes.J();
   return out;
 }
 

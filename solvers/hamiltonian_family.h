@@ -26,9 +26,10 @@ struct HamiltonianFamilyOptions {
   /// Runge-Kutta scheme with one control per stage (StageRkOcp, Hager's transformed adjoint):
   /// kRk2 Heun (c = (0, 1), b = (1/2, 1/2)), kRk4 the classical one (b = (1/6, 1/3, 1/3, 1/6)),
   /// of order 2 and 4 for the control problem (RkTableau, HagerOrderConditions). With kRk2 and
-  /// kRk4 only the descent (either direction) in the penalty form: the augmented-Lagrangian
-  /// loop, the polish and a free final time are Euler's and report kNotApplicable naming the
-  /// option, as does a request integrator other than euler (the scheme replaces it).
+  /// kRk4 the descent (either direction) in the penalty form, and the hard terminal form by the
+  /// augmented-Lagrangian loop; the polish, a free final time and path constraints in the loop
+  /// are Euler's and report kNotApplicable naming the option, as does a request integrator
+  /// other than euler (the scheme replaces it).
   enum class Scheme { kEuler, kRk2, kRk4 };
   enum class PathConstraints {
     kReformulation,        ///< Ocp::HamiltonianReformulation's penalty (the paper's method's)
@@ -196,11 +197,13 @@ struct HamiltonianFamilyOptions {
 /// discrete J); `iterations` counts every step taken, a failed sequence's included.
 ///
 /// With scheme = rk2 or rk4 (Options::Scheme) the descent runs on the stage controls of that
-/// Runge-Kutta scheme (StageDescentPasses) in the penalty form: the result's controls are a
+/// Runge-Kutta scheme (StageDescentPasses), in the hard form inside the outer loop (terminal
+/// multipliers only): the result's controls are a
 /// custom trajectory, per interval the polynomial through the stage controls at their abscissae
 /// c_i (stages with equal c averaged: Heun linear, RK4 quadratic through 0, 1/2, 1), projected
 /// onto U; states and costates are the scheme's nodes x_k and lambda_k; objective the scheme's
-/// discrete J; solver_stats add "scheme_stages" (s) and "stage_controls" (s N).
+/// discrete J (hard form: without penalty or multiplier terms); solver_stats add
+/// "scheme_stages" (s) and "stage_controls" (s N).
 ///
 /// Not applicable (kNotApplicable, reason in `message`): no Hamiltonian minimizer; path
 /// constraints left after the choice of `path`; a free final time with RK4; a polish with path

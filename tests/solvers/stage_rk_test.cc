@@ -231,12 +231,7 @@ TEST(HamiltonianFamilyScheme, NotApplicableCasesNameTheOption) {
   SolveRequest r;
   r.grid = TimeGrid::Uniform(di->t0(), di->tf(), 20);
   r.options = {{"scheme", "rk2"}};
-  r.terminal = TerminalMode::kHard;
-  SolveResult s = HamiltonianFamily(HamiltonianFamily::Preset::kAugmentedLagrangian).Solve(*di, r);
-  EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
-  EXPECT_NE(s.message.find("scheme=rk2"), std::string::npos) << s.message;
-  r.terminal = TerminalMode::kPenalty;
-  s = HamiltonianFamily(HamiltonianFamily::Preset::kPolish).Solve(*di, r);
+  SolveResult s = HamiltonianFamily(HamiltonianFamily::Preset::kPolish).Solve(*di, r);
   EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
   EXPECT_NE(s.message.find("scheme=rk2"), std::string::npos) << s.message;
   r.integrator = Integrator::kRk4;
@@ -250,6 +245,39 @@ TEST(HamiltonianFamilyScheme, NotApplicableCasesNameTheOption) {
   s = HamiltonianFamily(HamiltonianFamily::Preset::kProximal).Solve(*ft, r);
   EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
   EXPECT_NE(s.message.find("scheme=rk4"), std::string::npos) << s.message;
+  // Path constraints by the outer loop (hamiltonian-al's default path option).
+  const std::unique_ptr<Ocp> bd = MakeProblem("bryson-denham", {}, 0);
+  r = SolveRequest();
+  r.grid = TimeGrid::Uniform(bd->t0(), bd->tf(), 20);
+  r.options = {{"scheme", "rk4"}};
+  s = HamiltonianFamily(HamiltonianFamily::Preset::kAugmentedLagrangian).Solve(*bd, r);
+  EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(s.message.find("scheme=rk4"), std::string::npos) << s.message;
+}
+
+// The hard terminal form by the outer loop on the stage controls: the double integrator's
+// psi = x(1) = 0 to the loop's tolerance, J and the multipliers nu = p*(1) = (-12, 6) of the
+// continuous optimum (u* = 6 - 12t, J* = 6): RK4's J to 1e-6, Heun's within O(h^2).
+TEST(HamiltonianFamilyScheme, HardTerminalFormByTheOuterLoop) {
+  const std::unique_ptr<Ocp> di = MakeProblem("double-integrator", {}, 1);
+  for (const char* scheme : {"rk2", "rk4"}) {
+    SCOPED_TRACE(scheme);
+    SolveRequest r;
+    r.grid = TimeGrid::Uniform(di->t0(), di->tf(), 20);
+    r.terminal = TerminalMode::kHard;
+    r.options = {{"scheme", scheme}, {"max_iterations", "20000"}};
+    const SolveResult s =
+        HamiltonianFamily(HamiltonianFamily::Preset::kAugmentedLagrangian).Solve(*di, r);
+    ASSERT_EQ(s.status, SolveStatus::kConverged) << s.message;
+    EXPECT_EQ(s.solver_status, "al_converged");
+    EXPECT_LE(s.solver_stats.at("terminal_residual"), 1e-8);
+    // Heun at N = 20: J = 5.9701 (0.5% low); the multipliers to the loop's accuracy.
+    const bool rk4 = std::string(scheme) == "rk4";
+    EXPECT_NEAR(s.objective, 6.0, rk4 ? 1e-6 : 0.05);
+    const double relative = rk4 ? 1e-4 : 2e-2;
+    EXPECT_NEAR(s.solver_stats.at("nu_0"), -12.0, 12.0 * relative);
+    EXPECT_NEAR(s.solver_stats.at("nu_1"), 6.0, 6.0 * relative);
+  }
 }
 
 // The scheme's controls at its stages from a result's control trajectory (exact for Heun, whose
