@@ -207,7 +207,9 @@ struct HamiltonianFamilyOptions {
 ///
 /// Not applicable (kNotApplicable, reason in `message`): no Hamiltonian minimizer; path
 /// constraints left after the choice of `path`; a free final time with RK4; a polish with path
-/// constraints handled by the outer loop (Newton takes none).
+/// constraints handled by the outer loop (Newton takes none); with scheme rk2 or rk4 a polish, a
+/// free final time, path constraints in the outer loop or a request integrator other than euler
+/// (each message names the scheme).
 class HamiltonianFamily final : public Solver {
  public:
   using Options = HamiltonianFamilyOptions;
