@@ -57,7 +57,8 @@ double StageRkOcp::Simulate(const Mat& U, Mat* X, Mat* Y, double* running) const
   return std::isfinite(J) && x.allFinite() ? J : std::numeric_limits<double>::quiet_NaN();
 }
 
-void StageRkOcp::Adjoint(const Mat& U, const Mat& X, Mat* Lambda, Mat* Y, Mat* P, Mat* G) const {
+void StageRkOcp::Adjoint(
+    const Mat& U, const Mat& X, Mat* Lambda, Mat* Y, Mat* P, Mat* G, Vec* dJdh) const {
   const int nx = ocp_.nx(), nu = ocp_.nu(), s = stages(), N = intervals();
   if (U.rows() != nu || U.cols() != s * N || X.rows() != nx || X.cols() != N + 1) {
     throw std::invalid_argument("StageRkOcp::Adjoint: U must be nu x sN and X nx x (N+1)");
@@ -73,7 +74,8 @@ void StageRkOcp::Adjoint(const Mat& U, const Mat& X, Mat* Lambda, Mat* Y, Mat* P
   Mat K(nx, s), bar_y(nx, s);
   std::vector<Mat> fx(static_cast<size_t>(s), Mat(nx, nx)), fu(static_cast<size_t>(s), Mat(nx, nu));
   Mat Lx(nx, s), Lu(nu, s);
-  Vec bar_k(nx);
+  Vec bar_k(nx), Ls(s);
+  if (dJdh) dJdh->resize(N);
   for (int k = N - 1; k >= 0; --k) {
     const double h = grid_.h(k);
     // The stages again, with their derivatives.
@@ -87,6 +89,7 @@ void StageRkOcp::Adjoint(const Mat& U, const Mat& X, Mat* Lambda, Mat* Y, Mat* P
       const double t = StageTime(k, i);
       ocp_.DynamicsJacobian(t, y, U.col(col), K.col(i), fx[i], fu[i]);
       ocp_.RunningCostGradient(t, y, U.col(col), &L, Lx.col(i), Lu.col(i));
+      Ls[i] = L;
     }
     // Reverse through the stages: the cotangent of K_i is h b_i lambda_{k,i}.
     for (int i = s - 1; i >= 0; --i) {
@@ -100,6 +103,15 @@ void StageRkOcp::Adjoint(const Mat& U, const Mat& X, Mat* Lambda, Mat* Y, Mat* P
       // bar_y_i = h b_i H_x(stage i), dJ/du_{k,i} = h b_i H_u(stage i).
       bar_y.col(i) = w * (fx[i].transpose() * p + Lx.col(i));
       G->col(k * s + i) = w * (fu[i].transpose() * p + Lu.col(i));
+    }
+    if (dJdh) {
+      // lam is still lambda_{k+1}; bar_y_i = h b_i H_x(stage i).
+      double d = 0.0;
+      for (int i = 0; i < s; ++i) {
+        d += tableau_.b[static_cast<size_t>(i)] * (lam.dot(K.col(i)) + Ls[i]) +
+             bar_y.col(i).dot(Y->col(k * s + i) - X.col(k)) / h;
+      }
+      (*dJdh)[k] = d;
     }
     for (int i = 0; i < s; ++i) lam += bar_y.col(i);
     Lambda->col(k) = lam;

@@ -50,8 +50,16 @@ class StageRkOcp {
   double Simulate(const Mat& U, Mat* X, Mat* Y = nullptr, double* running = nullptr) const;
 
   /// At U with X from Simulate: node costates Lambda (nx x (N+1)), stage states Y and stage
-  /// costates P (nx x sN each) and the gradient G = dJ/dU (nu x sN).
-  void Adjoint(const Mat& U, const Mat& X, Mat* Lambda, Mat* Y, Mat* P, Mat* G) const;
+  /// costates P (nx x sN each) and the gradient G = dJ/dU (nu x sN). With `dJdh` non-null also
+  /// the derivative of J with respect to each step length h_k (size N) for an autonomous
+  /// problem (f, L without t, as a free final time requires; the stage times are not
+  /// differentiated):
+  ///   dJ/dh_k = sum_i b_i [lambda_{k+1}^T f_{k,i} + L_{k,i} + H_x(stage i)^T (y_{k,i} - x_k) /
+  ///   h_k]
+  /// (the last term is h_k-free: y_{k,i} - x_k = h_k sum_j a_ij f_{k,j}); for Euler it is
+  /// H(x_k, u_k, lambda_{k+1}).
+  void Adjoint(
+      const Mat& U, const Mat& X, Mat* Lambda, Mat* Y, Mat* P, Mat* G, Vec* dJdh = nullptr) const;
 
  private:
   const Ocp& ocp_;

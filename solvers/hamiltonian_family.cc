@@ -146,9 +146,6 @@ HamiltonianTarget ResolveFamilyTarget(const std::string& name,
       return refuse(scheme + " replaces the request's integrator (" + ToString(request.integrator) +
                     "): request integrator euler");
     }
-    if (t.ocp->free_final_time()) {
-      return refuse(scheme + ": a free final time needs scheme=euler (the exact dJ/dT is Euler's)");
-    }
     if (o.polish) {
       return refuse(scheme +
                     ": the polish (Newton on the Euler maximum principle) needs "
@@ -348,6 +345,11 @@ GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
                        use_al ? TerminalMode::kHard : TerminalMode::kPenalty);
   // The outer loop changes the terminal cost only: the problem's proximal minimizer holds.
   StageDescentPasses passes(srk, dynamic_cast<const ProximalHamiltonianMinimizer*>(&problem));
+  if (problem.free_final_time()) {
+    passes.EnableFreeFinalTime(problem.free_final_time()->lower,
+                               problem.free_final_time()->upper,
+                               o.free_time_initial_fraction);
+  }
   // The initial control of each interval at every one of its stages.
   const Mat U0 = request.initial_guess ? request.initial_guess->SampleIntervals(request.grid)
                                        : DefaultInitialGuess(problem, request.grid).values();
@@ -398,19 +400,25 @@ GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
   stats["reformulated"] = run.target.reformulated ? 1.0 : 0.0;
   stats["scheme_stages"] = s;
   stats["stage_controls"] = s * N;
+  if (passes.free_final_time()) {
+    stats["final_time"] = passes.T();
+    stats["dJdT"] = passes.dJdT();
+  }
+  const TimeGrid grid = passes.grid();
   r.status = outcome.stop.status;
   r.solver_status = outcome.stop.code;
   r.message = run.target.NotePrefix() + "descent on " + SchemeName(o.scheme) +
               " stage controls: " + outcome.stop.why;
   r.iterations = outcome.iterations;
-  r.controls = StageControls(request.grid, srk.tableau(), passes.U(), problem.control_set());
-  r.state_grid = request.grid;
+  r.controls = StageControls(grid, srk.tableau(), passes.U(), problem.control_set());
+  r.state_grid = grid;
   r.states = passes.X();
   if (outcome.have_costates) r.costates = passes.Lambda();
   // J of the problem in the request's terminal form (hard: no penalty, no multiplier terms).
-  r.objective = use_al ? StageRkOcp(problem, request.grid, srk.tableau(), request.terminal)
-                             .Simulate(passes.U(), nullptr)
-                       : passes.J();
+  r.objective =
+      use_al
+          ? StageRkOcp(problem, grid, srk.tableau(), request.terminal).Simulate(passes.U(), nullptr)
+          : passes.J();
   return out;
 }
 

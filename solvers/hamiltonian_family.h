@@ -26,10 +26,10 @@ struct HamiltonianFamilyOptions {
   /// Runge-Kutta scheme with one control per stage (StageRkOcp, Hager's transformed adjoint):
   /// kRk2 Heun (c = (0, 1), b = (1/2, 1/2)), kRk4 the classical one (b = (1/6, 1/3, 1/3, 1/6)),
   /// of order 2 and 4 for the control problem (RkTableau, HagerOrderConditions). With kRk2 and
-  /// kRk4 the descent (either direction) in the penalty form, and the hard terminal form by the
-  /// augmented-Lagrangian loop; the polish, a free final time and path constraints in the loop
-  /// are Euler's and report kNotApplicable naming the option, as does a request integrator
-  /// other than euler (the scheme replaces it).
+  /// kRk4 the descent (either direction) in the penalty form, the hard terminal form by the
+  /// augmented-Lagrangian loop, and a free final time (dJ/dT through the stages); the polish and
+  /// path constraints in the loop are Euler's and report kNotApplicable naming the option, as
+  /// does a request integrator other than euler (the scheme replaces it).
   enum class Scheme { kEuler, kRk2, kRk4 };
   enum class PathConstraints {
     kReformulation,        ///< Ocp::HamiltonianReformulation's penalty (the paper's method's)
@@ -207,9 +207,9 @@ struct HamiltonianFamilyOptions {
 ///
 /// Not applicable (kNotApplicable, reason in `message`): no Hamiltonian minimizer; path
 /// constraints left after the choice of `path`; a free final time with RK4; a polish with path
-/// constraints handled by the outer loop (Newton takes none); with scheme rk2 or rk4 a polish, a
-/// free final time, path constraints in the outer loop or a request integrator other than euler
-/// (each message names the scheme).
+/// constraints handled by the outer loop (Newton takes none); with scheme rk2 or rk4 a polish, path
+/// constraints in the outer loop or a request integrator other than euler (each message names
+/// the scheme).
 class HamiltonianFamily final : public Solver {
  public:
   using Options = HamiltonianFamilyOptions;

@@ -74,7 +74,7 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
        {"rk2", Options::Scheme::kRk2},
        {"rk4", Options::Scheme::kRk4}},
       "the descent's discretization: forward Euler, or Heun / classical RK4 with one control per "
-      "stage and the exact transformed adjoint (no polish or free final time with rk2, rk4)");
+      "stage and the exact transformed adjoint (no polish with rk2, rk4)");
   t.NestedMember("proximal_eps",
                  &Options::proximal,
                  &ProximalSchedule::initial_eps,

@@ -29,11 +29,27 @@ namespace ocpb {
 ///    stationarity_theta() holds the paper's theta as for DescentPasses.
 ///  - Armijo(rule, theta): U + s D with s = 1, beta, ..., J(U + s D) - J(U) <= alpha s theta.
 ///
-/// No prefilter, no stage model, no free final time (forward Euler's fast paths).
+/// Free final time (EnableFreeFinalTime): as DescentPasses', T a variable with the grid's relative
+/// positions s_k kept, and the exact derivative of the scheme's J (autonomous problem)
+///   dJ/dT = sum_k (s_{k+1} - s_k) dJ/dh_k      (StageRkOcp::Adjoint's dJdh),
+/// the joint Armijo step on (U, T) with d_T = P_[lower, upper](T - sigma dJ/dT) - T and sigma's
+/// schedule, and T's share of the stationarity measure.
+///
+/// No prefilter and no stage model (forward Euler's fast paths).
 class StageDescentPasses {
  public:
   /// `srk` must outlive this object; `proximal` may be null.
   StageDescentPasses(const StageRkOcp& srk, const ProximalHamiltonianMinimizer* proximal);
+
+  /// As DescentPasses::EnableFreeFinalTime (throws std::invalid_argument unless
+  /// t0 < lower <= T <= upper, finite; initial_fraction > 0, growth >= 1). Call before Start.
+  void EnableFreeFinalTime(double lower,
+                           double upper,
+                           double initial_fraction = 0.1,
+                           double growth = 2.0);
+  bool free_final_time() const { return free_time_; }
+  double T() const { return srk_->grid().tf(); }
+  double dJdT() const { return dJdT_; }
 
   double Start(const Mat& U);
   double Backward(double* theta_scale, double eps = std::numeric_limits<double>::infinity());
@@ -56,8 +72,14 @@ class StageDescentPasses {
   const DescentWork& work() const { return work_; }
 
  private:
-  const StageRkOcp* srk_;
+  const StageRkOcp* srk_;  // the iterate's (a stretched copy once T moved)
   const Ocp& ocp_;
+  std::unique_ptr<StageRkOcp> owned_;
+  bool free_time_ = false;
+  TimeGrid base_grid_;
+  double T_lower_ = 0.0, T_upper_ = 0.0, sigma_ = NAN, initial_fraction_ = 0.1, growth_ = 2.0;
+  double dJdT_ = 0.0;
+  Vec dJdh_;
   const ProximalHamiltonianMinimizer* proximal_;
   std::unique_ptr<ConvexPointMinimizer> generic_;
   Mat U_, X_, Lambda_, Y_, P_, G_, D_, trial_U_, X_trial_;

@@ -126,6 +126,65 @@ TEST(StageRkOcp, GradientMatchesFiniteDifferencesRk4) {
   }
 }
 
+// dJ/dh_k of StageRkOcp::Adjoint (the free final time's ingredient) against central differences
+// of J on a grid with h_k moved (the later nodes shifted), and dJ/dT = sum_k (h_k / T) dJ/dh_k
+// against J on the stretched grid; autonomous problems, rk2 and rk4, and Euler's H(x_k, u_k,
+// lambda_{k+1}).
+TEST(StageRkOcp, StepDerivativeMatchesFiniteDifferences) {
+  for (const char* name : {"double-integrator-free-time", "vanderpol"}) {
+    const std::unique_ptr<Ocp> ocp = MakeProblem(name, {}, 1);
+    for (const RkTableau& tableau :
+         {RkTableau::ForwardEuler(), RkTableau::Heun(), RkTableau::Classical4()}) {
+      SCOPED_TRACE(std::string(name) + ", " + tableau.name);
+      const int N = 6;
+      const TimeGrid grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), N);
+      const StageRkOcp srk(*ocp, grid, tableau, TerminalMode::kPenalty);
+      const Mat U = RandomControls(ocp->nu(), srk.controls(), 11);
+      Mat X, Lambda, Y, P, G;
+      Vec dJdh;
+      srk.Simulate(U, &X);
+      srk.Adjoint(U, X, &Lambda, &Y, &P, &G, &dJdh);
+      ASSERT_EQ(dJdh.size(), N);
+      const double d = 1e-6;
+      double dJdT = 0.0;
+      for (int k = 0; k < N; ++k) {
+        dJdT += grid.h(k) / (grid.tf() - grid.t0()) * dJdh[k];
+        auto J_with = [&](double delta) {
+          std::vector<double> points = grid.points();
+          for (int j = k + 1; j <= N; ++j) points[static_cast<size_t>(j)] += delta;
+          return StageRkOcp(*ocp, TimeGrid::FromPoints(points), tableau, TerminalMode::kPenalty)
+              .Simulate(U, nullptr);
+        };
+        const double fd = (J_with(d) - J_with(-d)) / (2.0 * d);
+        EXPECT_NEAR(dJdh[k], fd, 1e-6 * std::max(1.0, std::abs(fd))) << "k = " << k;
+      }
+      auto J_at = [&](double T) {
+        return StageRkOcp(*ocp, grid.StretchedTo(T), tableau, TerminalMode::kPenalty)
+            .Simulate(U, nullptr);
+      };
+      const double fd = (J_at(grid.tf() + d) - J_at(grid.tf() - d)) / (2.0 * d);
+      EXPECT_NEAR(dJdT, fd, 1e-6 * std::max(1.0, std::abs(fd)));
+    }
+  }
+}
+
+// A free final time on the stage controls: T moves, the result's grid ends at it, and J falls.
+TEST(HamiltonianFamilyScheme, FreeFinalTimeMovesT) {
+  const std::unique_ptr<Ocp> ft = MakeProblem("double-integrator-free-time", {}, 1);
+  SolveRequest r;
+  r.grid = TimeGrid::Uniform(ft->t0(), ft->tf(), 20);
+  r.options = {{"scheme", "rk4"}, {"max_iterations", "300"}};
+  const SolveResult s = HamiltonianFamily(HamiltonianFamily::Preset::kProximal).Solve(*ft, r);
+  ASSERT_NE(s.status, SolveStatus::kNotApplicable) << s.message;
+  ASSERT_TRUE(s.solver_stats.count("final_time"));
+  const double T = s.solver_stats.at("final_time");
+  EXPECT_GT(std::abs(T - ft->tf()), 1e-3);
+  EXPECT_EQ(s.state_grid.tf(), T);
+  EXPECT_TRUE(std::isfinite(s.solver_stats.at("dJdT")));
+  ASSERT_FALSE(s.history.empty());
+  EXPECT_LT(s.objective, s.history.front().J);
+}
+
 TEST(StageRkOcp, OneStageTableauIsForwardEuler) {
   const std::unique_ptr<Ocp> ocp = MakeProblem("vanderpol", {}, 1);
   const TimeGrid grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 16);
@@ -238,13 +297,6 @@ TEST(HamiltonianFamilyScheme, NotApplicableCasesNameTheOption) {
   s = HamiltonianFamily(HamiltonianFamily::Preset::kProximal).Solve(*di, r);
   EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
   EXPECT_NE(s.message.find("scheme=rk2"), std::string::npos) << s.message;
-  const std::unique_ptr<Ocp> ft = MakeProblem("double-integrator-free-time", {}, 1);
-  r = SolveRequest();
-  r.grid = TimeGrid::Uniform(ft->t0(), ft->tf(), 20);
-  r.options = {{"scheme", "rk4"}};
-  s = HamiltonianFamily(HamiltonianFamily::Preset::kProximal).Solve(*ft, r);
-  EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
-  EXPECT_NE(s.message.find("scheme=rk4"), std::string::npos) << s.message;
   // Path constraints by the outer loop (hamiltonian-al's default path option).
   const std::unique_ptr<Ocp> bd = MakeProblem("bryson-denham", {}, 0);
   r = SolveRequest();
