@@ -1,6 +1,7 @@
 #include "solvers/augmented_lagrangian_loop.h"
 #include "core/invalid.h"
 #include "solvers/message_number.h"
+#include "solvers/stage_descent_passes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -40,14 +41,15 @@ bool AugmentedLagrangianRule::IsValid(std::string* error) const {
   return true;
 }
 
+template <class Passes>
 AugmentedLagrangianOutcome RunAugmentedLagrangian(const AugmentedLagrangianRule& rule,
                                                   const DescentLoopOptions& inner,
                                                   const Stopwatch& clock,
                                                   AugmentedLagrangianOcp* al,
-                                                  DescentPasses* passes,
+                                                  Passes* passes,
                                                   std::vector<IterationRecord>* history) {
   AugmentedLagrangianOutcome out;
-  const int N = passes->U().cols();
+  const int N = static_cast<int>(passes->X().cols()) - 1;  // intervals (U has s N columns)
   double rho = rule.initial_penalty;
   double eta = rule.initial_feasibility;
   double omega = rule.initial_inner_tolerance;
@@ -141,5 +143,20 @@ AugmentedLagrangianOutcome RunAugmentedLagrangian(const AugmentedLagrangianRule&
   }
   return out;
 }
+
+template AugmentedLagrangianOutcome RunAugmentedLagrangian<DescentPasses>(
+    const AugmentedLagrangianRule&,
+    const DescentLoopOptions&,
+    const Stopwatch&,
+    AugmentedLagrangianOcp*,
+    DescentPasses*,
+    std::vector<IterationRecord>*);
+template AugmentedLagrangianOutcome RunAugmentedLagrangian<StageDescentPasses>(
+    const AugmentedLagrangianRule&,
+    const DescentLoopOptions&,
+    const Stopwatch&,
+    AugmentedLagrangianOcp*,
+    StageDescentPasses*,
+    std::vector<IterationRecord>*);
 
 }  // namespace ocpb

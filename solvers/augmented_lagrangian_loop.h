@@ -58,11 +58,15 @@ struct AugmentedLagrangianOutcome {
 /// the descent's Armijo rule, direction and the total iteration and CPU limits (its
 /// max_iterations bounds the descent steps of all outer iterations together). History rows are
 /// appended as RunDescentLoop does, numbered on across outer iterations.
+///
+/// `Passes` is DescentPasses or StageDescentPasses (a Runge-Kutta scheme with stage controls: the
+/// terminal multipliers only, al's path terms pair with the grid's intervals).
+template <class Passes>
 AugmentedLagrangianOutcome RunAugmentedLagrangian(const AugmentedLagrangianRule& rule,
                                                   const DescentLoopOptions& inner,
                                                   const Stopwatch& clock,
                                                   AugmentedLagrangianOcp* al,
-                                                  DescentPasses* passes,
+                                                  Passes* passes,
                                                   std::vector<IterationRecord>* history);
 
 }  // namespace ocpb

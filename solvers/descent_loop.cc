@@ -1,6 +1,7 @@
 #include "solvers/descent_loop.h"
 #include "core/invalid.h"
 #include "solvers/message_number.h"
+#include "solvers/stage_descent_passes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -82,9 +83,10 @@ double ProximalSchedule::Next(double eps, int j, double beta) const {
   return std::clamp(next, min_eps, max_eps);
 }
 
+template <class Passes>
 DescentLoopOutcome RunDescentLoop(const DescentLoopOptions& opt,
                                   const Stopwatch& clock,
-                                  DescentPasses* passes,
+                                  Passes* passes,
                                   std::vector<IterationRecord>* history,
                                   int first_iteration,
                                   int first_armijo,
@@ -126,7 +128,7 @@ DescentLoopOutcome RunDescentLoop(const DescentLoopOptions& opt,
     }
     const int accepted =
         passes->Armijo(opt.armijo, direction_theta, CpuLimit{&clock, opt.max_cpu_seconds});
-    if (accepted == DescentPasses::kOutOfTime) {
+    if (accepted == Passes::kOutOfTime) {
       stop = DescentStop{SolveStatus::kMaxTime,
                          "max_cpu_seconds",
                          "reached max_cpu_seconds = " + MessageNumber(opt.max_cpu_seconds) +
@@ -147,5 +149,20 @@ DescentLoopOutcome RunDescentLoop(const DescentLoopOptions& opt,
   out.stop = *stop;
   return out;
 }
+
+template DescentLoopOutcome RunDescentLoop<DescentPasses>(const DescentLoopOptions&,
+                                                          const Stopwatch&,
+                                                          DescentPasses*,
+                                                          std::vector<IterationRecord>*,
+                                                          int,
+                                                          int,
+                                                          bool);
+template DescentLoopOutcome RunDescentLoop<StageDescentPasses>(const DescentLoopOptions&,
+                                                               const Stopwatch&,
+                                                               StageDescentPasses*,
+                                                               std::vector<IterationRecord>*,
+                                                               int,
+                                                               int,
+                                                               bool);
 
 }  // namespace ocpb

@@ -68,9 +68,13 @@ struct DescentLoopOutcome {
 /// from `clock`; the first record is the current iterate (armijo_j = `first_armijo`).
 /// With record_first = false the first record is left out (a loop that continues an earlier one
 /// whose last record already describes the current iterate).
+///
+/// `Passes` is DescentPasses (forward Euler, RK4 with one control per interval) or
+/// StageDescentPasses (a Runge-Kutta scheme with one control per stage); the loop is the same.
+template <class Passes>
 DescentLoopOutcome RunDescentLoop(const DescentLoopOptions& options,
                                   const Stopwatch& clock,
-                                  DescentPasses* passes,
+                                  Passes* passes,
                                   std::vector<IterationRecord>* history,
                                   int first_iteration = 0,
                                   int first_armijo = -1,

@@ -9,12 +9,15 @@
 #include <vector>
 
 #include "core/discrete_ocp.h"
+#include "core/rk_tableau.h"
+#include "core/stage_rk_ocp.h"
 #include "solvers/constant_costate_start.h"
 #include "solvers/euler_costate_fit.h"
 #include "solvers/grid_sequence.h"
 #include "solvers/hamiltonian_target.h"
 #include "solvers/indirect_newton.h"
 #include "solvers/message_number.h"
+#include "solvers/stage_descent_passes.h"
 
 namespace ocpb {
 namespace {
@@ -28,6 +31,82 @@ void CheckRequest(const std::string& name, const Ocp& ocp, const SolveRequest& r
   if (request.initial_guess && request.initial_guess->nu() != ocp.nu()) {
     throw std::invalid_argument(name + ": the initial guess has the wrong number of controls");
   }
+}
+
+const char* SchemeName(HamiltonianFamilyOptions::Scheme scheme) {
+  switch (scheme) {
+    case HamiltonianFamilyOptions::Scheme::kRk2:
+      return "rk2";
+    case HamiltonianFamilyOptions::Scheme::kRk4:
+      return "rk4";
+    case HamiltonianFamilyOptions::Scheme::kEuler:
+      break;
+  }
+  return "euler";
+}
+
+RkTableau SchemeTableau(HamiltonianFamilyOptions::Scheme scheme) {
+  switch (scheme) {
+    case HamiltonianFamilyOptions::Scheme::kRk2:
+      return RkTableau::Heun();
+    case HamiltonianFamilyOptions::Scheme::kRk4:
+      return RkTableau::Classical4();
+    case HamiltonianFamilyOptions::Scheme::kEuler:
+      break;
+  }
+  return RkTableau::ForwardEuler();
+}
+
+// The stage controls U (nu x sN) as a control trajectory: per interval the polynomial through
+// the stage controls at their abscissae c_i (equal c_i averaged), projected onto U.
+ControlTrajectory StageControls(const TimeGrid& grid,
+                                const RkTableau& tableau,
+                                const Mat& U,
+                                const ControlSet& set) {
+  const int s = tableau.stages, N = grid.intervals(), nu = static_cast<int>(U.rows());
+  // The distinct abscissae and, per interval, the mean control at each.
+  std::vector<double> nodes;
+  std::vector<int> which(static_cast<size_t>(s));
+  for (int i = 0; i < s; ++i) {
+    const double c = tableau.c[static_cast<size_t>(i)];
+    size_t m = 0;
+    while (m < nodes.size() && nodes[m] != c) ++m;
+    if (m == nodes.size()) nodes.push_back(c);
+    which[static_cast<size_t>(i)] = static_cast<int>(m);
+  }
+  const int m = static_cast<int>(nodes.size());
+  Mat V = Mat::Zero(nu, m * N);
+  std::vector<int> count(static_cast<size_t>(m), 0);
+  for (int i = 0; i < s; ++i) ++count[static_cast<size_t>(which[static_cast<size_t>(i)])];
+  for (int k = 0; k < N; ++k) {
+    for (int i = 0; i < s; ++i) {
+      const int j = which[static_cast<size_t>(i)];
+      V.col(k * m + j) += U.col(k * s + i) / count[static_cast<size_t>(j)];
+    }
+  }
+  auto fn = [grid, nodes, V, m, set](double t, ControlTrajectory::Side side, VecRef u) {
+    int k = grid.Locate(t);
+    if (side == ControlTrajectory::Side::kLeft && k > 0 && t <= grid.t(k)) --k;
+    const double tau = std::clamp((t - grid.t(k)) / grid.h(k), 0.0, 1.0);
+    u.setZero();
+    for (int j = 0; j < m; ++j) {
+      double l = 1.0;
+      for (int q = 0; q < m; ++q) {
+        if (q != j)
+          l *= (tau - nodes[static_cast<size_t>(q)]) /
+               (nodes[static_cast<size_t>(j)] - nodes[static_cast<size_t>(q)]);
+      }
+      u += l * V.col(k * m + j);
+    }
+    set.Project(u);
+  };
+  return ControlTrajectory::Custom(
+      nu,
+      grid,
+      fn,
+      std::string(tableau.name) +
+          " stage controls: per interval the polynomial through them at their c_i, projected "
+          "onto U");
 }
 
 // The problem the descent works on (before any augmented Lagrangian): the original, or its
@@ -60,6 +139,24 @@ HamiltonianTarget ResolveFamilyTarget(const std::string& name,
     return refuse(
         "path constraints c <= 0 remain and the problem offers no reformulation; the "
         "augmented-Lagrangian option (path = kAugmentedLagrangian) handles them");
+  }
+  if (o.scheme != HamiltonianFamilyOptions::Scheme::kEuler) {
+    const std::string scheme = std::string("scheme=") + SchemeName(o.scheme);
+    if (request.integrator != Integrator::kEuler) {
+      return refuse(scheme + " replaces the request's integrator (" + ToString(request.integrator) +
+                    "): request integrator euler");
+    }
+    if (o.polish) {
+      return refuse(scheme +
+                    ": the polish (Newton on the Euler maximum principle) needs "
+                    "scheme=euler");
+    }
+    if (path_al) {
+      return refuse(scheme +
+                    ": path constraints by the augmented-Lagrangian loop need "
+                    "scheme=euler (the loop's path multipliers pair with the grid's "
+                    "intervals; path = reformulation runs)");
+    }
   }
   if (t.ocp->free_final_time() && request.integrator != Integrator::kEuler) {
     return refuse("a free final time needs forward Euler (the exact dJ/dT is Euler's)");
@@ -230,9 +327,105 @@ bool Polish(const FamilyRun& run,
   }
 }
 
+// The family's descent on a Runge-Kutta scheme with one control per stage (scheme rk2, rk4;
+// ResolveFamilyTarget left no polish, free time or path constraints for the outer loop): the
+// penalty form, or the hard terminal form by the outer loop on the terminal multipliers.
+GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
+  const HamiltonianFamilyOptions& o = run.o;
+  const Stopwatch& clock = run.clock;
+  const double cpu_start = clock.cpu();
+  const Ocp& problem = *run.target.ocp;
+  const bool use_al = request.terminal == TerminalMode::kHard;
+  std::unique_ptr<AugmentedLagrangianOcp> al;
+  if (use_al) al = std::make_unique<AugmentedLagrangianOcp>(problem, request.grid);
+  const Ocp& descended = use_al ? static_cast<const Ocp&>(*al) : problem;
+  const StageRkOcp srk(descended,
+                       request.grid,
+                       SchemeTableau(o.scheme),
+                       use_al ? TerminalMode::kHard : TerminalMode::kPenalty);
+  // The outer loop changes the terminal cost only: the problem's proximal minimizer holds.
+  StageDescentPasses passes(srk, dynamic_cast<const ProximalHamiltonianMinimizer*>(&problem));
+  if (problem.free_final_time()) {
+    passes.EnableFreeFinalTime(problem.free_final_time()->lower,
+                               problem.free_final_time()->upper,
+                               o.free_time_initial_fraction);
+  }
+  // The initial control of each interval at every one of its stages.
+  const Mat U0 = request.initial_guess ? request.initial_guess->SampleIntervals(request.grid)
+                                       : DefaultInitialGuess(problem, request.grid).values();
+  const int s = srk.stages(), N = srk.intervals();
+  Mat U(U0.rows(), s * N);
+  for (int k = 0; k < N; ++k) {
+    for (int i = 0; i < s; ++i) {
+      U.col(k * s + i) = U0.col(k);
+      problem.control_set().Project(U.col(k * s + i));
+    }
+  }
+  passes.Start(U);
+
+  DescentLoopOptions loop;
+  loop.armijo = ArmijoRule{o.alpha, o.beta, o.max_armijo_exponent};
+  loop.max_iterations = o.max_iterations;
+  loop.relative_theta_tolerance = o.relative_theta_tolerance;
+  loop.max_cpu_seconds = o.max_cpu_seconds;
+  if (o.direction == HamiltonianFamilyOptions::Direction::kProximal) loop.proximal = o.proximal;
+
+  GridSolve out;
+  SolveResult& r = out.result;
+  r.solver = run.name;
+  auto& stats = r.solver_stats;
+  DescentLoopOutcome outcome;
+  if (use_al) {
+    const AugmentedLagrangianOutcome al_outcome =
+        RunAugmentedLagrangian(o.augmented_lagrangian, loop, clock, al.get(), &passes, &r.history);
+    outcome.stop = al_outcome.stop;
+    outcome.iterations = al_outcome.descent_iterations;
+    outcome.theta = al_outcome.theta;
+    outcome.have_costates = al_outcome.have_costates;
+    stats["outer_iterations"] = al_outcome.outer_iterations;
+    stats["terminal_residual"] = al_outcome.terminal_residual;
+    stats["path_violation"] = al_outcome.path_violation;
+    stats["penalty"] = al->rho();
+    for (int i = 0; i < al->terminal_multipliers().size(); ++i) {
+      stats["nu_" + std::to_string(i)] = al->terminal_multipliers()[i];
+    }
+  } else {
+    outcome = RunDescentLoop(loop, clock, &passes, &r.history);
+  }
+  stats["descent_iterations"] = outcome.iterations;
+  stats["descent_cpu_seconds"] = clock.cpu() - cpu_start;
+  stats["final_theta"] = outcome.theta;
+  stats["simulations"] = passes.work().simulations;
+  stats["prefilter_rejections"] = 0;
+  stats["reformulated"] = run.target.reformulated ? 1.0 : 0.0;
+  stats["scheme_stages"] = s;
+  stats["stage_controls"] = s * N;
+  if (passes.free_final_time()) {
+    stats["final_time"] = passes.T();
+    stats["dJdT"] = passes.dJdT();
+  }
+  const TimeGrid grid = passes.grid();
+  r.status = outcome.stop.status;
+  r.solver_status = outcome.stop.code;
+  r.message = run.target.NotePrefix() + "descent on " + SchemeName(o.scheme) +
+              " stage controls: " + outcome.stop.why;
+  r.iterations = outcome.iterations;
+  r.controls = StageControls(grid, srk.tableau(), passes.U(), problem.control_set());
+  r.state_grid = grid;
+  r.states = passes.X();
+  if (outcome.have_costates) r.costates = passes.Lambda();
+  // J of the problem in the request's terminal form (hard: no penalty, no multiplier terms).
+  r.objective =
+      use_al
+          ? StageRkOcp(problem, grid, srk.tableau(), request.terminal).Simulate(passes.U(), nullptr)
+          : passes.J();
+  return out;
+}
+
 // The family on request.grid: the descent (or the outer loop), then the polish when it is on.
 GridSolve SolveOnGrid(const FamilyRun& run, const SolveRequest& request) {
   const HamiltonianFamilyOptions& o = run.o;
+  if (o.scheme != HamiltonianFamilyOptions::Scheme::kEuler) return SolveOnStageGrid(run, request);
   const Stopwatch& clock = run.clock;
   const double cpu_start = clock.cpu();
   const Ocp& problem = *run.target.ocp;

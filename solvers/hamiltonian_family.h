@@ -21,6 +21,16 @@ struct HamiltonianFamilyOptions {
     kPaper,     ///< u* = argmin H (the paper's)
     kProximal,  ///< argmin H + |w - u|^2 / (2 eps) (Sakawa and Shindo), eps by `proximal`
   };
+  /// The discretization the descent works on (key "scheme"): forward Euler with one control per
+  /// interval (the default, every ingredient; the request's integrator), or an explicit
+  /// Runge-Kutta scheme with one control per stage (StageRkOcp, Hager's transformed adjoint):
+  /// kRk2 Heun (c = (0, 1), b = (1/2, 1/2)), kRk4 the classical one (b = (1/6, 1/3, 1/3, 1/6)),
+  /// of order 2 and 4 for the control problem (RkTableau, HagerOrderConditions). With kRk2 and
+  /// kRk4 the descent (either direction) in the penalty form, the hard terminal form by the
+  /// augmented-Lagrangian loop, and a free final time (dJ/dT through the stages); the polish and
+  /// path constraints in the loop are Euler's and report kNotApplicable naming the option, as
+  /// does a request integrator other than euler (the scheme replaces it).
+  enum class Scheme { kEuler, kRk2, kRk4 };
   enum class PathConstraints {
     kReformulation,        ///< Ocp::HamiltonianReformulation's penalty (the paper's method's)
     kAugmentedLagrangian,  ///< the outer loop's multipliers (AugmentedLagrangianOcp)
@@ -45,6 +55,7 @@ struct HamiltonianFamilyOptions {
   std::optional<double> path_penalty;
   std::optional<double> regularization;
   Direction direction = Direction::kPaper;
+  Scheme scheme = Scheme::kEuler;
   /// The proximal direction's eps schedule (used with kProximal).
   ProximalSchedule proximal;
 
@@ -185,9 +196,20 @@ struct HamiltonianFamilyOptions {
 /// coarser grid's rows with their grid's IterationRecord::intervals (their J is that grid's
 /// discrete J); `iterations` counts every step taken, a failed sequence's included.
 ///
+/// With scheme = rk2 or rk4 (Options::Scheme) the descent runs on the stage controls of that
+/// Runge-Kutta scheme (StageDescentPasses), in the hard form inside the outer loop (terminal
+/// multipliers only): the result's controls are a
+/// custom trajectory, per interval the polynomial through the stage controls at their abscissae
+/// c_i (stages with equal c averaged: Heun linear, RK4 quadratic through 0, 1/2, 1), projected
+/// onto U; states and costates are the scheme's nodes x_k and lambda_k; objective the scheme's
+/// discrete J (hard form: without penalty or multiplier terms); solver_stats add
+/// "scheme_stages" (s) and "stage_controls" (s N).
+///
 /// Not applicable (kNotApplicable, reason in `message`): no Hamiltonian minimizer; path
 /// constraints left after the choice of `path`; a free final time with RK4; a polish with path
-/// constraints handled by the outer loop (Newton takes none).
+/// constraints handled by the outer loop (Newton takes none); with scheme rk2 or rk4 a polish, path
+/// constraints in the outer loop or a request integrator other than euler (each message names
+/// the scheme).
 class HamiltonianFamily final : public Solver {
  public:
   using Options = HamiltonianFamilyOptions;

@@ -67,6 +67,14 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
       &O::direction,
       {{"paper", Options::Direction::kPaper}, {"proximal", Options::Direction::kProximal}},
       "the descent's direction: the paper's u* - u, or Sakawa-Shindo's proximal one");
+  t.template Enum<Options::Scheme>(
+      "scheme",
+      &O::scheme,
+      {{"euler", Options::Scheme::kEuler},
+       {"rk2", Options::Scheme::kRk2},
+       {"rk4", Options::Scheme::kRk4}},
+      "the descent's discretization: forward Euler, or Heun / classical RK4 with one control per "
+      "stage and the exact transformed adjoint (no polish with rk2, rk4)");
   t.NestedMember("proximal_eps",
                  &Options::proximal,
                  &ProximalSchedule::initial_eps,
