@@ -206,10 +206,10 @@ struct HamiltonianFamilyOptions {
 /// "scheme_stages" (s) and "stage_controls" (s N).
 ///
 /// Not applicable (kNotApplicable, reason in `message`): no Hamiltonian minimizer; path
-/// constraints left after the choice of `path`; a free final time with RK4; a polish with path
-/// constraints handled by the outer loop (Newton takes none); with scheme rk2 or rk4 a polish, path
-/// constraints in the outer loop or a request integrator other than euler (each message names
-/// the scheme).
+/// constraints left after the choice of `path`; a free final time with the request integrator RK4
+/// (scheme euler); a polish with path constraints handled by the outer loop (Newton takes none);
+/// with scheme rk2 or rk4 a polish, path constraints in the outer loop or a request integrator
+/// other than euler (each message names the scheme).
 class HamiltonianFamily final : public Solver {
  public:
   using Options = HamiltonianFamilyOptions;

@@ -159,7 +159,15 @@ TEST(RiccatiKkt, MatchesDenseSolve) {
       {{2, 4, 4, 4, 6}, {1, 2, 2, 2}, 3},        // given x0, a wider last stage
       {{0, 1}, {1}, 1},                          // one stage
       {{0, 2, 2, 2, 2, 2, 2, 2}, {3, 3, 3, 3, 3, 3, 3}, 2},
+      // The kernels' compile-time sizes end at nx = 8, nu = 4: their edge, and past it (the
+      // run-time kernels on interior stages).
+      {{0, 8, 8, 8, 8}, {4, 4, 4, 4}, 3},
+      {{0, 9, 9, 9}, {5, 5, 5}, 2},
+      {{0, 3, 3, 3, 3}, {2, 0, 2, 2}, 0},  // a stage without controls
   };
+  // One solver across every case as well: its workspace is sized by the first problem and
+  // reused by problems of other sizes and lengths.
+  RiccatiSolver shared;
   for (const KktCase& c : cases) {
     for (int trial = 0; trial < 5; ++trial) {
       const RiccatiProblem p = RandomProblem(&rng, c.nx, c.nu, c.npsi, true);
@@ -171,6 +179,9 @@ TEST(RiccatiKkt, MatchesDenseSolve) {
       // With both regularizations on.
       ASSERT_EQ(solver.Solve(p, 0.3, 1e-3, &r), RiccatiOutcome::kSolved);
       EXPECT_LT(MaxDifference(r, DenseSolve(p, 0.3, 1e-3)), 1e-10 * Scale(r));
+      RiccatiSolution reused;
+      ASSERT_EQ(shared.Solve(p, 0.0, 0.0, &reused), RiccatiOutcome::kSolved);
+      EXPECT_LT(MaxDifference(reused, d), 1e-10 * Scale(d)) << "reused workspace";
     }
   }
 }
