@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -213,6 +215,20 @@ IndirectNewtonOptions WithCpuLeft(IndirectNewtonOptions options,
   return options;
 }
 
+// The augmented-Lagrangian loop's outcome in the result's stats: its outer iterations, final
+// residuals, penalty and terminal multipliers (nu_i), on the Euler grid and the stage schemes.
+void RecordAugmentedLagrangianOutcome(const AugmentedLagrangianOutcome& outcome,
+                                      const AugmentedLagrangianOcp& al,
+                                      std::map<std::string, double>* stats) {
+  (*stats)["outer_iterations"] = outcome.outer_iterations;
+  (*stats)["terminal_residual"] = outcome.terminal_residual;
+  (*stats)["path_violation"] = outcome.path_violation;
+  (*stats)["penalty"] = al.rho();
+  for (int i = 0; i < al.terminal_multipliers().size(); ++i) {
+    (*stats)["nu_" + std::to_string(i)] = al.terminal_multipliers()[i];
+  }
+}
+
 // Newton's outcome in the result: its status and its own stats (prefixed "newton_"), its final
 // residual.
 void RecordNewtonOutcome(const SolveResult& n, SolveResult* r) {
@@ -382,13 +398,7 @@ GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
     outcome.iterations = al_outcome.descent_iterations;
     outcome.theta = al_outcome.theta;
     outcome.have_costates = al_outcome.have_costates;
-    stats["outer_iterations"] = al_outcome.outer_iterations;
-    stats["terminal_residual"] = al_outcome.terminal_residual;
-    stats["path_violation"] = al_outcome.path_violation;
-    stats["penalty"] = al->rho();
-    for (int i = 0; i < al->terminal_multipliers().size(); ++i) {
-      stats["nu_" + std::to_string(i)] = al->terminal_multipliers()[i];
-    }
+    RecordAugmentedLagrangianOutcome(al_outcome, *al, &stats);
   } else {
     outcome = RunDescentLoop(loop, clock, &passes, &r.history);
   }
@@ -484,13 +494,7 @@ GridSolve SolveOnGrid(const FamilyRun& run, const SolveRequest& request) {
     descent_iterations = outcome.descent_iterations;
     theta = outcome.theta;
     have_costates = outcome.have_costates;
-    stats["outer_iterations"] = outcome.outer_iterations;
-    stats["terminal_residual"] = outcome.terminal_residual;
-    stats["path_violation"] = outcome.path_violation;
-    stats["penalty"] = al->rho();
-    for (int i = 0; i < al->terminal_multipliers().size(); ++i) {
-      stats["nu_" + std::to_string(i)] = al->terminal_multipliers()[i];
-    }
+    RecordAugmentedLagrangianOutcome(outcome, *al, &stats);
   } else {
     const DescentLoopOutcome outcome = RunDescentLoop(loop, clock, &passes, &r.history);
     stop = outcome.stop;

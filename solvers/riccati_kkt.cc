@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solvers/small_dims.h"
 #include "solvers/small_lu.h"  // SmallDim
 
 namespace ocpb {
@@ -116,46 +117,12 @@ void CholeskySolveNegated(const double* l, int n_runtime, double* X, int m_runti
   }
 }
 
-// Calls `f.template operator()<kNx, kNu>()` with the stage dimensions as compile-time constants
-// for nx in 1..8 and nu in 1..4 (the registered problems' sizes, robot-arm's 7 and 4 with its
-// free-time scaling included), else `f.template operator()<0, 0>()` (run-time sizes): the
-// kernels' loops unroll at the sizes that occur (a wider range than solvers/small_dims.h's).
+// The stage kernels' compile-time sizes (solvers/small_dims.h): nx in 1..8 and nu in 1..4, the
+// registered problems' sizes (robot-arm's 7 and 4 with its free-time scaling included), a wider
+// range than the Newton polish's.
 template <class F>
 bool WithStageDims(int nx, int nu, F&& f) {
-  auto by_nu = [&]<int kNx>() {
-    switch (nu) {
-      case 1:
-        return f.template operator()<kNx, 1>();
-      case 2:
-        return f.template operator()<kNx, 2>();
-      case 3:
-        return f.template operator()<kNx, 3>();
-      case 4:
-        return f.template operator()<kNx, 4>();
-      default:
-        return f.template operator()<0, 0>();
-    }
-  };
-  switch (nx) {
-    case 1:
-      return by_nu.template operator()<1>();
-    case 2:
-      return by_nu.template operator()<2>();
-    case 3:
-      return by_nu.template operator()<3>();
-    case 4:
-      return by_nu.template operator()<4>();
-    case 5:
-      return by_nu.template operator()<5>();
-    case 6:
-      return by_nu.template operator()<6>();
-    case 7:
-      return by_nu.template operator()<7>();
-    case 8:
-      return by_nu.template operator()<8>();
-    default:
-      return f.template operator()<0, 0>();
-  }
+  return WithDimsUpTo<8, 4>(nx, nu, f);
 }
 
 }  // namespace
