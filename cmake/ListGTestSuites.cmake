@@ -36,8 +36,8 @@ foreach(line IN LISTS lines)
   endif()
   if(line MATCHES "^  ([^ ]+)")
     # A test of the suite above (a parameterized test's `  # GetParam() = ...` follows its name).
-    if(NOT suite STREQUAL "" AND NOT suite MATCHES "^DISABLED_" AND
-       NOT CMAKE_MATCH_1 MATCHES "^DISABLED_")
+    set(test "${CMAKE_MATCH_1}")  # before the next MATCHES resets CMAKE_MATCH_1
+    if(NOT suite STREQUAL "" AND NOT suite MATCHES "^DISABLED_" AND NOT test MATCHES "^DISABLED_")
       set(suite_runs ON)
     endif()
     continue()
