@@ -215,6 +215,17 @@ IndirectNewtonOptions WithCpuLeft(IndirectNewtonOptions options,
   return options;
 }
 
+// The descent loop's options from the family's, with the given stopping tolerance on theta.
+DescentLoopOptions FamilyLoopOptions(const HamiltonianFamilyOptions& o, double theta_tolerance) {
+  DescentLoopOptions loop;
+  loop.armijo = ArmijoRule{o.alpha, o.beta, o.max_armijo_exponent};
+  loop.max_iterations = o.max_iterations;
+  loop.relative_theta_tolerance = theta_tolerance;
+  loop.max_cpu_seconds = o.max_cpu_seconds;
+  if (o.direction == HamiltonianFamilyOptions::Direction::kProximal) loop.proximal = o.proximal;
+  return loop;
+}
+
 // The augmented-Lagrangian loop's outcome in the result's stats: its outer iterations, final
 // residuals, penalty and terminal multipliers (nu_i), on the Euler grid and the stage schemes.
 void RecordAugmentedLagrangianOutcome(const AugmentedLagrangianOutcome& outcome,
@@ -379,12 +390,7 @@ GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
   }
   passes.Start(U);
 
-  DescentLoopOptions loop;
-  loop.armijo = ArmijoRule{o.alpha, o.beta, o.max_armijo_exponent};
-  loop.max_iterations = o.max_iterations;
-  loop.relative_theta_tolerance = o.relative_theta_tolerance;
-  loop.max_cpu_seconds = o.max_cpu_seconds;
-  if (o.direction == HamiltonianFamilyOptions::Direction::kProximal) loop.proximal = o.proximal;
+  const DescentLoopOptions loop = FamilyLoopOptions(o, o.relative_theta_tolerance);
 
   GridSolve out;
   SolveResult& r = out.result;
@@ -471,12 +477,8 @@ GridSolve SolveOnGrid(const FamilyRun& run, const SolveRequest& request) {
   for (int k = 0; k < U0.cols(); ++k) problem.control_set().Project(U0.col(k));
   passes.Start(U0);
 
-  DescentLoopOptions loop;
-  loop.armijo = ArmijoRule{o.alpha, o.beta, o.max_armijo_exponent};
-  loop.max_iterations = o.max_iterations;
-  loop.relative_theta_tolerance = o.polish ? o.polish_switch : o.relative_theta_tolerance;
-  loop.max_cpu_seconds = o.max_cpu_seconds;
-  if (o.direction == HamiltonianFamilyOptions::Direction::kProximal) loop.proximal = o.proximal;
+  const DescentLoopOptions loop =
+      FamilyLoopOptions(o, o.polish ? o.polish_switch : o.relative_theta_tolerance);
 
   GridSolve out;
   SolveResult& r = out.result;
