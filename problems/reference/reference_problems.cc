@@ -8,11 +8,14 @@
 #include "problems/reference/free_start.h"
 #include "problems/reference/free_time_brachistochrone.h"
 #include "problems/reference/free_time_double_integrator.h"
+#include "problems/reference/gasoil.h"
 #include "problems/reference/goddard.h"
 #include "problems/reference/goddard_three_phase.h"
 #include "problems/reference/hager.h"
 #include "problems/reference/lqr.h"
+#include "problems/reference/methanol.h"
 #include "problems/reference/min_time_double_integrator.h"
+#include "problems/reference/pinene.h"
 #include "problems/reference/rayleigh.h"
 #include "problems/reference/robot_arm.h"
 #include "problems/reference/steering.h"
@@ -44,6 +47,9 @@ void AppendReferenceProblems(std::vector<ProblemInfo>* list) {
   list->push_back(TwoPhaseDoubleIntegratorProblemInfo());
   list->push_back(GoddardThreePhaseProblemInfo());
   list->push_back(MinTimeDoubleIntegratorProblemInfo());
+  list->push_back(GasOilProblemInfo());
+  list->push_back(MethanolProblemInfo());
+  list->push_back(PineneProblemInfo());
 }
 
 }  // namespace ocpb

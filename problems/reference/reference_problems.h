@@ -9,7 +9,8 @@ namespace ocpb {
 
 /// Appends, in this order, "bryson-denham", "lqr", "hager", "vanderpol", "rayleigh", "catmix",
 /// "brachistochrone", "zermelo", "steering", "goddard", "robot-arm", and the free-final-time
-/// problems "double-integrator-free-time" and "brachistochrone-free-time"
+/// problems "double-integrator-free-time" and "brachistochrone-free-time", the problem class's
+/// own references, and the COPS estimation problems "gasoil", "methanol" and "pinene"
 /// (problems/reference/*.h state each formulation, reference value and source).
 void AppendReferenceProblems(std::vector<ProblemInfo>* list);
 
