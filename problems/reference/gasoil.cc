@@ -43,7 +43,7 @@ ProblemInfo GasOilProblemInfo() {
   p.reference_value = GasOilModel::kContinuousOptimum;
   p.reference_source =
       "computed: Ipopt on Hermite-Simpson at N = 20 (Jbar fine) and single shooting with SciPy "
-      "DOP853 (rtol 1e-13), agreeing to 1e-9; COPS 3.0's 5.23659e-3 is it cut to 6 digits";
+      "DOP853 (rtol 1e-13), agreeing to 1e-9; COPS 3.0's 5.23659e-3 is 0.6 of its last digit below";
   p.additional_references = {
       {GasOilModel::kCopsReference,
        "J",

@@ -33,7 +33,7 @@ namespace ocpb {
 /// Hermite-Simpson, `ocpbench solve --problem gasoil --solver ipopt --transcription
 /// hermite-simpson --N 20 --terminal hard`, Jbar fine) and independently by single shooting
 /// (SciPy DOP853 at rtol 1e-13 with least_squares), which agree to 1e-9. COPS' printed value is
-/// that optimum cut to 6 digits (an additional reference).
+/// within 0.6 of a unit of its last digit from that optimum (an additional reference).
 struct GasOilModel {
   static constexpr int kStates = 2;
   static constexpr int kParameters = 3;

@@ -45,7 +45,7 @@ ProblemInfo PineneProblemInfo() {
   p.reference_value = PineneModel::kContinuousOptimum;
   p.reference_source =
       "computed: Ipopt on Hermite-Simpson at N = 20 (Jbar fine) and single shooting with SciPy "
-      "DOP853 (rtol 1e-13), agreeing to 1e-8; COPS 3.0's 19.8721 is it cut to 6 digits";
+      "DOP853 (rtol 1e-13), agreeing to 1e-8; COPS 3.0's 19.8721 is 0.7 of its last digit below";
   p.additional_references = {
       {PineneModel::kCopsReference,
        "J",
