@@ -3,6 +3,14 @@
 # another compiler version is not stopped by a warning that compiler adds.
 function(ocpb_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra)
+  # GCC 12 (Debian 12's) at -O2/-O3 in C++20 reports a -Wrestrict inside libstdc++'s std::string
+  # for `"text" + std::string(...)` (an overlap of 2^63 bytes that cannot happen; a known false
+  # report fixed in GCC 13). It stopped a GCC Release build four times, in code and tests that
+  # clang and GCC at -O0 build cleanly, each time at a new site; OCPBench has no restrict pointers
+  # of its own for the warning to guard.
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+    target_compile_options(${target} PRIVATE -Wno-restrict)
+  endif()
   if(OCPB_WARNINGS_AS_ERRORS)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

@@ -320,7 +320,8 @@ TEST(InputAtFaultIsExitTwo, SymbolicLinkLoopsAnywhere) {
   testing::WriteText(dir + "/rec.jsonl",
                      json::parse(testing::ReadText(dir + "/rec.json")).dump() + "\n");
   int tried = 0;
-  for (const std::string& loop : {"loop-a", "self", "loop-b/x", "self/records.jsonl"}) {
+  for (const std::string& loop :
+       std::vector<std::string>{"loop-a", "self", "loop-b/x", "self/records.jsonl"}) {
     const std::vector<std::vector<std::string>> kCommands = {
         Plus(kQuickSolve, {"--json", loop}),
         Plus(kQuickSolve, {"--initial-guess", loop}),
@@ -357,7 +358,8 @@ TEST(InputAtFaultIsExitTwo, ShardCountsBeyondTheLimit) {
   const std::string dir = testing::FreshDirectory("r3-shards");
   testing::WriteText(dir + "/suite.json", QuickSuite(1, "hamiltonian", R"({"max_iterations": 3})"));
   int tried = 0;
-  for (const std::string& n : {"100001", "999999999", "2147483647", "1000000"}) {
+  for (const std::string& n :
+       std::vector<std::string>{"100001", "999999999", "2147483647", "1000000"}) {
     ProgramRun run = RunOcpbenchProgram({"run", "suite.json", "--shard", "1/" + n}, dir);
     EXPECT_EQ(run.exit_code, 2) << n << ": " << run.err;
     // More than 9 digits is no shard count at all.

@@ -498,7 +498,9 @@ TEST(MayerStart, EulerNewtonConvergesFromTheAdjointSweep) {
         IndirectNewton(no).SolveFrom(ocp, Request(ocp, N, mode), descent.states, P);
     ExpectConverged(newton);
     EXPECT_NEAR(newton.objective, ipopt.objective, 1e-6 * std::abs(ipopt.objective));
-    if (mode == TerminalMode::kHard) EXPECT_NEAR(newton.objective, 6.0, 0.5);
+    if (mode == TerminalMode::kHard) {
+      EXPECT_NEAR(newton.objective, 6.0, 0.5);
+    }
   }
 }
 

@@ -37,8 +37,12 @@ TEST(RkTableau, HagerOrderOfTheFamilysTableaux) {
   }
   // Heun meets orders 1 and 2 and fails order 3 (sum c_i d_i = 0, not 1/6).
   for (const OrderCondition& oc : HagerOrderConditions(RkTableau::Heun())) {
-    if (oc.order <= 2) EXPECT_NEAR(oc.value, oc.expected, 1e-15) << oc.formula;
-    if (oc.formula == "sum c_i d_i = 1/6") EXPECT_EQ(oc.value, 0.0);
+    if (oc.order <= 2) {
+      EXPECT_NEAR(oc.value, oc.expected, 1e-15) << oc.formula;
+    }
+    if (oc.formula == "sum c_i d_i = 1/6") {
+      EXPECT_EQ(oc.value, 0.0);
+    }
   }
 }
 
