@@ -189,23 +189,6 @@ bool FilePlan::IsRunFolderFileName(const std::string& name) {
 }
 
 void FilePlan::Check() const {
-  // No output but a run's (or a merge's) own names a file of a run folder: this command's
-  // run folder (RunFolder), or any folder that holds a run's files, seen through links.
-  for (const Place& out : places_) {
-    if (!out.output || out.write_through || out.shared_by == kRunFolderTag) continue;
-    const fs::path file = Resolved(out.path);
-    if (file.empty() || !IsRunFolderFileName(file.filename().string())) continue;
-    const fs::path dir = file.parent_path();
-    const bool ours =
-        std::find(run_folders_.begin(), run_folders_.end(), dir.string()) != run_folders_.end();
-    if (!ours && !LooksLikeRunFolder(dir)) continue;
-    Refuse(out.what,
-           out.path,
-           "is " + OneLine(file.filename().string()) + " of the run folder " +
-               OneLine(dir.string()) +
-               " (records, their earlier versions, shards.json, the summaries and the lock of a "
-               "run folder are written by `ocpbench run` and `merge` only)");
-  }
   for (size_t i = 0; i < places_.size(); ++i) {
     const Place& out = places_[i];
     if (!out.output || out.write_through) continue;
@@ -222,6 +205,23 @@ void FilePlan::Check() const {
                  (other.output ? " (two outputs in one file: one would replace the other)"
                                : " (an output never replaces an input)"));
     }
+  }
+  // No output but a run's (or a merge's) own names a file of a run folder: this command's
+  // run folder (RunFolder), or any folder that holds a run's files, seen through links.
+  for (const Place& out : places_) {
+    if (!out.output || out.write_through || out.shared_by == kRunFolderTag) continue;
+    const fs::path file = Resolved(out.path);
+    if (file.empty() || !IsRunFolderFileName(file.filename().string())) continue;
+    const fs::path dir = file.parent_path();
+    const bool ours =
+        std::find(run_folders_.begin(), run_folders_.end(), dir.string()) != run_folders_.end();
+    if (!ours && !LooksLikeRunFolder(dir)) continue;
+    Refuse(out.what,
+           out.path,
+           "is " + OneLine(file.filename().string()) + " of the run folder " +
+               OneLine(dir.string()) +
+               " (records, their earlier versions, shards.json, the summaries and the lock of a "
+               "run folder are written by `ocpbench run` and `merge` only)");
   }
 }
 

@@ -41,12 +41,12 @@ class FilePlan {
   /// file there named as a run folder's files are (IsRunFolderFileName) is the run's, whether
   /// it exists yet or not (another shard's records file to come).
   void RunFolder(const std::string& dir);
-  /// Throws std::invalid_argument for the first output that names a file of a run folder
-  /// ("WHAT PATH: is records.jsonl of the run folder DIR (...)"): a file named as a run
-  /// folder's files are, in this plan's RunFolder or in any folder that holds a run's files
+  /// Throws std::invalid_argument "WHAT PATH: is also WHAT2 PATH2 (RULE)" for the first output
+  /// that names an input or another output; then for the first output that names a file of a
+  /// run folder ("WHAT PATH: is records.jsonl of the run folder DIR (...)"): a file named as a
+  /// run folder's files are, in this plan's RunFolder or in any folder that holds a run's files
   /// (its .ocpbench.lock, a shards.json, or records.jsonl beside suite.json), with links
-  /// resolved, unless the output is the run's (or merge's) own; then "WHAT PATH: is also WHAT2
-  /// PATH2 (RULE)" for the first output that names an input or another output.
+  /// resolved, unless the output is the run's (or merge's) own.
   void Check() const;
 
   /// The names of the files `run` and `merge` write in a run folder: records.jsonl,
