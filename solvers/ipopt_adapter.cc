@@ -1,6 +1,7 @@
 #include "solvers/ipopt_adapter.h"
 
 #include <IpIpoptApplication.hpp>
+#include <IpJournalist.hpp>
 #include <IpRegOptions.hpp>
 #include <IpSolveStatistics.hpp>
 #include <IpTNLP.hpp>
@@ -8,9 +9,13 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdarg>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <limits>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -446,6 +451,231 @@ IpoptOptionValue TextOption(const std::string& name, const std::string& v) {
   return o;
 }
 
+// Every option a solve gives Ipopt, in order (a later setting of a name wins): OCPBench's
+// fields, the warm start's, the pass-through options, the Hessian forced last. One list for the
+// solve and for the check that asks Ipopt about the options (IpoptAcceptsTogether).
+std::vector<IpoptOptionValue> IpoptSettings(const IpoptOptions& options, bool exact, bool warm) {
+  std::vector<IpoptOptionValue> settings = {
+      TextOption("sb", "yes"),  // no banner
+      NumberOption("tol", options.tol),
+      IntegerOption("max_iter", options.max_iter),
+      NumberOption("acceptable_tol", options.acceptable_tol),
+      IntegerOption("acceptable_iter", options.acceptable_iter),
+      NumberOption("max_cpu_time", options.max_cpu_time),
+      TextOption("mu_strategy", options.mu_strategy),
+      TextOption("linear_solver", options.linear_solver),
+      IntegerOption("mumps_pivot_order",
+                    options.mumps_pivot_order >= 0 ? options.mumps_pivot_order : (exact ? 0 : 7)),
+      TextOption("nlp_scaling_method", options.nlp_scaling_method),
+      NumberOption("obj_scaling_factor", options.obj_scaling_factor),
+      NumberOption("nlp_scaling_max_gradient", options.nlp_scaling_max_gradient),
+      IntegerOption("print_level", options.print_level),
+  };
+  if (warm) {
+    // Ipopt reads the given multipliers (TNLP::get_starting_point with init_z, init_lambda)
+    // and moves the point only by these pushes into the bounds' interior.
+    const double push = options.warm_start_bound_push;
+    settings.push_back(TextOption("warm_start_init_point", "yes"));
+    settings.push_back(NumberOption("warm_start_bound_push", push));
+    settings.push_back(NumberOption("warm_start_bound_frac", std::min(push, 0.5)));
+    settings.push_back(NumberOption("warm_start_slack_bound_push", push));
+    settings.push_back(NumberOption("warm_start_slack_bound_frac", std::min(push, 0.5)));
+    settings.push_back(
+        NumberOption("warm_start_mult_bound_push", options.warm_start_mult_bound_push));
+  }
+  settings.insert(settings.end(), options.extra.begin(), options.extra.end());
+  // A warm start's barrier parameter wins over a pass-through mu_init (meant for cold starts).
+  if (warm) settings.push_back(NumberOption("mu_init", options.warm_start_mu_init));
+  // Forced last: an extra "hessian_approximation=exact" cannot ask for a Hessian that is absent.
+  settings.push_back(TextOption("hessian_approximation", exact ? "exact" : "limited-memory"));
+  return settings;
+}
+
+// The smallest NLP that builds every part of Ipopt's algorithm a solve of OCPBench's builds: two
+// variables (one bounded on both sides, one free), an equality and an inequality row, an exact
+// Hessian, multipliers for a warm start. Its solve stops after three iterations: what matters
+// is that Ipopt builds and initializes its algorithm with the options and takes its first
+// steps, which is where it checks the rules that tie options together.
+class ProbeTnlp final : public Ipopt::TNLP {
+ public:
+  bool get_nlp_info(
+      Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& style) override {
+    n = 2;
+    m = 2;
+    nnz_jac_g = 4;
+    nnz_h_lag = 2;
+    style = C_STYLE;
+    return true;
+  }
+  bool get_bounds_info(Index, Number* x_l, Number* x_u, Index, Number* g_l, Number* g_u) override {
+    x_l[0] = -1.0;
+    x_u[0] = 2.0;
+    x_l[1] = -kIpoptInfinity;
+    x_u[1] = kIpoptInfinity;
+    g_l[0] = g_u[0] = 1.0;
+    g_l[1] = -kIpoptInfinity;
+    g_u[1] = 3.0;
+    return true;
+  }
+  bool get_starting_point(Index,
+                          bool init_x,
+                          Number* x,
+                          bool init_z,
+                          Number* z_l,
+                          Number* z_u,
+                          Index,
+                          bool init_lambda,
+                          Number* lambda) override {
+    if (init_x) x[0] = x[1] = 0.5;
+    if (init_z) z_l[0] = z_l[1] = z_u[0] = z_u[1] = 1.0;
+    if (init_lambda) lambda[0] = lambda[1] = 0.0;
+    return true;
+  }
+  bool eval_f(Index, const Number* x, bool, Number& f) override {
+    f = x[0] * x[0] + x[1] * x[1];
+    return true;
+  }
+  bool eval_grad_f(Index, const Number* x, bool, Number* g) override {
+    g[0] = 2.0 * x[0];
+    g[1] = 2.0 * x[1];
+    return true;
+  }
+  bool eval_g(Index, const Number* x, bool, Index, Number* g) override {
+    g[0] = x[0] + x[1];
+    g[1] = x[0] * x[0] + x[1];
+    return true;
+  }
+  bool eval_jac_g(Index,
+                  const Number* x,
+                  bool,
+                  Index,
+                  Index,
+                  Index* rows,
+                  Index* cols,
+                  Number* values) override {
+    if (values == nullptr) {
+      const Index r[] = {0, 0, 1, 1}, c[] = {0, 1, 0, 1};
+      std::copy(r, r + 4, rows);
+      std::copy(c, c + 4, cols);
+    } else {
+      values[0] = values[1] = values[3] = 1.0;
+      values[2] = 2.0 * x[0];
+    }
+    return true;
+  }
+  bool eval_h(Index,
+              const Number*,
+              bool,
+              Number obj_factor,
+              Index,
+              const Number* lambda,
+              bool,
+              Index,
+              Index* rows,
+              Index* cols,
+              Number* values) override {
+    if (values == nullptr) {
+      rows[0] = cols[0] = 0;
+      rows[1] = cols[1] = 1;
+    } else {
+      values[0] = 2.0 * obj_factor + 2.0 * lambda[1];
+      values[1] = 2.0 * obj_factor;
+    }
+    return true;
+  }
+  void finalize_solution(Ipopt::SolverReturn,
+                         Index,
+                         const Number*,
+                         const Number*,
+                         const Number*,
+                         Index,
+                         const Number*,
+                         const Number*,
+                         Number,
+                         const Ipopt::IpoptData*,
+                         Ipopt::IpoptCalculatedQuantities*) override {}
+};
+
+// Keeps what Ipopt says at its error level (the text of an option it refuses), whatever the
+// options' print_level.
+class MessageJournal final : public Ipopt::Journal {
+ public:
+  MessageJournal() : Ipopt::Journal("ocpb-messages", Ipopt::J_ERROR) {}
+  const std::string& text() const { return text_; }
+  void Clear() { text_.clear(); }
+
+ protected:
+  void PrintImpl(Ipopt::EJournalCategory, Ipopt::EJournalLevel, const char* str) override {
+    if (text_.size() < 4000) text_ += str;
+  }
+  void PrintfImpl(Ipopt::EJournalCategory,
+                  Ipopt::EJournalLevel,
+                  const char* format,
+                  va_list ap) override {
+    char buffer[2048];
+    std::vsnprintf(buffer, sizeof buffer, format, ap);
+    PrintImpl(Ipopt::J_MAIN, Ipopt::J_ERROR, buffer);
+  }
+  void FlushBufferImpl() override {}
+
+ private:
+  std::string text_;
+};
+
+// Ipopt's reason, as one line: the message of the exception it reported ("Option
+// \"mumps_pivtolmax\": This value must be between mumps_pivtol and 1."), without the
+// assertion's text before it, or its first line.
+std::string IpoptReason(const std::string& text) {
+  std::string reason = text;
+  const size_t message = reason.find("Exception message: ");
+  if (message != std::string::npos) reason = reason.substr(message + 19);
+  const size_t assertion = reason.find(" evaluated false: ");
+  if (assertion != std::string::npos) reason = reason.substr(assertion + 18);
+  reason = reason.substr(0, reason.find('\n'));
+  while (!reason.empty() && (reason.back() == ' ' || reason.back() == '.')) reason.pop_back();
+  return reason.empty() ? "Ipopt refuses the options (Invalid_Option)" : reason;
+}
+
+// One start of Ipopt with `settings` on ProbeTnlp: "" when Ipopt builds its algorithm with
+// them, else its reason. The solver's output file is left out (Ipopt would create it; its
+// place is checked as every output's is), and so is its console log. One application serves
+// every start (its options cleared first): registering Ipopt's options is most of a start's
+// cost. The caller holds the lock that guards it.
+std::string AskIpopt(std::vector<IpoptOptionValue> settings) {
+  static const Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  static const Ipopt::SmartPtr<MessageJournal> journal = [] {
+    Ipopt::SmartPtr<MessageJournal> j = new MessageJournal();
+    app->Jnlst()->AddJournal(Ipopt::GetRawPtr(j));
+    return j;
+  }();
+  journal->Clear();
+  app->Options()->clear();
+  settings.erase(std::remove_if(settings.begin(),
+                                settings.end(),
+                                [](const IpoptOptionValue& v) { return v.name == "output_file"; }),
+                 settings.end());
+  settings.push_back(IntegerOption("print_level", 0));
+  // Three iterations: Ipopt checks some rules only when it first takes a step (alpha_for_y's
+  // "acceptor" outside the penalty line searches, at the first accepted trial point).
+  settings.push_back(IntegerOption("max_iter", 3));
+  // Ipopt's derivative checker ties no option to another (and 3.11's leaks memory).
+  settings.push_back(TextOption("derivative_test", "none"));
+  for (const IpoptOptionValue& v : settings) {
+    if (!Apply(*app->Options(), v))
+      return "option '" + v.name + "': " + IpoptReason(journal->text());
+  }
+  Ipopt::ApplicationReturnStatus status = app->Initialize("");
+  if (status == Ipopt::Solve_Succeeded) {
+    Ipopt::SmartPtr<Ipopt::TNLP> probe = new ProbeTnlp();
+    try {
+      status = app->OptimizeTNLP(probe);
+    } catch (const std::exception& e) {
+      return std::string("an exception from Ipopt: ") + e.what();
+    }
+  }
+  if (status != Ipopt::Invalid_Option) return "";
+  return IpoptReason(journal->text());
+}
 }  // namespace
 
 // ---- options ---------------------------------------------------------------------------
@@ -506,6 +736,56 @@ bool IpoptRegistryAccepts(const IpoptOptionValue& v, std::string* error) {
              (v.type == IpoptOptionType::kString ? " '" + v.text + "'" : std::string());
   }
   return ok;
+}
+
+bool IpoptAcceptsTogether(const IpoptOptions& options, std::string* error) {
+  // OCPBench's own fields alone: each is within Ipopt's registered range, and no rule of Ipopt
+  // ties two of them (the option tests try their combinations against Ipopt); asking Ipopt
+  // would cost every solve a few starts (tens of ms under the sanitizers) for nothing.
+  if (options.extra.empty()) return true;
+  // The starts a solve may make: an exact or a limited-memory Hessian (auto and exact become
+  // limited-memory on an NLP without one), cold or warm (mesh refinement's later meshes).
+  struct Start {
+    bool exact, warm;
+    const char* with;
+  };
+  std::vector<Start> starts;
+  for (const bool warm : {false, true}) {
+    if (options.hessian_approximation != "limited-memory") {
+      starts.push_back({true, warm, warm ? " (in a warm-started solve)" : ""});
+    }
+    starts.push_back({false,
+                      warm,
+                      warm ? " (in a warm-started solve with a limited-memory Hessian)"
+                           : " (in a solve with a limited-memory Hessian)"});
+  }
+  starts.front().with = "";
+  // Ipopt's answer for one list of settings is always the same: asked once a process.
+  static std::mutex mutex;
+  static std::map<std::string, std::string> answers;
+  for (const Start& start : starts) {
+    const std::vector<IpoptOptionValue> settings = IpoptSettings(options, start.exact, start.warm);
+    std::string key;
+    for (const IpoptOptionValue& v : settings) {
+      char number[64];
+      std::snprintf(number, sizeof number, "%.17g/%d", v.number, v.integer);
+      key += v.name + '=' + number + '/' + v.text + '\n';
+    }
+    std::string answer;
+    {
+      const std::lock_guard<std::mutex> hold(mutex);
+      auto found = answers.find(key);
+      if (found == answers.end()) found = answers.emplace(key, AskIpopt(settings)).first;
+      answer = found->second;
+    }
+    if (answer.empty()) continue;
+    if (error) {
+      *error = "the linked Ipopt refuses these options together" + std::string(start.with) + ": " +
+               answer + " (Ipopt's rule, checked before any work)";
+    }
+    return false;
+  }
+  return true;
 }
 
 const std::vector<IpoptOrderedPair>& IpoptOrderedPairs() {
@@ -664,6 +944,13 @@ NlpSolution SolveNlpWithIpopt(const Nlp& nlp,
                               const NlpMultipliers& y0) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument("ipopt options: " + error);
+  return SolveNlpWithIpoptUnchecked(nlp, z0, options, y0);
+}
+
+NlpSolution SolveNlpWithIpoptUnchecked(const Nlp& nlp,
+                                       const Vec& z0,
+                                       const IpoptOptions& options,
+                                       const NlpMultipliers& y0) {
   if (z0.size() != nlp.num_variables()) {
     throw std::invalid_argument("SolveNlpWithIpopt: starting point has size " +
                                 std::to_string(z0.size()) + ", the NLP has " +
@@ -693,39 +980,7 @@ NlpSolution SolveNlpWithIpopt(const Nlp& nlp,
 
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   Ipopt::OptionsList& list = *app->Options();
-  std::vector<IpoptOptionValue> settings = {
-      TextOption("sb", "yes"),  // no banner
-      NumberOption("tol", options.tol),
-      IntegerOption("max_iter", options.max_iter),
-      NumberOption("acceptable_tol", options.acceptable_tol),
-      IntegerOption("acceptable_iter", options.acceptable_iter),
-      NumberOption("max_cpu_time", options.max_cpu_time),
-      TextOption("mu_strategy", options.mu_strategy),
-      TextOption("linear_solver", options.linear_solver),
-      IntegerOption("mumps_pivot_order",
-                    options.mumps_pivot_order >= 0 ? options.mumps_pivot_order : (exact ? 0 : 7)),
-      TextOption("nlp_scaling_method", options.nlp_scaling_method),
-      NumberOption("obj_scaling_factor", options.obj_scaling_factor),
-      NumberOption("nlp_scaling_max_gradient", options.nlp_scaling_max_gradient),
-      IntegerOption("print_level", options.print_level),
-  };
-  if (warm) {
-    // Ipopt reads the given multipliers (TNLP::get_starting_point with init_z, init_lambda)
-    // and moves the point only by these pushes into the bounds' interior.
-    const double push = options.warm_start_bound_push;
-    settings.push_back(TextOption("warm_start_init_point", "yes"));
-    settings.push_back(NumberOption("warm_start_bound_push", push));
-    settings.push_back(NumberOption("warm_start_bound_frac", std::min(push, 0.5)));
-    settings.push_back(NumberOption("warm_start_slack_bound_push", push));
-    settings.push_back(NumberOption("warm_start_slack_bound_frac", std::min(push, 0.5)));
-    settings.push_back(
-        NumberOption("warm_start_mult_bound_push", options.warm_start_mult_bound_push));
-  }
-  settings.insert(settings.end(), options.extra.begin(), options.extra.end());
-  // A warm start's barrier parameter wins over a pass-through mu_init (meant for cold starts).
-  if (warm) settings.push_back(NumberOption("mu_init", options.warm_start_mu_init));
-  // Forced last: an extra "hessian_approximation=exact" cannot ask for a Hessian that is absent.
-  settings.push_back(TextOption("hessian_approximation", exact ? "exact" : "limited-memory"));
+  const std::vector<IpoptOptionValue> settings = IpoptSettings(options, exact, warm);
   for (const IpoptOptionValue& v : settings) {
     if (!Apply(list, v)) {
       out.status = SolveStatus::kInvalidInput;

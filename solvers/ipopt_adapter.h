@@ -48,9 +48,27 @@ struct IpoptOrderedPair {
 struct IpoptOptionValue;
 bool IpoptRegistryAccepts(const IpoptOptionValue& v, std::string* error);
 
-/// Every such rule OCPBench knows of Ipopt 3.11 (each tried against the linked Ipopt by the
-/// option tests).
+/// Rules of this kind known of Ipopt 3.11. The check does not use this list (it asks Ipopt,
+/// IpoptAcceptsTogether); the option tests try each rule against the check and a solve.
 const std::vector<IpoptOrderedPair>& IpoptOrderedPairs();
+
+/// Whether the linked Ipopt accepts `options` together, asked of Ipopt itself: an
+/// IpoptApplication given the settings a solve gives it (IpoptSettings' list: the fields, the
+/// pass-through options; without output_file, whose place is checked as any output's, and with
+/// print_level 0) starts on a two-variable NLP and stops after three iterations, once for each
+/// start a solve may make (exact and limited-memory Hessian, cold and warm). Ipopt checks the
+/// rules that tie options (mumps_pivtol <= mumps_pivtolmax, min_refinement_steps <=
+/// max_refinement_steps, mehrotra_algorithm's requirements, ...) when it builds its algorithm
+/// and takes its first steps (alpha_for_y=acceptor outside the penalty line searches), so such
+/// rules of the linked Ipopt are seen without a list of them; a rule Ipopt checks only in a
+/// part that a three-iteration solve of this NLP does not reach (its restoration phase) is not.
+/// False with Ipopt's own reason in `error` ("the linked Ipopt refuses these options together:
+/// Option \"mumps_pivtolmax\": This value must be between mumps_pivtol and 1 (Ipopt's rule,
+/// checked before any work)"). Each list of settings is asked once per process (a few ms);
+/// options without a pass-through setting (OCPBench's fields only) are not asked (no rule ties
+/// two of them: the option tests try their combinations against Ipopt).
+struct IpoptOptions;
+bool IpoptAcceptsTogether(const IpoptOptions& options, std::string* error);
 
 /// The pass-through table: the Ipopt options OCPBench lets a request set, with their types.
 /// IpoptOptionTableMatchesIpopt() checks it against Ipopt's own registry.
@@ -189,5 +207,12 @@ NlpSolution SolveNlpWithIpopt(const Nlp& nlp,
                               const Vec& z0,
                               const IpoptOptions& options,
                               const NlpMultipliers& y0 = NlpMultipliers());
+/// SolveNlpWithIpopt without OCPBench's own check of the options (IpoptOptions::IsValid): what
+/// Ipopt itself makes of them, for the tests that compare the check with Ipopt (a refused
+/// setting comes back as kInvalidInput with solver_status "Invalid_Option").
+NlpSolution SolveNlpWithIpoptUnchecked(const Nlp& nlp,
+                                       const Vec& z0,
+                                       const IpoptOptions& options,
+                                       const NlpMultipliers& y0 = NlpMultipliers());
 
 }  // namespace ocpb

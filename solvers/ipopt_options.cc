@@ -1,9 +1,8 @@
 // IpoptOptions' option table: its named fields and Ipopt's pass-through options, by type.
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
-#include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 #include "core/option_binding.h"
 #include "solvers/ipopt_adapter.h"
@@ -146,57 +145,6 @@ bool IpoptOptions::IsValid(std::string* error) const {
     if (error) *error = "ipopt option 'obj_scaling_factor': must be finite and nonzero";
     return false;
   }
-  // Ipopt's rules that tie two options, with Ipopt's default for an option left unset.
-  auto value_of = [this](const char* name) {
-    for (const IpoptOptionValue& v : extra) {
-      if (v.name != name) continue;
-      return v.type == IpoptOptionType::kNumber ? v.number : static_cast<double>(v.integer);
-    }
-    const IpoptOptionSpec* spec = FindIpoptOption(name);
-    return spec != nullptr ? spec->default_value : std::nan("");
-  };
-  for (const IpoptOrderedPair& pair : IpoptOrderedPairs()) {
-    const double low = value_of(pair.low), high = value_of(pair.high);
-    if (low > high) {
-      if (error) {
-        std::ostringstream text;
-        text << "ipopt option '" << pair.low << "': must be at most " << pair.high << " = " << high
-             << " (Ipopt's rule, checked before any work), got " << low;
-        *error = text.str();
-      }
-      return false;
-    }
-  }
-  // Ipopt's rules for mehrotra_algorithm=yes (IpoptAlgorithm::InitializeImpl and
-  // AlgorithmBuilder::BuildMuUpdate refuse the solve otherwise, after the work before it).
-  auto text_of = [this](const char* name) -> std::string {
-    for (const IpoptOptionValue& v : extra) {
-      if (v.name == name) return v.text;
-    }
-    return "";
-  };
-  if (text_of("mehrotra_algorithm") == "yes") {
-    const std::string strategy =
-        text_of("mu_strategy").empty() ? mu_strategy : text_of("mu_strategy");
-    const struct {
-      const char* name;
-      std::string value;
-      const char* needed;
-    } kMehrotra[] = {
-        {"mu_strategy", strategy, "adaptive"},
-        {"adaptive_mu_globalization", text_of("adaptive_mu_globalization"), "never-monotone-mode"},
-        {"corrector_type", text_of("corrector_type"), "none"},
-    };
-    for (const auto& rule : kMehrotra) {
-      if (rule.value.empty() || rule.value == rule.needed) continue;
-      if (error) {
-        *error = std::string("ipopt option '") + rule.name + "': must be '" + rule.needed +
-                 "' with mehrotra_algorithm=yes (Ipopt's rule, checked before any work), got '" +
-                 rule.value + "'";
-      }
-      return false;
-    }
-  }
   for (const IpoptOptionValue& v : extra) {
     // Ipopt opens (and truncates) its output file only when the solve starts: a place it cannot
     // open would fail the solve after the work before it.
@@ -205,6 +153,15 @@ bool IpoptOptions::IsValid(std::string* error) const {
       const std::filesystem::path file(v.text);
       const std::filesystem::path folder =
           file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
+      // A name the system refuses to look up (too long, a loop of links, a file as a folder).
+      (void)std::filesystem::status(file, ec);
+      if (ec && ec != std::errc::no_such_file_or_directory) {
+        if (error) {
+          *error = "ipopt option 'output_file': '" + v.text.substr(0, 80) +
+                   (v.text.size() > 80 ? "...'" : "'") + ": " + ec.message();
+        }
+        return false;
+      }
       if (std::filesystem::is_directory(file, ec) || !std::filesystem::is_directory(folder, ec)) {
         if (error) {
           *error =
@@ -223,7 +180,8 @@ bool IpoptOptions::IsValid(std::string* error) const {
     // Ipopt's own registry has the last word on a value (a spelling it does not take).
     if (!IpoptRegistryAccepts(v, error)) return false;
   }
-  return true;
+  // The rules that tie options together: Ipopt's own answer, not a list of them.
+  return IpoptAcceptsTogether(*this, error);
 }
 
 const OptionSchema& IpoptOptions::Schema() { return IpoptBinding().schema(); }

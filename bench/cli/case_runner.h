@@ -58,6 +58,13 @@ double EstimateRecordBytes(const CaseSpec& spec, int nx, int nu, int intervals);
 /// (826 MB), ipopt + hermite-simpson N = 1e5 905 MB (2.04 GB): about 2.3 times generous.
 double EstimateCaseMemoryBytes(const CaseSpec& spec, int nx, int nu, int intervals);
 
+/// The one check that a horizon [t0, tf] is long enough for a grid of N intervals on it (every
+/// command that solves: solve, run, online): a tenth of each step (tf - t0) / N (the judge's
+/// finer grid) must be a normal double and at least 1e-12 max(|t0|, |tf|), so that the grids
+/// resolve next to the horizon's ends. Throws std::invalid_argument "tf: the horizon ... is too
+/// short for WHICH = N intervals ..." (WHICH: "N", or "mesh_max_nodes" for refined meshes).
+void CheckHorizonSteps(double t0, double tf, int N, const std::string& which);
+
 /// The same estimate from its parts: the solver's name, the transcription's points per
 /// interval (1 without one), nx, nu and N (online re-plans, whose transcription options are
 /// their scenario's).

@@ -157,6 +157,9 @@ CaseEstimate ValidateOnlineCase(const CaseSpec& spec) {
   CaseSpec planned = spec;
   planned.transcription = s.replanning.transcription;
   CheckTranscriptionFits(planned, ocp->nx(), ocp->nu());
+  // The plan's grid and every re-plan's (the rest of it, the same step tf / N) span the
+  // horizon: the check `solve` and `run` make.
+  CheckHorizonSteps(ocp->t0(), ocp->tf(), s.replanning.intervals, "N");
   CaseEstimate estimate;
   // The solves' own memory (every re-plan solves on the same grid), before any channel is
   // simulated or plan solved.

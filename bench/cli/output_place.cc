@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cstdlib>
@@ -129,6 +130,28 @@ FilePlan::Place PlaceOf(const std::string& path, const std::string& what, bool o
   return place;
 }
 
+// The tag of the outputs a run or a merge writes in its own folder (PlanRunFolder,
+// ClaimMergeFolder): the only outputs that may name the folder's own files.
+constexpr const char* kRunFolderTag = "the output folder";
+
+// The absolute path of `path` with every link of the part that exists resolved ("" when the
+// system cannot say).
+fs::path Resolved(const std::string& path) {
+  std::error_code ec;
+  fs::path absolute = fs::absolute(path, ec);
+  if (ec) return {};
+  fs::path resolved = fs::weakly_canonical(absolute, ec);
+  return ec ? absolute.lexically_normal() : resolved;
+}
+
+// A folder that holds a run's or a merge's files: its lock, a sweep's shards.json, or records
+// beside the summary's copy of the suite.
+bool LooksLikeRunFolder(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::exists(dir / ".ocpbench.lock", ec) || fs::exists(dir / "shards.json", ec)) return true;
+  return fs::exists(dir / "records.jsonl", ec) && fs::exists(dir / "suite.json", ec);
+}
+
 bool SameFile(const FilePlan::Place& a, const FilePlan::Place& b) {
   if (a.exists != b.exists) return false;
   if (a.exists) return a.device == b.device && a.inode == b.inode;
@@ -149,6 +172,22 @@ void FilePlan::Output(const std::string& path,
   places_.push_back(std::move(place));
 }
 
+void FilePlan::RunFolder(const std::string& dir) { run_folders_.push_back(Resolved(dir).string()); }
+
+bool FilePlan::IsRunFolderFileName(const std::string& name) {
+  // records.jsonl, records.shard-I-of-N.jsonl, their earlier versions (.prev, .K.prev).
+  const auto ends_with = [&name](const std::string& end) {
+    return name.size() >= end.size() &&
+           name.compare(name.size() - end.size(), end.size(), end) == 0;
+  };
+  if (name.rfind("records.", 0) == 0 && (ends_with(".jsonl") || ends_with(".prev"))) return true;
+  if (name == "shards.json" || name == ".ocpbench.lock") return true;
+  for (const std::string& summary : SummaryFileNames()) {
+    if (name == summary) return true;
+  }
+  return false;
+}
+
 void FilePlan::Check() const {
   for (size_t i = 0; i < places_.size(); ++i) {
     const Place& out = places_[i];
@@ -166,6 +205,23 @@ void FilePlan::Check() const {
                  (other.output ? " (two outputs in one file: one would replace the other)"
                                : " (an output never replaces an input)"));
     }
+  }
+  // No output but a run's (or a merge's) own names a file of a run folder: this command's
+  // run folder (RunFolder), or any folder that holds a run's files, seen through links.
+  for (const Place& out : places_) {
+    if (!out.output || out.write_through || out.shared_by == kRunFolderTag) continue;
+    const fs::path file = Resolved(out.path);
+    if (file.empty() || !IsRunFolderFileName(file.filename().string())) continue;
+    const fs::path dir = file.parent_path();
+    const bool ours =
+        std::find(run_folders_.begin(), run_folders_.end(), dir.string()) != run_folders_.end();
+    if (!ours && !LooksLikeRunFolder(dir)) continue;
+    Refuse(out.what,
+           out.path,
+           "is " + OneLine(file.filename().string()) + " of the run folder " +
+               OneLine(dir.string()) +
+               " (records, their earlier versions, shards.json, the summaries and the lock of a "
+               "run folder are written by `ocpbench run` and `merge` only)");
   }
 }
 
@@ -278,14 +334,9 @@ std::vector<std::string> FolderFiles(const std::string& dir) {
   std::vector<std::string> out;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    // records.jsonl, records.shard-I-of-N.jsonl, their earlier versions (.prev, .K.prev).
-    const bool records = name.rfind("records.", 0) == 0 &&
-                         (name.size() > 6 && (name.compare(name.size() - 6, 6, ".jsonl") == 0 ||
-                                              name.compare(name.size() - 5, 5, ".prev") == 0));
-    bool ours = records || name == "shards.json" || name == ".ocpbench.lock";
-    for (const std::string& summary : SummaryFileNames()) ours = ours || name == summary;
-    if (ours) out.push_back(it->path().string());
+    if (FilePlan::IsRunFolderFileName(it->path().filename().string())) {
+      out.push_back(it->path().string());
+    }
   }
   return out;
 }
@@ -304,10 +355,9 @@ std::vector<std::string> PlanRunFolder(const std::string& dir,
       outputs.push_back((fs::path(dir) / name).string());
     }
   }
-  for (const std::string& path : outputs) plan->Output(path, "--out", "the output folder");
-  for (const std::string& path : FolderFiles(dir)) {
-    plan->Output(path, "--out", "the output folder");
-  }
+  for (const std::string& path : outputs) plan->Output(path, "--out", kRunFolderTag);
+  for (const std::string& path : FolderFiles(dir)) plan->Output(path, "--out", kRunFolderTag);
+  plan->RunFolder(dir);
   plan->Check();
   return outputs;
 }
@@ -333,7 +383,8 @@ OutputFolderLock ClaimMergeFolder(const std::string& dir, FilePlan plan) {
   for (const std::string& name : SummaryFileNames()) {
     outputs.push_back((fs::path(dir) / name).string());
   }
-  for (const std::string& path : outputs) plan.Output(path, "merge", "the output folder");
+  for (const std::string& path : outputs) plan.Output(path, "merge", kRunFolderTag);
+  plan.RunFolder(dir);
   plan.Check();
   OutputFolderLock lock = OutputFolderLock::Acquire(dir, "merge", FolderAccess::kExclusive);
   for (const std::string& path : outputs) CheckOutputFile(path, "merge");

@@ -37,9 +37,22 @@ class FilePlan {
   /// replaces the one before); a character device or a FIFO (/dev/null) may be named by any
   /// number of outputs.
   void Output(const std::string& path, const std::string& what, const std::string& shared_by = "");
+  /// The output folder of `ocpbench run` or `merge` (PlanRunFolder, ClaimMergeFolder): every
+  /// file there named as a run folder's files are (IsRunFolderFileName) is the run's, whether
+  /// it exists yet or not (another shard's records file to come).
+  void RunFolder(const std::string& dir);
   /// Throws std::invalid_argument "WHAT PATH: is also WHAT2 PATH2 (RULE)" for the first output
-  /// that names an input or another output.
+  /// that names an input or another output; then for the first output that names a file of a
+  /// run folder ("WHAT PATH: is records.jsonl of the run folder DIR (...)"): a file named as a
+  /// run folder's files are, in this plan's RunFolder or in any folder that holds a run's files
+  /// (its .ocpbench.lock, a shards.json, or records.jsonl beside suite.json), with links
+  /// resolved, unless the output is the run's (or merge's) own.
   void Check() const;
+
+  /// The names of the files `run` and `merge` write in a run folder: records.jsonl,
+  /// records.shard-I-of-N.jsonl and their earlier versions (records.*.prev), shards.json, the
+  /// summaries (SummaryFileNames) and .ocpbench.lock.
+  static bool IsRunFolderFileName(const std::string& name);
 
   /// A solver or transcription option that names a file the solve writes (Ipopt's
   /// `output_file`), by the owner's option name: the one list every command consults.
@@ -58,6 +71,7 @@ class FilePlan {
 
  private:
   std::vector<Place> places_;
+  std::vector<std::string> run_folders_;  ///< RunFolder's, resolved
 };
 
 /// Renames `path` (an existing file) out of the way so that nothing is lost: to PATH.prev, the

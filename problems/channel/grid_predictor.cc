@@ -373,9 +373,12 @@ class GridWorker {
   Eigen::MatrixXd lattice_mean_;  // Psi^T alpha over the lattice measurements, nx x ny
 };
 
-// Runs job(0), ..., job(count - 1) on `threads` threads (this one included), each job once,
-// in increasing order of start; rethrows the first exception after all threads stopped.
-void RunJobs(int count, int threads, const std::function<void(int)>& job) {
+// Runs job(0), ..., job(count - 1) on up to `threads` threads (this one included), each job
+// once, in increasing order of start; rethrows the first exception after all threads stopped.
+// When the system refuses a thread (a process or memory limit), the jobs run on the threads
+// already started (every job does the same arithmetic on any thread, so the result is the
+// same). Returns the number of threads the jobs ran on.
+int RunJobs(int count, int threads, const std::function<void(int)>& job) {
   std::atomic<int> next{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
@@ -389,24 +392,17 @@ void RunJobs(int count, int threads, const std::function<void(int)>& job) {
     }
   };
   std::vector<std::thread> pool;
-  std::string start_error;
   for (int t = 1; t < std::min(threads, count); ++t) {
     try {
       pool.emplace_back(run);
-    } catch (const std::system_error& e) {
-      // The system refused a thread (a process or memory limit). Never std::terminate (a
-      // joinable std::thread destroyed): stop the started ones at their next job, join them,
-      // and report the failure; nothing is retried behind the caller's back.
-      start_error = "grid prediction: could not start thread " + std::to_string(t + 1) + " of " +
-                    std::to_string(std::min(threads, count)) + " (" + e.what() + ")";
-      next = count;
-      break;
+    } catch (const std::system_error&) {
+      break;  // never std::terminate: go on with the threads there are
     }
   }
-  if (start_error.empty()) run();
+  run();
   for (std::thread& t : pool) t.join();
-  if (!start_error.empty()) throw std::runtime_error(start_error);
   if (failure) std::rethrow_exception(failure);
+  return static_cast<int>(pool.size()) + 1;
 }
 
 }  // namespace
@@ -431,16 +427,22 @@ GridPrediction PredictOnGrid(const GpChannelPredictor& predictor,
   // whichever thread runs it, so the result does not depend on the thread count. Round 2 runs
   // the FFT convolution (job 0) next to the tiles, which do not need it.
   const int tiles = worker.num_tiles();
-  RunJobs(worker.num_setup_jobs(), threads, [&](int job) { worker.SetupJob(job); });
+  // The fewest threads any round ran on (the system may refuse some: see RunJobs).
+  int ran = threads;
+  auto round = [&](int count, const std::function<void(int)>& job) {
+    const int used = RunJobs(count, threads, job);
+    if (used < std::min(threads, count)) ran = std::min(ran, used);
+  };
+  round(worker.num_setup_jobs(), [&](int job) { worker.SetupJob(job); });
   const int convolve = worker.has_lattice() ? 1 : 0;
-  RunJobs(convolve + tiles, threads, [&](int job) {
+  round(convolve + tiles, [&](int job) {
     if (job < convolve) {
       worker.Convolve();
     } else {
       worker.Tile(job - convolve);
     }
   });
-  RunJobs(tiles, threads, [&](int job) { worker.Finish(job); });
+  round(tiles, [&](int job) { worker.Finish(job); });
   out.seconds = watch.wall();
   std::ostringstream os;
   os << ToString(options.variance);
@@ -449,6 +451,7 @@ GridPrediction PredictOnGrid(const GpChannelPredictor& predictor,
   }
   os << " tile=" << options.tile_points << " cheb=" << options.far_field_order
      << " threads=" << threads;
+  if (ran < threads) os << " (the system started only " << ran << ")";
   out.method = os.str();
   return out;
 }

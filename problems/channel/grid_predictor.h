@@ -70,9 +70,11 @@ struct GridPrediction {
 /// `num_threads` threads; the result does not depend on the thread count.
 ///
 /// Cost on the paper's setting (500 x 500, m = 500), kLocal: see problems/channel/README.md
-/// (a few tenths of a second on this 2-core machine). Throws std::invalid_argument on invalid
-/// options or grid, std::runtime_error if a local Phi is not positive definite or the system
-/// cannot start one of the threads (never std::terminate).
+/// (a few tenths of a second on this 2-core machine). When the system refuses a thread (a
+/// process or memory limit), the prediction goes on with the threads it has (the same result;
+/// `method` then says "threads=N (the system started only K)"). Throws std::invalid_argument on
+/// invalid options or grid, std::runtime_error if a local Phi is not positive definite (never
+/// std::terminate).
 GridPrediction PredictOnGrid(const GpChannelPredictor& predictor,
                              const GridSpec& grid,
                              const GridPredictionOptions& options = {});
