@@ -110,25 +110,58 @@ std::unique_ptr<MultiPhaseOcp> MakeEstimationProblem(const std::string& name,
   using Phase = ObservationPhase<Model>;
   constexpr int ne = Phase::kNe, np = Phase::kNp;
   const int m = static_cast<int>(d.times.size());
-  if (d.y0.size() != ne || d.observations.rows() != ne || d.observations.cols() != m ||
-      d.parameter_lower.size() != np || d.parameter_upper.size() != np ||
-      d.parameter_guess.size() != np || m < 1) {
-    throw std::invalid_argument(name + ": estimation data of the wrong sizes");
+  // Every rule up front, naming the field and the index (before any phase is built).
+  const auto refuse = [&](const std::string& what) {
+    throw std::invalid_argument(name + ": estimation data: " + what);
+  };
+  const auto need_size = [&](const char* field, Eigen::Index got, int want) {
+    if (got != want) {
+      refuse(std::string(field) + " has " + std::to_string(got) + " entries; the model needs " +
+             std::to_string(want));
+    }
+  };
+  need_size("y0", d.y0.size(), ne);
+  need_size("parameter_lower", d.parameter_lower.size(), np);
+  need_size("parameter_upper", d.parameter_upper.size(), np);
+  need_size("parameter_guess", d.parameter_guess.size(), np);
+  if (d.observations.rows() != ne || d.observations.cols() != m) {
+    refuse("observations is " + std::to_string(d.observations.rows()) + " x " +
+           std::to_string(d.observations.cols()) + "; it must be ne x m = " + std::to_string(ne) +
+           " x " + std::to_string(m) + " (one column per entry of times)");
+  }
+  if (!std::isfinite(d.t0) || !d.y0.allFinite()) refuse("t0 and y0 must be finite");
+  for (int j = 0; j < m; ++j) {
+    if (!std::isfinite(d.times[j]) || !d.observations.col(j).allFinite()) {
+      refuse("times[" + std::to_string(j) + "] and observations column " + std::to_string(j) +
+             " must be finite");
+    }
+    if (d.times[j] < d.t0 || (j > 0 && !(d.times[j] > d.times[j - 1]))) {
+      refuse("times[" + std::to_string(j) + "] = " + std::to_string(d.times[j]) +
+             ": observation times must be >= t0 and strictly increasing");
+    }
+  }
+  for (int i = 0; i < np; ++i) {
+    const double lo = d.parameter_lower[i], hi = d.parameter_upper[i], g = d.parameter_guess[i];
+    if (std::isnan(lo) || std::isnan(hi) || !(lo <= hi) || !std::isfinite(g) || g < lo || g > hi) {
+      refuse("parameter " + std::to_string(i) + ": need parameter_lower <= parameter_guess <= " +
+             "parameter_upper, the guess finite (got " + std::to_string(lo) +
+             " <= " + std::to_string(g) + " <= " + std::to_string(hi) + ")");
+    }
   }
   int first = 0;
-  if (std::abs(d.times[0] - d.t0) <= 1e-12 * std::max(1.0, std::abs(d.t0))) {
+  if (m >= 1 && std::abs(d.times[0] - d.t0) <= 1e-12 * std::max(1.0, std::abs(d.t0))) {
     // An observation at t0 of the given initial state: its residual is 0 when it equals y0.
     if ((d.observations.col(0) - d.y0).cwiseAbs().maxCoeff() > 0.0) {
-      throw std::invalid_argument(name + ": the observation at t0 differs from y0");
+      refuse("the observation at t0 (times[0]) differs from y0, the given initial state");
     }
     first = 1;
   }
+  if (m - first < 1) refuse("times needs at least one observation after t0");
   const VectorBounds theta_bounds{d.parameter_lower, d.parameter_upper};
   std::vector<PhaseSpec> phases;
   double start = d.t0;
   for (int j = first; j < m; ++j) {
     const double end = d.times[j];
-    if (!(end > start)) throw std::invalid_argument(name + ": observation times must increase");
     Vec x0(Phase::kNx);
     // Where methods start: the previous observation (y0 first) and the parameter guess.
     x0.head(ne) = j == first ? d.y0 : Vec(d.observations.col(j - 1));

@@ -29,7 +29,7 @@ namespace ocpb {
 /// References: COPS publishes f = 19.8721, its optimum with 3-stage Gauss collocation at nh = 100
 /// (the value COPSBenchmark.jl's test checks as reported in cops3.pdf), printed to 6 digits (a
 /// unit of the last digit is 5e-6 relative). The primary reference is the continuous optimum to
-/// 9 digits, 19.8721669 at theta = (5.92585e-5, 2.96340e-5, 2.04729e-5, 2.74469e-4, 3.99796e-5):
+/// 9 digits, 19.8721669 at theta = (5.92585e-5, 2.96340e-5, 2.04728e-5, 2.74468e-4, 3.99795e-5):
 /// computed twice, by OCPBench (`ocpbench solve --problem pinene --solver ipopt --transcription
 /// hermite-simpson --N 20 --terminal hard`, Jbar fine) and independently by single shooting
 /// (SciPy DOP853 at rtol 1e-13 with least_squares). COPS' printed value lies 0.7 of a unit of its

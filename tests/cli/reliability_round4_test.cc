@@ -360,24 +360,25 @@ TEST(OutputNeverNamesARunFolder, EverySpellingOfEveryRunFolderFile) {
   std::vector<std::string> refused;
   for (const std::string& folder :
        std::vector<std::string>{"runs", "./runs", "other/../runs", abs + "/runs", "runs-link"}) {
-    for (const std::string& name : {"records.jsonl",
-                                    "records.jsonl.prev",
-                                    "records.jsonl.3.prev",
-                                    "summary.md",
-                                    "records.csv",
-                                    "derived.jsonl",
-                                    "suite.json",
-                                    ".ocpbench.lock"}) {
+    for (const std::string& name : std::vector<std::string>{"records.jsonl",
+                                                            "records.jsonl.prev",
+                                                            "records.jsonl.3.prev",
+                                                            "summary.md",
+                                                            "records.csv",
+                                                            "derived.jsonl",
+                                                            "suite.json",
+                                                            ".ocpbench.lock"}) {
       refused.push_back(folder + "/" + name);
     }
   }
   for (const std::string& folder :
        std::vector<std::string>{"sweep", "./sweep/", "other/sweep-link", abs + "/sweep"}) {
-    for (const std::string& name : {"records.shard-1-of-3.jsonl",  // not written yet
-                                    "records.shard-2-of-3.jsonl",
-                                    "records.shard-3-of-3.jsonl.prev",
-                                    "records.jsonl",
-                                    "shards.json"}) {
+    for (const std::string& name :
+         std::vector<std::string>{"records.shard-1-of-3.jsonl",  // not written yet
+                                  "records.shard-2-of-3.jsonl",
+                                  "records.shard-3-of-3.jsonl.prev",
+                                  "records.jsonl",
+                                  "shards.json"}) {
       refused.push_back(folder + (folder.back() == '/' ? "" : "/") + name);
     }
   }
@@ -442,10 +443,10 @@ TEST(OutputNeverNamesARunFolder, CommandsRefuseBeforeAnyWork) {
                                           "--N",
                                           "10"};
   std::vector<std::vector<std::string>> commands;
-  for (const std::string& target : {"runs/records.jsonl",
-                                    "./runs/../runs/records.jsonl.prev",
-                                    "runs-link/summary.md",
-                                    "sweep/records.shard-1-of-3.jsonl"}) {
+  for (const std::string& target : std::vector<std::string>{"runs/records.jsonl",
+                                                            "./runs/../runs/records.jsonl.prev",
+                                                            "runs-link/summary.md",
+                                                            "sweep/records.shard-1-of-3.jsonl"}) {
     std::vector<std::string> a = solve;
     a.insert(a.end(), {"--json", target});
     commands.push_back(a);

@@ -8,6 +8,7 @@
 // (Their derivatives are checked against finite differences with every registered problem:
 // registered_problems_test.)
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -154,7 +155,7 @@ double LeastSquares(const Vec& theta, int steps) {
 
 // The references are the data's least squares at the independent fit's rates (to their 9
 // digits: RK4 with 400 steps per interval is exact to 1e-11 here), and COPS' printed values lie
-// within one unit of their last digit from them (gasoil 0.58, methanol 0.15, pinene 0.67).
+// within one unit of their last digit from them (gasoil 0.58, methanol 0.015, pinene 0.67).
 TEST(EstimationProblems, ReferencesAreTheLeastSquaresAtTheFittedRates) {
   const std::vector<Case> cases = Cases();
   const double at[3] = {
@@ -199,15 +200,37 @@ TEST(EstimationProblems, CostIsTheLeastSquaresOfTheObservations) {
 }
 
 TEST(EstimationProblems, RefusesInconsistentData) {
+  // Each refusal names the field (and the index) it is about, before any phase is built.
+  const auto expect_refused = [](const EstimationData& d, const std::string& names) {
+    try {
+      MakeGasOil(d);
+      ADD_FAILURE() << "accepted; expected a refusal naming " << names;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(names), std::string::npos) << e.what();
+    }
+  };
   EstimationData d = GasOilModel::Data();
   d.observations(0, 0) = 0.9;  // the observation at t0 must be y0
-  EXPECT_THROW(MakeGasOil(d), std::invalid_argument);
+  expect_refused(d, "differs from y0");
   d = GasOilModel::Data();
   d.times[3] = d.times[2];
-  EXPECT_THROW(MakeGasOil(d), std::invalid_argument);
+  expect_refused(d, "times[3]");
   d = GasOilModel::Data();
   d.parameter_guess = Vec::Ones(2);
-  EXPECT_THROW(MakeGasOil(d), std::invalid_argument);
+  expect_refused(d, "parameter_guess has 2 entries");
+  d = GasOilModel::Data();
+  d.parameter_guess[1] = -1.0;  // below its bound 0
+  expect_refused(d, "parameter 1");
+  d = GasOilModel::Data();
+  d.observations(1, 5) = std::numeric_limits<double>::quiet_NaN();
+  expect_refused(d, "observations column 5");
+  d = GasOilModel::Data();
+  d.observations.conservativeResize(Eigen::NoChange, d.observations.cols() - 1);
+  expect_refused(d, "one column per entry of times");
+  d = GasOilModel::Data();
+  d.times.resize(1);  // only the observation at t0: nothing to fit
+  d.observations.conservativeResize(Eigen::NoChange, 1);
+  expect_refused(d, "at least one observation after t0");
 }
 
 }  // namespace
