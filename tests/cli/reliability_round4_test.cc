@@ -412,7 +412,7 @@ TEST(OutputNeverNamesARunFolder, EverySpellingOfEveryRunFolderFile) {
   }
   // A run's own plan: a case's file may not name a file of its folder that is yet to come.
   for (const std::string& name :
-       {"records.shard-1-of-3.jsonl", "records.shard-3-of-3.jsonl.prev"}) {
+       std::vector<std::string>{"records.shard-1-of-3.jsonl", "records.shard-3-of-3.jsonl.prev"}) {
     FilePlan plan;
     plan.Output("fresh/" + name, "option output_file of case 1", "solver log");
     EXPECT_THROW(PlanRunFolder("fresh", "fresh/records.shard-2-of-3.jsonl", 3, &plan),
