@@ -25,21 +25,7 @@ using nlohmann::json;
 using testing::ProgramRun;
 using testing::RunOcpbenchProgram;
 
-bool OneErrorLine(const ProgramRun& run) {
-  return run.err.rfind("ocpbench: error: ", 0) == 0 &&
-         std::count(run.err.begin(), run.err.end(), '\n') == 1;
-}
-
-// Every regular file under `dir` with its text (what must not change).
-std::map<std::string, std::string> Snapshot(const std::string& dir) {
-  std::map<std::string, std::string> out;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    if (e.is_symlink() || !e.is_regular_file()) continue;
-    if (e.path().filename() == ".ocpbench.lock") continue;
-    out[fs::relative(e.path(), dir).string()] = testing::ReadText(e.path().string());
-  }
-  return out;
-}
+using testing::OneErrorLine;
 
 const std::vector<std::string> kQuickSolve = {"solve",
                                               "--problem",
@@ -104,7 +90,7 @@ TEST(OutputNeverReplacesInput, SolveAndOnlineOutputsAgainstTheirInputs) {
   ASSERT_EQ(made.exit_code, 0) << made.err;
   int tried = 0;
   for (const std::string& spelling : Spellings(dir, "guess.json")) {
-    const auto before = Snapshot(dir);
+    const auto before = testing::SnapshotFiles(dir);
     // Ipopt's own output file naming the --initial-guess file.
     ProgramRun run = RunOcpbenchProgram(
         Plus(kQuickIpopt, {"--initial-guess", "guess.json", "--option", "output_file=" + spelling}),
@@ -138,7 +124,7 @@ TEST(OutputNeverReplacesInput, SolveAndOnlineOutputsAgainstTheirInputs) {
       EXPECT_NE(run.err.find("two outputs in one file"), std::string::npos) << run.err;
       ++tried;
     }
-    EXPECT_EQ(Snapshot(dir), before) << spelling;
+    EXPECT_EQ(testing::SnapshotFiles(dir), before) << spelling;
     tried += 3;
   }
   EXPECT_GE(tried, 30);
@@ -161,7 +147,7 @@ TEST(OutputNeverReplacesInput, RunAndMergeNeverWriteOverTheSuiteFile) {
   testing::WriteText(dir + "/suite.json", suite);
   int tried = 0;
   for (const std::string& spelling : Spellings(dir, "suite.json")) {
-    const auto before = Snapshot(dir);
+    const auto before = testing::SnapshotFiles(dir);
     // run SUITE --out DIR with the suite in DIR (run writes DIR/suite.json).
     for (const std::vector<std::string>& extra :
          std::vector<std::vector<std::string>>{{}, {"--check"}, {"--overwrite"}}) {
@@ -171,7 +157,7 @@ TEST(OutputNeverReplacesInput, RunAndMergeNeverWriteOverTheSuiteFile) {
       EXPECT_NE(run.err.find("is also the suite file"), std::string::npos) << run.err;
       ++tried;
     }
-    EXPECT_EQ(Snapshot(dir), before) << spelling;
+    EXPECT_EQ(testing::SnapshotFiles(dir), before) << spelling;
   }
   // merge DIR --suite DIR/suite.json: the shards ran from a copy of the suite.
   testing::WriteText(dir + "/elsewhere.json", suite);
@@ -182,13 +168,13 @@ TEST(OutputNeverReplacesInput, RunAndMergeNeverWriteOverTheSuiteFile) {
   }
   fs::copy_file(dir + "/suite.json", dir + "/sweep/suite.json");
   for (const std::string& spelling : Spellings(dir + "/sweep", "suite.json")) {
-    const auto before = Snapshot(dir);
+    const auto before = testing::SnapshotFiles(dir);
     const std::string given = spelling[0] == '/' ? spelling : "sweep/" + spelling;
     const ProgramRun run = RunOcpbenchProgram({"merge", "sweep", "--suite", given}, dir);
     EXPECT_EQ(run.exit_code, 2) << spelling << ": " << run.err;
     EXPECT_TRUE(OneErrorLine(run)) << run.err;
     EXPECT_NE(run.err.find("is also --suite"), std::string::npos) << run.err;
-    EXPECT_EQ(Snapshot(dir), before) << spelling;
+    EXPECT_EQ(testing::SnapshotFiles(dir), before) << spelling;
     ++tried;
   }
   EXPECT_GE(tried, 25);
@@ -229,7 +215,7 @@ TEST(OutputNeverReplacesInput, SolverLogsOfASuiteNeverNameTheRunsFiles) {
     for (const bool check : {false, true}) {
       testing::WriteText(dir + "/suite.json",
                          QuickSuite(2, "ipopt", R"({"output_file": ")" + target + "\"}"));
-      const auto before = Snapshot(dir);
+      const auto before = testing::SnapshotFiles(dir);
       std::vector<std::string> args = {"run", "suite.json", "--out", out};
       if (out == "out-sharded") args.insert(args.end(), {"--shard", "1/2"});
       if (check) args.push_back("--check");
@@ -237,7 +223,7 @@ TEST(OutputNeverReplacesInput, SolverLogsOfASuiteNeverNameTheRunsFiles) {
       EXPECT_EQ(run.exit_code, 2) << target << ": " << run.err;
       EXPECT_TRUE(OneErrorLine(run)) << run.err;
       EXPECT_NE(run.err.find("option output_file of case 1"), std::string::npos) << run.err;
-      EXPECT_EQ(Snapshot(dir), before) << target;
+      EXPECT_EQ(testing::SnapshotFiles(dir), before) << target;
       ++tried;
     }
   }
@@ -291,9 +277,9 @@ TEST(NoRecordLost, EveryMergeAndOverwriteKeepsEachEarlierVersion) {
     EXPECT_EQ(testing::ReadText(older), versions[k - 1]) << k;
   }
   // A merge that changes nothing keeps no copy.
-  const auto before = Snapshot(dir + "/d");
+  const auto before = testing::SnapshotFiles(dir + "/d");
   ASSERT_EQ(RunOcpbenchProgram({"merge", "d"}, dir).exit_code, 0);
-  EXPECT_EQ(Snapshot(dir + "/d").size(), before.size());
+  EXPECT_EQ(testing::SnapshotFiles(dir + "/d").size(), before.size());
 
   // run --overwrite, repeated: every earlier records file stays.
   for (int i = 0; i < 4; ++i) {

@@ -321,20 +321,7 @@ TEST(IpoptOptionsRoundTrip, OutputFilePlacesAgreeWithIpopt) {
 
 // ---- no output names a run folder's files --------------------------------------------------
 
-bool OneErrorLine(const ProgramRun& run) {
-  return run.err.rfind("ocpbench: error: ", 0) == 0 &&
-         std::count(run.err.begin(), run.err.end(), '\n') == 1;
-}
-
-std::map<std::string, std::string> Snapshot(const std::string& dir) {
-  std::map<std::string, std::string> out;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    if (e.is_symlink() || !e.is_regular_file()) continue;
-    if (e.path().filename() == ".ocpbench.lock") continue;
-    out[fs::relative(e.path(), dir).string()] = testing::ReadText(e.path().string());
-  }
-  return out;
-}
+using testing::OneErrorLine;
 
 std::string QuickSuite(int seeds) {
   std::string list;
@@ -473,7 +460,7 @@ TEST(OutputNeverNamesARunFolder, CommandsRefuseBeforeAnyWork) {
       R"({"name": "r4", "groups": [{"problem": "double-integrator", "N": 10, "seeds": [1, 2, 3],)"
       R"( "methods": [{"solver": "ipopt", "transcription": "euler", "options": )"
       R"({"output_file": "sweep/records.shard-3-of-3.jsonl"}}]}]})");
-  const auto before = Snapshot(dir);
+  const auto before = testing::SnapshotFiles(dir);
   for (const auto& args : commands) {
     const ProgramRun run = RunOcpbenchProgram(args, dir);
     std::string line;
@@ -490,7 +477,7 @@ TEST(OutputNeverNamesARunFolder, CommandsRefuseBeforeAnyWork) {
     EXPECT_TRUE(OneErrorLine(run)) << run.err;
     EXPECT_NE(run.err.find("option output_file of case 1"), std::string::npos) << run.err;
   }
-  EXPECT_EQ(Snapshot(dir), before);
+  EXPECT_EQ(testing::SnapshotFiles(dir), before);
   EXPECT_FALSE(fs::exists(dir + "/sweep/records.shard-3-of-3.jsonl"));
 }
 

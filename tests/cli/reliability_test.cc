@@ -49,10 +49,7 @@ std::string LongFirstCase() {
      "methods": [{"solver": "hamiltonian", "options": {"max_iterations": 10}}]}]})";
 }
 
-bool OneErrorLine(const ProgramRun& run) {
-  return run.err.rfind("ocpbench: error: ", 0) == 0 &&
-         std::count(run.err.begin(), run.err.end(), '\n') == 1;
-}
+using testing::OneErrorLine;
 
 // Every line of a records file, each of which must be a whole JSON record.
 std::vector<json> WholeRecords(const std::string& path) {

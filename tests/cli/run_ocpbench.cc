@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -121,5 +122,20 @@ int StartOcpbenchProgram(const std::vector<std::string>& args, const std::string
 void WriteText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 std::string ReadText(const std::string& path) { return Slurp(path); }
+
+bool OneErrorLine(const ProgramRun& run) {
+  return run.err.rfind("ocpbench: error: ", 0) == 0 &&
+         std::count(run.err.begin(), run.err.end(), '\n') == 1;
+}
+
+std::map<std::string, std::string> SnapshotFiles(const std::string& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+    if (e.is_symlink() || !e.is_regular_file()) continue;
+    if (e.path().filename() == ".ocpbench.lock") continue;
+    out[std::filesystem::relative(e.path(), dir).string()] = ReadText(e.path().string());
+  }
+  return out;
+}
 
 }  // namespace ocpb::testing

@@ -1,6 +1,7 @@
 // Runs the ocpbench program as a user would, capturing stdout, stderr and the exit code.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,14 @@ int StartOcpbenchProgram(const std::vector<std::string>& args, const std::string
 
 /// A fresh empty directory under the test's temporary directory.
 std::string FreshDirectory(const std::string& name);
+
+/// True when the run's stderr is exactly one line "ocpbench: error: ..." (the contract for
+/// refused input).
+bool OneErrorLine(const ProgramRun& run);
+
+/// Every regular file under `dir` (relative path -> text), links and the lock file left out:
+/// what a refused command must leave unchanged.
+std::map<std::string, std::string> SnapshotFiles(const std::string& dir);
 
 void WriteText(const std::string& path, const std::string& text);
 std::string ReadText(const std::string& path);
