@@ -272,7 +272,7 @@ void AddCaseFiles(const CaseSpec& spec, const std::string& where, FilePlan* plan
       if (!FilePlan::IsOutputFileOption(name) || value.empty()) continue;
       const std::string path = value.ToText();
       if (path.empty()) continue;
-      plan->Output(path, flag + " " + name + of, "solver log");
+      plan->Output(path, flag + " " + name + of, FilePlan::kSolverLog);
     }
   };
   outputs(spec.options, where.empty() ? "--option" : "option");

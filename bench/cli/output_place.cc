@@ -110,6 +110,7 @@ FilePlan::Place PlaceOf(const std::string& path, const std::string& what, bool o
     place.write_through = S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode);
     place.device = static_cast<unsigned long long>(st.st_dev);
     place.inode = static_cast<unsigned long long>(st.st_ino);
+    place.links = static_cast<unsigned long long>(st.st_nlink);
     return place;
   }
   // A loop of links is refused here; an over-long name is left to the check of the place
@@ -222,6 +223,17 @@ void FilePlan::Check() const {
                OneLine(dir.string()) +
                " (records, their earlier versions, shards.json, the summaries and the lock of a "
                "run folder are written by `ocpbench run` and `merge` only)");
+  }
+  // A solver writes its output file in place: a file with other names (hard links) would
+  // change under each of them, whichever file that is (a run's records, an input).
+  for (const Place& out : places_) {
+    if (!out.output || out.write_through || out.shared_by != kSolverLog) continue;
+    if (!out.exists || out.links <= 1) continue;
+    Refuse(out.what,
+           out.path,
+           "has " + std::to_string(out.links) +
+               " names (hard links): the solver writes its output file in place, which would "
+               "change the file under every other name too; name a file of its own");
   }
 }
 

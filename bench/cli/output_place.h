@@ -37,6 +37,10 @@ class FilePlan {
   /// replaces the one before); a character device or a FIFO (/dev/null) may be named by any
   /// number of outputs.
   void Output(const std::string& path, const std::string& what, const std::string& shared_by = "");
+  /// The `shared_by` tag of a solver's own output file (Ipopt's `output_file`). The solver
+  /// writes it in place (OCPBench's own outputs replace the name by a rename), so Check also
+  /// refuses an existing such file that has other names (hard links): they would change too.
+  static constexpr const char* kSolverLog = "solver log";
   /// The output folder of `ocpbench run` or `merge` (PlanRunFolder, ClaimMergeFolder): every
   /// file there named as a run folder's files are (IsRunFolderFileName) is the run's, whether
   /// it exists yet or not (another shard's records file to come).
@@ -46,7 +50,8 @@ class FilePlan {
   /// run folder ("WHAT PATH: is records.jsonl of the run folder DIR (...)"): a file named as a
   /// run folder's files are, in this plan's RunFolder or in any folder that holds a run's files
   /// (its .ocpbench.lock, a shards.json, or records.jsonl beside suite.json), with links
-  /// resolved, unless the output is the run's (or merge's) own.
+  /// resolved, unless the output is the run's (or merge's) own; then for a solver's output file
+  /// (kSolverLog) that exists with more than one name.
   void Check() const;
 
   /// The names of the files `run` and `merge` write in a run folder: records.jsonl,
@@ -66,7 +71,8 @@ class FilePlan {
     bool exists = false;
     bool write_through = false;  ///< a character device or a FIFO
     unsigned long long device = 0, inode = 0;
-    std::string resolved;  ///< when it does not exist: the absolute path, links resolved
+    unsigned long long links = 0;  ///< hard links of an existing file
+    std::string resolved;          ///< when it does not exist: the absolute path, links resolved
   };
 
  private:

@@ -397,6 +397,24 @@ TEST(OutputNeverNamesARunFolder, EverySpellingOfEveryRunFolderFile) {
     plan.Output(path, "--json");
     EXPECT_NO_THROW(plan.Check()) << path;
   }
+  // A hard link to a run's records file elsewhere: a solver's output file, written in place,
+  // is refused (it would empty the records); OCPBench's own outputs replace the name by a
+  // rename, which leaves the run's file as it was, so they may.
+  fs::create_hard_link("runs/records.jsonl", "other-name.txt");
+  {
+    FilePlan plan;
+    plan.Output("other-name.txt", "option output_file", FilePlan::kSolverLog);
+    try {
+      plan.Check();
+      ADD_FAILURE() << "a hard link as a solver's output file was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("has 2 names (hard links)"), std::string::npos)
+          << e.what();
+    }
+    FilePlan own;
+    own.Output("other-name.txt", "--json");
+    EXPECT_NO_THROW(own.Check());
+  }
   // A run's own plan: a case's file may not name a file of its folder that is yet to come.
   for (const std::string& name :
        std::vector<std::string>{"records.shard-1-of-3.jsonl", "records.shard-3-of-3.jsonl.prev"}) {
