@@ -36,20 +36,8 @@ const std::vector<std::string> kQuickSolve = {"solve",
                                               "10",
                                               "--option",
                                               "max_iterations=3"};
-const std::vector<std::string> kQuickIpopt = {"solve",
-                                              "--problem",
-                                              "double-integrator",
-                                              "--solver",
-                                              "ipopt",
-                                              "--transcription",
-                                              "euler",
-                                              "--N",
-                                              "10"};
-
-std::vector<std::string> Plus(std::vector<std::string> a, const std::vector<std::string>& b) {
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
-}
+const std::vector<std::string>& kQuickIpopt = testing::QuickIpoptSolve();
+using testing::Plus;
 
 // A suite of `seeds` quick cases; `options` is the text of the method's options object.
 std::string QuickSuite(int seeds, const std::string& solver, const std::string& options) {

@@ -438,15 +438,7 @@ TEST(OutputNeverNamesARunFolder, CommandsRefuseBeforeAnyWork) {
       RunOcpbenchProgram({"run", "suite.json", "--out", "sweep", "--shard", "2/3"}, dir).exit_code,
       0);
   fs::create_symlink("runs", dir + "/runs-link");
-  const std::vector<std::string> solve = {"solve",
-                                          "--problem",
-                                          "double-integrator",
-                                          "--solver",
-                                          "ipopt",
-                                          "--transcription",
-                                          "euler",
-                                          "--N",
-                                          "10"};
+  const std::vector<std::string>& solve = testing::QuickIpoptSolve();
   std::vector<std::vector<std::string>> commands;
   for (const std::string& target : std::vector<std::string>{"runs/records.jsonl",
                                                             "./runs/../runs/records.jsonl.prev",

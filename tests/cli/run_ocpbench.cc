@@ -119,6 +119,24 @@ int StartOcpbenchProgram(const std::vector<std::string>& args, const std::string
   return Spawn(args, cwd, cwd + "/bg.out", cwd + "/bg.err");
 }
 
+std::vector<std::string> Plus(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+const std::vector<std::string>& QuickIpoptSolve() {
+  static const std::vector<std::string> args = {"solve",
+                                                "--problem",
+                                                "double-integrator",
+                                                "--solver",
+                                                "ipopt",
+                                                "--transcription",
+                                                "euler",
+                                                "--N",
+                                                "10"};
+  return args;
+}
+
 void WriteText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 std::string ReadText(const std::string& path) { return Slurp(path); }

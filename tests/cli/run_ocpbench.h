@@ -30,6 +30,13 @@ bool OneErrorLine(const ProgramRun& run);
 /// what a refused command must leave unchanged.
 std::map<std::string, std::string> SnapshotFiles(const std::string& dir);
 
+/// `a` followed by `b`: a command line with more arguments.
+std::vector<std::string> Plus(std::vector<std::string> a, const std::vector<std::string>& b);
+
+/// A solve that ends in well under a second under the sanitizers: Ipopt on the double
+/// integrator, Euler, N = 10.
+const std::vector<std::string>& QuickIpoptSolve();
+
 void WriteText(const std::string& path, const std::string& text);
 std::string ReadText(const std::string& path);
 
