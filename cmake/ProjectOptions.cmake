@@ -57,7 +57,7 @@ function(ocpb_unoptimized_in_debug target)
 endfunction()
 
 # ocpb_project_libraries(out target...): the OCPBench static libraries the targets link,
-# directly or through other OCPBench libraries, dependencies after their users.
+# directly or through other OCPBench libraries (public dependencies), dependencies first.
 function(ocpb_project_libraries out)
   set(found)
   set(queue ${ARGN})
@@ -76,25 +76,27 @@ function(ocpb_project_libraries out)
       list(APPEND queue ${deps})
     endif()
   endwhile()
+  list(REVERSE found)
   set(${out} ${found} PARENT_SCOPE)
 endfunction()
 
-# ocpb_link_libraries_first(target lib...): the linker reads every object of the OCPBench
-# libraries `lib...` (and theirs) before the target's own objects. An inline or template function
-# that both compile (Eigen's kernels, the jets' arithmetic) is kept once, from the first object
-# that has it: so the libraries' optimized copy serves the whole program, also where a test file
-# compiled at -O0 has its own (ocpb_unoptimized_in_debug). Without this the test's -O0 copies
-# won, and the libraries' loops ran them: solvers_test's AugmentedLagrangianLoop took over 4x its
-# time when its files alone were at -O0 (measured 2026-12-06).
+# ocpb_link_libraries_first(target lib...): in a Debug build on Linux the linker reads every
+# object of the OCPBench libraries `lib...` (and theirs; the numerical ones first) before the
+# target's own objects. An inline or template function that both compile (Eigen's kernels, the
+# jets' arithmetic) is kept once, from the first object that has it: so the libraries' optimized
+# copy serves the whole program, also where a test file compiled at -O0 has its own
+# (ocpb_unoptimized_in_debug). Without this the test's -O0 copies won, and the libraries' loops
+# ran them: solvers_test's AugmentedLagrangianLoop took over 4x its time when its files alone
+# were at -O0 (measured 2026-12-06). Other builds compile everything alike and link as usual.
 function(ocpb_link_libraries_first target)
   ocpb_project_libraries(libs ${ARGN})
   set(archives)
   foreach(lib IN LISTS libs)
     list(APPEND archives $<TARGET_FILE:${lib}>)
   endforeach()
-  if(archives)
-    target_link_options(${target} PRIVATE "LINKER:--whole-archive" ${archives}
-                        "LINKER:--no-whole-archive")
+  if(archives AND UNIX AND NOT APPLE)
+    target_link_options(${target} PRIVATE
+                        "$<$<CONFIG:Debug>:LINKER:--whole-archive;${archives};LINKER:--no-whole-archive>")
   endif()
 endfunction()
 

@@ -96,6 +96,23 @@ void AddFeasibilityWarning(const SolveRequest& request, const JudgeOptions& opti
                              "status says"});
 }
 
+// The re-simulation on the method's grid (explicit Euler by default) may diverge where the
+// method's own scheme and the fine RK4 do not: say which evaluations are finite.
+void AddNotFiniteWarning(const JudgeOptions& options, Judgement* j) {
+  if (j->own_grid.finite) return;
+  std::string message = std::string("the controls re-simulated with ") +
+                        ToString(options.integrator) + " on the method's grid (" +
+                        std::to_string(j->grid.intervals()) +
+                        " intervals) give a trajectory or cost that is not finite";
+  if (j->fine.finite) {
+    message += "; the fine RK4 re-simulation is finite (J fine " + JudgeNumber(j->fine.J) +
+               "): judge by it";
+  } else {
+    message += ", and so does the fine RK4 re-simulation: the answer cannot be evaluated";
+  }
+  j->warnings.push_back({"not_finite", message});
+}
+
 }  // namespace
 
 bool Judgement::HasWarning(const std::string& code) const {
@@ -153,6 +170,7 @@ Judgement JudgeResult(const Ocp& ocp,
              JudgeNumber(j.fine.terminal_violation) +
              " on the fine grid; set them (SetTerminalWeights) or solve the hard form"});
   }
+  AddNotFiniteWarning(options, &j);
   AddDiscretizationWarning(request, result, options, &j);
   AddFeasibilityWarning(request, options, &j);
   return j;

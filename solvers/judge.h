@@ -27,6 +27,12 @@ namespace ocpb {
 ///    (hard form) the terminal constraints by more than JudgeOptions::feasibility_tolerance,
 ///    whatever the status says (a minimizer that forgets the bounds, a scheme that does not
 ///    enforce a path constraint at tf, a penalty reformulation).
+///  - "not_finite": the controls re-simulated on the method's grid with JudgeOptions::integrator
+///    (the record's J, Jbar) give a trajectory or cost that is not finite. The message says
+///    whether the fine RK4 re-simulation is finite (then judge by its values: an explicit
+///    integrator on a coarse grid diverged, not necessarily the method). `ocpbench` records the
+///    status numerical_failure when the fine one is not finite either, or when the method's own
+///    scheme is the judge's integrator (its transcription is, or it has none).
 struct JudgeWarning {
   std::string code;
   std::string message;

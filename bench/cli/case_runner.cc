@@ -199,7 +199,7 @@ void Judge(const CaseSpec& spec, const PreparedCase& p, const SolveResult& resul
   }
   rec->discretization_gap = judged.discretization_gap;
   for (const JudgeWarning& w : judged.warnings) rec->warnings.push_back({w.code, w.message});
-  if (!ev.finite && !IsFailure(result.status)) {
+  if (NotFiniteIsNumericalFailure(spec, ev.finite, fine.finite) && !IsFailure(result.status)) {
     rec->status = ToString(SolveStatus::kNumericalFailure);
     rec->message = result.message + " (evaluator: trajectory or cost not finite)";
   }
@@ -277,6 +277,15 @@ void AddCaseFiles(const CaseSpec& spec, const std::string& where, FilePlan* plan
   };
   outputs(spec.options, where.empty() ? "--option" : "option");
   outputs(spec.replan_options, where.empty() ? "--replan-option" : "replan option");
+}
+
+bool NotFiniteIsNumericalFailure(const CaseSpec& spec, bool own_finite, bool fine_finite) {
+  if (own_finite) return false;
+  // Ipopt on the Euler NLP judged by Euler re-simulates its own scheme: a divergence there is
+  // the method's. A method without a transcription counts as the judge's scheme.
+  const bool own_scheme =
+      spec.transcription.empty() || spec.transcription == ToString(spec.evaluate_with);
+  return !fine_finite || own_scheme;
 }
 
 bool IsFailure(SolveStatus status) {

@@ -87,6 +87,15 @@ bool IsFailure(SolveStatus status);
 /// The same for a record's status name (ToString of a SolveStatus).
 bool IsFailure(const std::string& status);
 
+/// Whether a judged case whose re-simulation on the method's grid (`own`, the record's J) is not
+/// finite is recorded as numerical_failure, whatever its solver said: when the fine RK4
+/// re-simulation is not finite either, or when the method's own scheme is the judge's integrator
+/// (`spec.transcription` is `spec.evaluate_with`'s name, or the method has no transcription, as
+/// the Hamiltonian family on Euler). Otherwise (Euler diverging on a trapezoid solution's coarse
+/// grid) the solver's status stands, with the judge's warning not_finite. False when `own` is
+/// finite.
+bool NotFiniteIsNumericalFailure(const CaseSpec& spec, bool own_finite, bool fine_finite);
+
 /// Solves the case and returns its record. Never throws for numerical trouble (that is the
 /// record's status); throws std::invalid_argument for an invalid case (ValidateCase) before
 /// any solving.

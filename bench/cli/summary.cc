@@ -270,7 +270,10 @@ std::string SummaryMarkdown(const std::string& suite_name,
         "controls differ by more than 1% (the grid, not the method, limits the answer), "
         "`terminal_weights_default` for the penalty form of a problem that never chose its "
         "terminal weights, `infeasible` when the controls re-simulated on the fine grid violate "
-        "U, a path constraint or (hard form) the terminal constraints by more than 1e-3. Each "
+        "U, a path constraint or (hard form) the terminal constraints by more than 1e-3, "
+        "`not_finite` when the re-simulation on the method's grid (J) is not finite (with the "
+        "status numerical_failure unless the fine one is finite and the method's scheme is "
+        "not the judge's integrator). Each "
         "record's `stopping_tolerance` names the option that bounds its "
         "accuracy (Ipopt: `tol`).\n\n";
   md << OverviewMarkdown(records);

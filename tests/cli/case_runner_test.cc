@@ -277,5 +277,50 @@ TEST(IsFailure, StatusNamesMatchTheEnum) {
   EXPECT_FALSE(IsFailure(std::string("no-such-status")));
 }
 
+// The record's status when the judge's re-simulation on the method's grid is not finite
+// (issue 38's glider): the solver's own when the fine RK4 one is finite and the method's scheme
+// is not the judge's Euler; numerical_failure when no re-simulation is finite (hypersensitive,
+// whose unstable dynamics overflow both), or when the method solved the judge's scheme itself.
+TEST(RunCase, ANotFiniteReSimulationIsTheSolversFailureOnlyWhenItIsItsOwn) {
+  auto run = [](const std::string& problem, const std::string& transcription, int N) {
+    CaseSpec spec = Spec(problem, "ipopt");
+    spec.transcription = transcription;
+    spec.intervals = N;
+    spec.terminal = TerminalMode::kHard;
+    spec.keep_trajectory = false;
+    return RunCase(spec);
+  };
+  auto has_warning = [](const Record& r, const std::string& code) {
+    for (const RecordWarning& w : r.warnings) {
+      if (w.code == code) return true;
+    }
+    return false;
+  };
+  const Record trapezoid = run("glider", "trapezoid", 200);
+  EXPECT_EQ(trapezoid.solver_status, "Solve_Succeeded");
+  EXPECT_EQ(trapezoid.status, "converged") << trapezoid.message;
+  EXPECT_TRUE(has_warning(trapezoid, "not_finite"));
+  EXPECT_TRUE(std::isfinite(trapezoid.J_fine));
+
+  const Record neither = run("hypersensitive", "trapezoid", 100);
+  EXPECT_EQ(neither.solver_status, "Solve_Succeeded");
+  EXPECT_EQ(neither.status, "numerical_failure");
+  EXPECT_NE(neither.message.find("evaluator: trajectory or cost not finite"), std::string::npos);
+  EXPECT_TRUE(has_warning(neither, "not_finite"));
+
+  // The rule itself (glider's Ipopt + euler at N = 40..100 is such a case, but takes 600-1300
+  // Ipopt iterations).
+  CaseSpec spec = Spec("glider", "ipopt");
+  spec.transcription = "trapezoid";
+  EXPECT_FALSE(NotFiniteIsNumericalFailure(spec, true, false));
+  EXPECT_FALSE(NotFiniteIsNumericalFailure(spec, false, true));
+  EXPECT_TRUE(NotFiniteIsNumericalFailure(spec, false, false));
+  spec.transcription = "euler";
+  EXPECT_TRUE(NotFiniteIsNumericalFailure(spec, false, true));
+  spec.evaluate_with = Integrator::kRk4;
+  EXPECT_FALSE(NotFiniteIsNumericalFailure(spec, false, true));
+  EXPECT_TRUE(NotFiniteIsNumericalFailure(Spec("glider", "hamiltonian"), false, true));
+}
+
 }  // namespace
 }  // namespace ocpb

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Fuzzes one libFuzzer target for FUZZ_SECONDS from its seed corpus:
-#   FUZZ_SECONDS=45 bash tests/fuzz/run_fuzzer.sh BUILD_DIR SOURCE_DIR TARGET
-# The one way a fuzzer is run: by .ci/fuzz (every target, a few at a time) and by the CTest test
-# fuzz.<target> (tests/fuzz/CMakeLists.txt), which `bash .ci/test` runs among the other tests
-# with FUZZ_SECONDS=45; without FUZZ_SECONDS (or with 0) it exits 77, which CTest reports as
-# skipped, so a plain `ctest` does not fuzz.
+#   FUZZ_SECONDS=20 bash tests/fuzz/run_fuzzer.sh BUILD_DIR SOURCE_DIR TARGET
+# The one way a fuzzer is run: by .ci/fuzz (every target, a few at a time; CI runs it after the
+# test command with FUZZ_SECONDS=20) and by the CTest test fuzz.<target>
+# (tests/fuzz/CMakeLists.txt); without FUZZ_SECONDS (or with 0) it exits 77, which CTest reports
+# as skipped, so a plain `ctest` does not fuzz (`.ci/test` leaves these tests out).
 # The corpus grows in BUILD_DIR/fuzz/corpus/TARGET/. A crash fails the run (exit non-zero) and
 # leaves its input in BUILD_DIR/fuzz/crashes/TARGET/: copy it to tests/fuzz/regressions/TARGET/
 # (replayed by every test run, fuzz_replay.TARGET) and fix the bug. The whole log is
@@ -21,7 +21,7 @@ if ! [[ "$seconds" =~ ^[0-9]+$ ]]; then
   exit 2
 fi
 if [ "$seconds" -eq 0 ]; then
-  echo "fuzz.${target}: FUZZ_SECONDS is not set; skipped (bash .ci/test sets it)"
+  echo "fuzz.${target}: FUZZ_SECONDS is not set; skipped (FUZZ_SECONDS=20 ctest, or .ci/fuzz)"
   exit 77
 fi
 work="${build}/fuzz/corpus/${target}"

@@ -229,5 +229,30 @@ TEST(JudgeResult, RefusesOptionsOutOfRange) {
   EXPECT_THROW(JudgeResult(*ocp, request, r, bad), std::invalid_argument);
 }
 
+// Issue 38's glider: Ipopt solves the trapezoid NLP (N = 200), but forward Euler on the same
+// grid, the record's J, diverges (measured: not finite) while RK4 on the 10x finer grid does not.
+// The judge says which evaluation failed; the solver's status is not the judge's to change.
+TEST(JudgeResult, SaysWhichReSimulationIsNotFinite) {
+  const auto ocp = MakeProblem("glider", {}, 0);
+  const SolveRequest request = RequestFor(*ocp, 200, TerminalMode::kHard, "trapezoid");
+  const SolveResult r = Solve("ipopt", *ocp, request);
+  ASSERT_EQ(r.status, SolveStatus::kConverged) << r.message;
+  const Judgement j = JudgeResult(*ocp, request, r);
+  ASSERT_FALSE(j.own_grid.finite) << "the premise: Euler on the method's grid diverges";
+  ASSERT_TRUE(j.fine.finite);
+  ASSERT_TRUE(j.HasWarning("not_finite"));
+  for (const JudgeWarning& w : j.warnings) {
+    if (w.code != "not_finite") continue;
+    EXPECT_NE(w.message.find("euler on the method's grid (200 intervals)"), std::string::npos)
+        << w.message;
+    EXPECT_NE(w.message.find("the fine RK4 re-simulation is finite"), std::string::npos)
+        << w.message;
+  }
+  // RK4 on the same grid does not diverge: nothing to report.
+  JudgeOptions rk4;
+  rk4.integrator = Integrator::kRk4;
+  EXPECT_FALSE(JudgeResult(*ocp, request, r, rk4).HasWarning("not_finite"));
+}
+
 }  // namespace
 }  // namespace ocpb
