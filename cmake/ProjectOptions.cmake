@@ -56,6 +56,18 @@ function(ocpb_unoptimized_in_debug target)
   target_compile_options(${target} PRIVATE $<$<CONFIG:Debug>:-O0>)
 endfunction()
 
+# ocpb_unoptimized_sources_in_debug(file...): the same for single files of a library whose run
+# time the tests do not feel (option binding, page rendering, a kernel only its own short tests
+# run) while their -O1 compile is long. A file with its own compile options leaves the library's
+# unity file and compiles alone (after it in the archive, so the library's -O1 copies of shared
+# inline code come first in a link); only where a Debug build can be configured, so that the
+# other builds keep their unity files whole.
+function(ocpb_unoptimized_sources_in_debug)
+  if(CMAKE_CONFIGURATION_TYPES OR CMAKE_BUILD_TYPE STREQUAL "Debug")
+    set_source_files_properties(${ARGN} PROPERTIES COMPILE_OPTIONS $<$<CONFIG:Debug>:-O0>)
+  endif()
+endfunction()
+
 # ocpb_project_libraries(out target...): the OCPBench static libraries the targets link,
 # directly or through other OCPBench libraries (public dependencies), dependencies first.
 function(ocpb_project_libraries out)
