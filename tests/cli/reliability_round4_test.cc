@@ -330,15 +330,21 @@ std::string QuickSuite(int seeds) {
          list + R"(], "methods": [{"solver": "hamiltonian", "options": {"max_iterations": 3}}]}]})";
 }
 
-// The shared checker (FilePlan) against run folders, by every spelling of their files: those
-// that exist, those a shard has yet to write, through links to the file and to the folder.
-TEST(OutputNeverNamesARunFolder, EverySpellingOfEveryRunFolderFile) {
-  const std::string dir = testing::FreshDirectory("r4-run-folder-plan");
+// In `dir`: a whole run of a three-case suite in runs/ and the second of three shards of it in
+// sweep/ (whose other shards' files are yet to be written).
+void WriteTwoRunFolders(const std::string& dir) {
   testing::WriteText(dir + "/suite.json", QuickSuite(3));
   ASSERT_EQ(RunOcpbenchProgram({"run", "suite.json", "--out", "runs"}, dir).exit_code, 0);
   ASSERT_EQ(
       RunOcpbenchProgram({"run", "suite.json", "--out", "sweep", "--shard", "2/3"}, dir).exit_code,
       0);
+}
+
+// The shared checker (FilePlan) against run folders, by every spelling of their files: those
+// that exist, those a shard has yet to write, through links to the file and to the folder.
+TEST(OutputNeverNamesARunFolder, EverySpellingOfEveryRunFolderFile) {
+  const std::string dir = testing::FreshDirectory("r4-run-folder-plan");
+  ASSERT_NO_FATAL_FAILURE(WriteTwoRunFolders(dir));
   fs::create_directories(dir + "/other");
   fs::create_symlink("runs", dir + "/runs-link");
   fs::create_symlink("runs/records.jsonl", dir + "/records-link");
@@ -432,11 +438,7 @@ TEST(OutputNeverNamesARunFolder, EverySpellingOfEveryRunFolderFile) {
 // a suite case's output file naming another shard's records yet to be written.
 TEST(OutputNeverNamesARunFolder, CommandsRefuseBeforeAnyWork) {
   const std::string dir = testing::FreshDirectory("r4-run-folder-cli");
-  testing::WriteText(dir + "/suite.json", QuickSuite(3));
-  ASSERT_EQ(RunOcpbenchProgram({"run", "suite.json", "--out", "runs"}, dir).exit_code, 0);
-  ASSERT_EQ(
-      RunOcpbenchProgram({"run", "suite.json", "--out", "sweep", "--shard", "2/3"}, dir).exit_code,
-      0);
+  ASSERT_NO_FATAL_FAILURE(WriteTwoRunFolders(dir));
   fs::create_symlink("runs", dir + "/runs-link");
   const std::vector<std::string>& solve = testing::QuickIpoptSolve();
   std::vector<std::vector<std::string>> commands;
