@@ -51,25 +51,32 @@ endfunction()
 # than computes: with the sanitizers, clang's -O1 takes about 2.8x the CPU of -O0 on such files
 # (solvers_test's unity file, measured 2026-12-06: 167 s against 59 s), while the run time is the
 # libraries' (which stay at -O1). An inline or template function that both compile may be linked
-# as the -O0 copy.
+# as the -O0 copy: a library marked so is linked after the fully optimized ones
+# (ocpb_link_libraries_first).
 function(ocpb_unoptimized_in_debug target)
   target_compile_options(${target} PRIVATE $<$<CONFIG:Debug>:-O0>)
+  set_property(TARGET ${target} PROPERTY OCPB_UNOPTIMIZED_CODE ON)
 endfunction()
 
-# ocpb_unoptimized_sources_in_debug(file...): the same for single files of a library whose run
-# time the tests do not feel (option binding, page rendering, a kernel only its own short tests
-# run) while their -O1 compile is long. A file with its own compile options leaves the library's
+# ocpb_unoptimized_sources_in_debug(target file...): the same for single files of a library
+# whose run time the tests do not feel (option binding, a kernel only its own short tests run)
+# while their -O1 compile is long. A file with its own compile options leaves the library's
 # unity file and compiles alone (after it in the archive, so the library's -O1 copies of shared
-# inline code come first in a link); only where a Debug build can be configured, so that the
-# other builds keep their unity files whole.
-function(ocpb_unoptimized_sources_in_debug)
-  if(CMAKE_CONFIGURATION_TYPES OR CMAKE_BUILD_TYPE STREQUAL "Debug")
+# inline code come first in a link; the library itself is linked after the fully optimized
+# ones). Only where a Debug build can be configured, so that other builds keep their unity files
+# whole.
+function(ocpb_unoptimized_sources_in_debug target)
+  get_property(multi_config GLOBAL PROPERTY GENERATOR_IS_MULTI_CONFIG)
+  string(TOLOWER "${CMAKE_BUILD_TYPE}" build_type)
+  if(multi_config OR build_type STREQUAL "debug")
     set_source_files_properties(${ARGN} PROPERTIES COMPILE_OPTIONS $<$<CONFIG:Debug>:-O0>)
+    set_property(TARGET ${target} PROPERTY OCPB_UNOPTIMIZED_CODE ON)
   endif()
 endfunction()
 
 # ocpb_project_libraries(out target...): the OCPBench static libraries the targets link,
-# directly or through other OCPBench libraries (public dependencies), dependencies first.
+# directly or through other OCPBench libraries (public dependencies), each after the libraries it
+# depends on, and those with -O0 code in a Debug build (OCPB_UNOPTIMIZED_CODE) after all others.
 function(ocpb_project_libraries out)
   set(found)
   set(queue ${ARGN})
@@ -88,16 +95,48 @@ function(ocpb_project_libraries out)
       list(APPEND queue ${deps})
     endif()
   endwhile()
-  list(REVERSE found)
-  set(${out} ${found} PARENT_SCOPE)
+  # Dependencies first: take, round by round, the libraries none of whose dependencies is left.
+  set(remaining ${found})
+  set(ordered)
+  while(remaining)
+    set(ready)
+    foreach(lib IN LISTS remaining)
+      get_target_property(deps ${lib} INTERFACE_LINK_LIBRARIES)
+      set(waits FALSE)
+      foreach(dep IN LISTS deps)
+        if(dep IN_LIST remaining)
+          set(waits TRUE)
+        endif()
+      endforeach()
+      if(NOT waits)
+        list(APPEND ready ${lib})
+      endif()
+    endforeach()
+    if(NOT ready)
+      message(FATAL_ERROR "ocpb_project_libraries: a dependency cycle among ${remaining}")
+    endif()
+    list(APPEND ordered ${ready})
+    list(REMOVE_ITEM remaining ${ready})
+  endwhile()
+  set(optimized)
+  set(unoptimized)
+  foreach(lib IN LISTS ordered)
+    get_target_property(has_o0 ${lib} OCPB_UNOPTIMIZED_CODE)
+    if(has_o0)
+      list(APPEND unoptimized ${lib})
+    else()
+      list(APPEND optimized ${lib})
+    endif()
+  endforeach()
+  set(${out} ${optimized} ${unoptimized} PARENT_SCOPE)
 endfunction()
 
 # ocpb_link_libraries_first(target lib...): in a Debug build on Linux the linker reads every
-# object of the OCPBench libraries `lib...` (and theirs; the numerical ones first) before the
-# target's own objects. An inline or template function that both compile (Eigen's kernels, the
-# jets' arithmetic) is kept once, from the first object that has it: so the libraries' optimized
-# copy serves the whole program, also where a test file compiled at -O0 has its own
-# (ocpb_unoptimized_in_debug). Without this the test's -O0 copies won, and the libraries' loops
+# object of the OCPBench libraries `lib...` (and theirs, in the order of ocpb_project_libraries:
+# the fully optimized ones first) before the target's own objects. An inline or template
+# function that both compile (Eigen's kernels, the jets' arithmetic) is kept once, from the first
+# object that has it: so an optimized copy serves the whole program, also where a test file or a
+# library's -O0 file has its own (ocpb_unoptimized_in_debug, ocpb_unoptimized_sources_in_debug). Without this the test's -O0 copies won, and the libraries' loops
 # ran them: solvers_test's AugmentedLagrangianLoop took over 4x its time when its files alone
 # were at -O0 (measured 2026-12-06). Other builds compile everything alike and link as usual.
 function(ocpb_link_libraries_first target)

@@ -46,8 +46,9 @@ else()
   set(example_compiler -DCMAKE_CXX_COMPILER=${CXX})
 endif()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
-# FLAGS (the tests' build: an optimization level and its sanitizers) replace the Release type's
-# own -O3 when given; without them the example builds as the user guide says.
+# FLAGS (the tests' build: an optimization level, which must be given, and its sanitizers)
+# replace the Release type's own -O3 when given; without them the example builds as the user
+# guide says.
 set(example_flags)
 if(FLAGS)
   set(example_flags -DCMAKE_CXX_FLAGS_RELEASE=-DNDEBUG)
