@@ -1,23 +1,16 @@
 #include "bench/cli/case_runner.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <exception>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 
-#include <fmt/format.h>
-
-#include "bench/cli/initial_guess.h"
 #include "bench/cli/json_values.h"
 #include "bench/cli/online_case.h"
 #include "core/costate_error.h"
 #include "core/evaluator.h"
 #include "core/field_sample.h"
-#include "core/memory_budget.h"
 #include "core/parameters.h"
 #include "problems/registry.h"
 #include "solvers/continuation.h"
@@ -28,16 +21,6 @@ namespace ocpb {
 namespace {
 
 using nlohmann::json;
-
-std::string Bytes(double b) {
-  const char* units[] = {"bytes", "kB", "MB", "GB", "TB", "PB"};
-  int i = 0;
-  while (b >= 1000.0 && i < 5) {
-    b /= 1000.0;
-    ++i;
-  }
-  return fmt::format("{:.3g} {}", b, units[i]);
-}
 
 json OptionsJson(const OptionMap& options) {
   json j = json::object();
@@ -66,32 +49,32 @@ void RecordEffectiveOptions(const CaseSpec& spec, const MethodOptions& given, Re
 // What one case solves: the problem, its grid and the request.
 struct PreparedCase {
   Parameters params;
-  std::unique_ptr<Ocp> ocp;
+  std::shared_ptr<const Ocp> ocp;
   TimeGrid grid;
   SolveRequest request;
   MethodOptions options;
 };
 
-PreparedCase Prepare(const CaseSpec& spec) {
+// The request from the resolved case; the problem is the one its checks built, or built now
+// (with its channel) when the checks used a cheaper build.
+PreparedCase Prepare(const ResolvedCase& c) {
+  const CaseSpec& spec = c.spec;
   PreparedCase p;
-  const ProblemInfo& pinfo = FindProblem(spec.problem);
-  std::optional<InitialGuess> guess;
-  if (!spec.initial_guess.empty()) guess = ReadInitialGuess(spec.initial_guess);
-  p.ocp = MakeProblem(spec.problem, spec.set, spec.seed, &p.params);
-  const int N = spec.intervals > 0 ? spec.intervals : pinfo.default_intervals;
-  p.grid = TimeGrid::Uniform(p.ocp->t0(), p.ocp->tf(), N);
-  p.options = ResolveMethodOptions(spec);
+  p.params = c.parameters;
+  p.ocp = c.built_problem;
+  if (!p.ocp) p.ocp = c.problem->make(c.parameters, spec.seed);
+  p.grid = TimeGrid::Uniform(p.ocp->t0(), p.ocp->tf(), c.intervals);
+  p.options = c.options;
   p.request.grid = p.grid;
   p.request.terminal = spec.terminal;
   p.request.integrator = spec.integrator;
   p.request.transcription = spec.transcription;
   p.request.transcription_options = p.options.transcription;
   p.request.options = p.options.solver;
-  if (guess) {
-    CheckInitialGuess(*guess, *p.ocp, spec.initial_guess);
-    p.request.initial_guess = guess->controls;
-    p.request.initial_states = guess->states;
-    p.request.initial_costates = guess->costates;
+  if (c.initial_guess) {
+    p.request.initial_guess = c.initial_guess->controls;
+    p.request.initial_states = c.initial_guess->states;
+    p.request.initial_costates = c.initial_guess->costates;
   }
   return p;
 }
@@ -254,16 +237,6 @@ void RecordCostateFields(const CaseSpec& spec,
 
 }  // namespace
 
-void CheckTranscriptionFits(const CaseSpec& spec, int nx, int nu) {
-  if (spec.transcription.empty() || !FindSolver(spec.solver).uses_transcription) return;
-  const TranscriptionInfo& tinfo = FindTranscription(spec.transcription);
-  const TranscriptionOptions options = tinfo.Configure(ResolveMethodOptions(spec).transcription);
-  std::string error;
-  if (!options.scaling.IsValidFor(nx, nu, &error)) {
-    throw std::invalid_argument("options: " + tinfo.name + " " + error);
-  }
-}
-
 void AddCaseFiles(const CaseSpec& spec, const std::string& where, FilePlan* plan) {
   const std::string of = where.empty() ? "" : " of " + where;
   if (!spec.initial_guess.empty()) plan->Input(spec.initial_guess, "--initial-guess" + of);
@@ -303,184 +276,6 @@ bool IsFailure(const std::string& status) {
   return false;
 }
 
-double EstimateCaseMemoryBytes(const CaseSpec& spec, int nx, int nu, int intervals) {
-  double m = 1.0;
-  if (!spec.transcription.empty()) {
-    m = FindTranscription(spec.transcription)
-            .PointsPerInterval(ResolveMethodOptions(spec).transcription);
-  }
-  return EstimateMethodMemoryBytes(spec.solver, m, nx, nu, intervals);
-}
-
-double EstimateMethodMemoryBytes(
-    const std::string& solver, double points_per_interval, int nx, int nu, int intervals) {
-  const double m = points_per_interval;
-  const double nodes = static_cast<double>(intervals) * m + 1.0;
-  const double w = nx + nu;
-  double bytes = 512.0 * w * nodes;
-  if (FindSolver(solver).factorizes_sparse_matrices) {
-    bytes += 320.0 * nodes * w * (w + (m + 1.0) * nx);
-  }
-  return bytes;
-}
-
-double CaseMemoryBudgetBytes() { return MemoryBudgetBytes(); }
-
-double EstimateRecordBytes(const CaseSpec& spec, int /*nx*/, int /*nu*/, int /*intervals*/) {
-  // `run` holds each record's SummaryPart (bench/cli/run_outputs.h): its fields and its
-  // history, one row (an IterationRecord, 56 bytes, and the vector's slack) per iteration, at
-  // most the iteration limit the case's options give, and 1000 rows when they give none.
-  double rows = 1000.0;
-  MethodOptions options;
-  try {
-    options = ResolveMethodOptions(spec);
-  } catch (const std::invalid_argument&) {
-    // refused by ValidateCase with its own message
-  }
-  for (const char* limit : {"max_iterations", "max_iter"}) {
-    const OptionValue* v = options.solver.Find(limit);
-    if (v != nullptr && v->kind() == OptionValue::Kind::kInteger) {
-      rows = std::min(rows, static_cast<double>(std::max<std::int64_t>(v->integer(), 0)) + 1.0);
-    }
-  }
-  return 2048.0 + 64.0 * rows;
-}
-
-// The horizon must be long enough for its grid: each step of the judge's 10x finer grid a
-// normal double, resolvable next to the horizon's ends (else the grids collapse at solve time,
-// with a message about a "time grid" that names no input).
-void CheckHorizonSteps(double t0, double tf, int N, const std::string& which) {
-  const double fine_step = (tf - t0) / N / 10.0;
-  const double scale = std::max(std::abs(t0), std::abs(tf));
-  if (!(fine_step >= std::numeric_limits<double>::min()) || !(fine_step >= 1e-12 * scale)) {
-    throw std::invalid_argument(fmt::format(
-        "tf: the horizon [t0, tf] = [{:g}, {:g}] is too short for {} = {} intervals: a tenth of "
-        "each step (tf - t0) / N must be a normal number (>= {:g}) and at least 1e-12 "
-        "max(|t0|, |tf|) (choose a larger tf, --set tf=..., or fewer intervals)",
-        t0,
-        tf,
-        which,
-        N,
-        std::numeric_limits<double>::min()));
-  }
-}
-
-CaseEstimate ValidateCase(const CaseSpec& spec) {
-  spec.Validate();
-  // A file a solve writes (Ipopt's output_file) must be writable where it is named, checked
-  // here as any output place is (the name's length, the folder, permissions), not when the
-  // solver opens it after the work before the solve.
-  for (const OptionMap* options : {&spec.options, &spec.replan_options}) {
-    for (const auto& [name, value] : *options) {
-      if (FilePlan::IsOutputFileOption(name) && !value.empty() && !value.ToText().empty()) {
-        CheckOutputFile(value.ToText(), "options: " + name);
-      }
-    }
-  }
-  // A solver that keeps a history row per iteration may reserve them all before its first
-  // iteration (the Hamiltonian descent does): its iteration limit is a size too, of every
-  // solve and of online re-plans.
-  for (const auto& [options, field] :
-       {std::pair{&spec.options, "options: max_iterations"},
-        std::pair{&spec.replan_options, "replan_options: max_iterations"}}) {
-    const OptionValue* limit = options->Find("max_iterations");
-    if (limit == nullptr) continue;
-    std::optional<double> rows;
-    if (limit->kind() == OptionValue::Kind::kInteger) {
-      rows = static_cast<double>(limit->integer()) + 1.0;
-    } else if (limit->kind() == OptionValue::Kind::kText) {
-      rows = ParseNumberText(limit->text());  // refused by the solver's schema if not a count
-      if (rows) *rows += 1.0;
-    }
-    if (rows && *rows > 0.0) {
-      CheckMemoryEstimate(
-          64.0 * *rows, field, fmt::format("{:.0f} history rows (one per iteration)", *rows));
-    }
-  }
-  if (spec.kind == "online") return ValidateOnlineCase(spec);
-  const ProblemInfo& pinfo = FindProblem(spec.problem);
-  const SolverInfo& sinfo = FindSolver(spec.solver);
-  if (sinfo.uses_transcription) {
-    if (spec.transcription.empty()) {
-      throw std::invalid_argument("solver '" + spec.solver +
-                                  "' needs a transcription (--transcription)");
-    }
-    FindTranscription(spec.transcription);
-  } else if (!spec.transcription.empty()) {
-    throw std::invalid_argument("solver '" + spec.solver + "' takes no transcription");
-  }
-  ResolveMethodOptions(spec);
-  Parameters params(pinfo.parameters);
-  for (const std::string& a : spec.set) params.SetFromString(a);
-  // The problem's own cross-field rules (t0 < tf, S and D in the workspace, the channel's
-  // options, ...), without simulating a channel.
-  const std::unique_ptr<Ocp> ocp = pinfo.make_for_checks ? pinfo.make_for_checks(params, spec.seed)
-                                                         : pinfo.make(params, spec.seed);
-  if (!ocp) throw std::logic_error("problem '" + spec.problem + "': make returned no problem");
-  CheckTranscriptionFits(spec, ocp->nx(), ocp->nu());
-  if (!spec.initial_guess.empty()) {
-    CheckInitialGuess(ReadInitialGuess(spec.initial_guess), *ocp, spec.initial_guess);
-  }
-  int N = spec.intervals > 0 ? spec.intervals : pinfo.default_intervals;
-  // Mesh refinement may solve meshes up to mesh_max_nodes nodes: the largest one sets the size.
-  std::string which = "N";
-  if (!spec.transcription.empty()) {
-    const MeshRefinementOptions mesh = FindTranscription(spec.transcription)
-                                           .Configure(ResolveMethodOptions(spec).transcription)
-                                           .mesh;
-    if (mesh.enabled() && mesh.max_nodes - 1 > N) {
-      N = mesh.max_nodes - 1;
-      which = "mesh_max_nodes";
-    }
-  }
-  CheckHorizonSteps(ocp->t0(), ocp->tf(), N, which);
-  const double need = EstimateCaseMemoryBytes(spec, ocp->nx(), ocp->nu(), N);
-  const double budget = CaseMemoryBudgetBytes();
-  CaseEstimate estimate;
-  estimate.memory_bytes = need;
-  estimate.record_bytes = EstimateRecordBytes(spec, ocp->nx(), ocp->nu(), N);
-  if (need > budget) {
-    throw std::invalid_argument(fmt::format(
-        "{}: {} intervals need about {} by OCPBench's estimate (nx = {}, nu = {}, {}), beyond "
-        "this machine's memory budget of {} (half its physical memory)",
-        which,
-        N,
-        Bytes(need),
-        ocp->nx(),
-        ocp->nu(),
-        spec.solver + (spec.transcription.empty() ? "" : " + " + spec.transcription),
-        Bytes(budget)));
-  }
-  const MethodOptions method = ResolveMethodOptions(spec);
-  if (!spec.transcription.empty()) {
-    // h-refinement builds each refined mesh whole (each interval split in up to
-    // 1 + mesh_max_new_points pieces) before comparing it with mesh_max_nodes: that mesh is
-    // sized here, before anything is solved.
-    const MeshRefinementOptions mesh =
-        FindTranscription(spec.transcription).Configure(method.transcription).mesh;
-    const bool new_points = method.transcription.Has("mesh_max_new_points");
-    if (mesh.enabled() && new_points) {
-      if (mesh.max_new_points > mesh.max_nodes) {
-        throw std::invalid_argument(fmt::format(
-            "options: mesh_max_new_points: must be at most mesh_max_nodes = {} (a refined mesh "
-            "has at most that many nodes), got {}",
-            mesh.max_nodes,
-            mesh.max_new_points));
-      }
-      const double refined_points = static_cast<double>(N) * (1.0 + mesh.max_new_points) + 1.0;
-      CheckMemoryEstimate(
-          16.0 * refined_points,
-          "mesh_max_new_points",
-          fmt::format("refined meshes of up to {:.4g} points ({} intervals, each split in up to "
-                      "1 + {} pieces)",
-                      refined_points,
-                      N,
-                      mesh.max_new_points));
-    }
-  }
-  return estimate;
-}
-
 Record CaseIdentityRecord(const CaseSpec& spec) {
   Record rec;
   rec.kind = spec.kind;
@@ -489,12 +284,16 @@ Record CaseIdentityRecord(const CaseSpec& spec) {
   rec.seed = spec.seed;
   rec.solver = spec.solver;
   rec.transcription = spec.transcription;
-  rec.algorithm = spec.algorithm;
+  // NLopt's algorithm has its own field, whichever spelling gave it (CaseSpec::algorithm).
+  const OptionValue* algorithm = spec.options.Find("algorithm");
+  rec.algorithm = !spec.algorithm.empty() ? spec.algorithm
+                  : algorithm != nullptr  ? algorithm->ToText()
+                                          : std::string();
   rec.N = spec.intervals;
   rec.terminal = ToString(spec.terminal);
   rec.integrator = ToString(spec.integrator);
   rec.evaluated_with = ToString(spec.evaluate_with);
-  rec.options = spec.options.ToText();
+  rec.options = spec.OptionsBesideCaseFields().ToText();
   if (!spec.initial_guess.empty()) rec.initial_guess = spec.initial_guess;
   rec.repeats = spec.repeats;
   rec.versions = CurrentVersions();
@@ -522,13 +321,16 @@ Record RunCaseRecordingFailures(const CaseSpec& spec,
   return rec;
 }
 
-Record RunCase(const CaseSpec& given) {
+Record RunCase(const CaseSpec& spec) {
   // Every check before any solving (or channel simulation): bad input fails fast and whole.
-  const CaseSpec spec = ResolveCase(given);
-  ValidateCase(spec);
+  return RunCase(ResolveAndValidate(spec));
+}
+
+Record RunCase(const ResolvedCase& c) {
+  const CaseSpec& spec = c.spec;
   if (spec.kind == "online") return RunOnlineCase(spec);
-  const ProblemInfo& pinfo = FindProblem(spec.problem);
-  const PreparedCase p = Prepare(spec);
+  const ProblemInfo& pinfo = *c.problem;
+  const PreparedCase p = Prepare(c);
   std::vector<double> cpu, wall;
   std::optional<SolveResult> penalty_stage;
   const SolveResult result = SolveRepeatedly(spec, p, &cpu, &wall, &penalty_stage);

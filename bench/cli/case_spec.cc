@@ -17,21 +17,99 @@ namespace {
 
 using nlohmann::json;
 
-// The value a case field (algorithm, degree) gives an option, unless the options give the same
-// key too: then both must agree.
+// The value a case field (algorithm, degree) gives its owner's option `key`, unless the options
+// give the key too: then both must agree (compared once resolved by `schema`).
 void SetFromField(const char* field,
+                  const OptionSchema& schema,
                   const std::string& key,
                   const OptionValue& value,
                   OptionMap* options) {
+  OptionValue resolved;
+  try {
+    resolved = schema.ResolveOne(key, value);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string(field) + ": " + e.what());
+  }
   if (const OptionValue* given = options->Find(key)) {
-    if (!(*given == value)) {
-      throw std::invalid_argument(std::string(field) + ": '" + value.ToText() +
-                                  "' disagrees with options." + key + " = '" + given->ToText() +
+    OptionValue option;
+    try {
+      option = schema.ResolveOne(key, *given);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("options: ") + e.what());
+    }
+    if (!(option == resolved)) {
+      throw std::invalid_argument(std::string(field) + ": '" + resolved.ToText() +
+                                  "' disagrees with options." + key + " = '" + option.ToText() +
                                   "' (give it once)");
     }
-    return;
   }
-  options->Set(key, value);
+  options->Set(key, resolved);
+}
+
+// The case fields `algorithm` and `degree` are spellings of their owners' options (NLopt's
+// "algorithm", LGR's "degree"): moved into the options, so that every later stage sees one
+// option map and both spellings make one case.
+void MoveCaseFieldsIntoOptions(const SolverInfo& sinfo,
+                               const TranscriptionInfo* tinfo,
+                               CaseSpec* spec) {
+  if (!spec->algorithm.empty()) {
+    if (!sinfo.options.Contains("algorithm")) {
+      throw std::invalid_argument("algorithm: solver '" + spec->solver +
+                                  "' has no option 'algorithm' (it takes none)");
+    }
+    SetFromField(
+        "algorithm", sinfo.options, "algorithm", OptionValue(spec->algorithm), &spec->options);
+    spec->algorithm.clear();
+  }
+  if (tinfo != nullptr && tinfo->options.Contains("degree") &&
+      (spec->degree_given || !spec->options.Has("degree"))) {
+    SetFromField("degree",
+                 tinfo->options,
+                 "degree",
+                 OptionValue(static_cast<long long>(spec->degree)),
+                 &spec->options);
+  }
+  spec->degree = CaseSpec::kDefaultDegree;
+  spec->degree_given = false;
+}
+
+// The transcription whose options the case may give: none for a solver that takes none.
+const TranscriptionInfo* OptionTranscription(const SolverInfo& sinfo, const CaseSpec& spec) {
+  if (!sinfo.uses_transcription || spec.transcription.empty()) return nullptr;
+  return &FindTranscription(spec.transcription);
+}
+
+// Each option resolved by its owner's schema, the solver's first, then the solver's own
+// cross-field rules.
+MethodOptions SplitOptions(const SolverInfo& sinfo,
+                           const TranscriptionInfo* tinfo,
+                           const CaseSpec& spec) {
+  MethodOptions out;
+  for (const auto& [key, value] : spec.options) {
+    try {
+      if (sinfo.options.Contains(key)) {
+        out.solver.Set(key, sinfo.options.ResolveOne(key, value));
+      } else if (tinfo != nullptr && tinfo->options.Contains(key)) {
+        out.transcription.Set(key, tinfo->options.ResolveOne(key, value));
+      } else {
+        std::string valid = sinfo.options.Names();
+        if (tinfo != nullptr)
+          valid += "; transcription " + tinfo->name + ": " + tinfo->options.Names();
+        throw std::invalid_argument(spec.solver + ": unknown option '" + key +
+                                    "' (valid: " + valid + ")");
+      }
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("options: ") + e.what());
+    }
+  }
+  if (sinfo.check_options) {
+    try {
+      sinfo.check_options(out.solver);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("options: ") + e.what());
+    }
+  }
+  return out;
 }
 
 // The schema's messages name the field ("online option 'estimator': ...", "online: unknown
@@ -48,20 +126,33 @@ TerminalMode ParseTerminal(const std::string& s) {
   throw std::invalid_argument("terminal: unknown form '" + s + "' (valid: penalty, hard)");
 }
 
+OptionMap CaseSpec::OptionsBesideCaseFields() const {
+  OptionMap rest = options;
+  rest.Erase("algorithm");
+  rest.Erase("degree");
+  return rest;
+}
+
 std::string CaseSpec::Key() const {
+  // NLopt's algorithm and LGR's degree in the places their case fields have had since the first
+  // records (keys are how --resume, shards and compare find a case again).
+  const OptionValue* algorithm_option = options.Find("algorithm");
+  const OptionValue* degree_option = options.Find("degree");
   std::string key = fmt::format("{}|seed={}|{}|{}|{}|N={}|deg={}|{}|{}|eval={}",
                                 problem,
                                 seed,
                                 solver,
                                 transcription,
-                                algorithm,
+                                !algorithm.empty() ? algorithm
+                                : algorithm_option ? algorithm_option->ToText()
+                                                   : std::string(),
                                 intervals,
-                                degree,
+                                degree_option ? degree_option->ToText() : std::to_string(degree),
                                 ToString(terminal),
                                 ToString(integrator),
                                 ToString(evaluate_with));
   for (const std::string& s : set) key += "|set:" + s;
-  for (const auto& [k, v] : options) key += "|opt:" + k + "=" + v.ToText();
+  for (const auto& [k, v] : OptionsBesideCaseFields()) key += "|opt:" + k + "=" + v.ToText();
   if (!initial_guess.empty()) key += "|guess=" + initial_guess;
   if (!continuation.empty()) key += "|continuation=" + continuation;
   if (kind != "solve") {
@@ -98,85 +189,27 @@ void CaseSpec::Validate() const {
   }
 }
 
-MethodOptions ResolveMethodOptions(const CaseSpec& spec) {
-  const SolverInfo& sinfo = FindSolver(spec.solver);
-  const TranscriptionInfo* tinfo = nullptr;
-  if (sinfo.uses_transcription && !spec.transcription.empty()) {
-    tinfo = &FindTranscription(spec.transcription);
-  }
-  MethodOptions out;
-  for (const auto& [key, value] : spec.options) {
-    try {
-      if (sinfo.options.Contains(key)) {
-        out.solver.Set(key, sinfo.options.ResolveOne(key, value));
-      } else if (tinfo != nullptr && tinfo->options.Contains(key)) {
-        out.transcription.Set(key, tinfo->options.ResolveOne(key, value));
-      } else {
-        std::string valid = sinfo.options.Names();
-        if (tinfo != nullptr)
-          valid += "; transcription " + tinfo->name + ": " + tinfo->options.Names();
-        throw std::invalid_argument(spec.solver + ": unknown option '" + key +
-                                    "' (valid: " + valid + ")");
-      }
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("options: ") + e.what());
-    }
-  }
-  if (!spec.algorithm.empty()) {
-    if (!sinfo.options.Contains("algorithm")) {
-      throw std::invalid_argument("algorithm: solver '" + spec.solver +
-                                  "' has no option 'algorithm' (it takes none)");
-    }
-    try {
-      SetFromField("algorithm",
-                   "algorithm",
-                   sinfo.options.ResolveOne("algorithm", spec.algorithm),
-                   &out.solver);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("algorithm: ") + e.what());
-    }
-  }
-  if (tinfo != nullptr && tinfo->options.Contains("degree") &&
-      (spec.degree_given || !out.transcription.Has("degree"))) {
-    try {
-      SetFromField("degree",
-                   "degree",
-                   tinfo->options.ResolveOne("degree", static_cast<long long>(spec.degree)),
-                   &out.transcription);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("degree: ") + e.what());
-    }
-  }
-  if (sinfo.check_options) {
-    try {
-      sinfo.check_options(out.solver);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("options: ") + e.what());
-    }
-  }
-  return out;
+MethodOptions ResolveMethodOptions(const CaseSpec& given) {
+  const SolverInfo& sinfo = FindSolver(given.solver);
+  const TranscriptionInfo* tinfo = OptionTranscription(sinfo, given);
+  CaseSpec spec = given;
+  MoveCaseFieldsIntoOptions(sinfo, tinfo, &spec);
+  return SplitOptions(sinfo, tinfo, spec);
 }
 
-CaseSpec ResolveCase(CaseSpec spec) {
+CaseSpec ResolveCase(CaseSpec spec, MethodOptions* method) {
   const SolverInfo& sinfo = FindSolver(spec.solver);
   if (!spec.transcription.empty()) FindTranscription(spec.transcription);
-  const MethodOptions resolved = ResolveMethodOptions(spec);
-  // The transcription's option "degree" given as an option is the case's degree (one key for
-  // `--option degree=4` and `--degree 4`).
-  if (!spec.degree_given && spec.options.Has("degree") && !sinfo.options.Contains("degree")) {
-    if (const OptionValue* degree = resolved.transcription.Find("degree")) {
-      spec.degree = static_cast<int>(degree->integer());
-      spec.degree_given = true;
-      spec.options.Erase("degree");
-    }
-  }
-  // Keep the options as the case gave them (algorithm and degree stay case fields), typed.
+  const TranscriptionInfo* tinfo = OptionTranscription(sinfo, spec);
+  MoveCaseFieldsIntoOptions(sinfo, tinfo, &spec);
+  MethodOptions resolved = SplitOptions(sinfo, tinfo, spec);
+  // The options as the case gave them, typed.
   OptionMap options;
   for (const auto& [key, value] : spec.options) {
     const OptionValue* v = resolved.solver.Find(key);
     options.Set(key, v ? *v : *resolved.transcription.Find(key));
   }
-  spec.options = options;
+  spec.options = std::move(options);
   if (spec.kind == "online") {
     spec.online = ResolveOnline(spec.online);
     try {
@@ -185,6 +218,7 @@ CaseSpec ResolveCase(CaseSpec spec) {
       throw std::invalid_argument(std::string("replan_options: ") + e.what());
     }
   }
+  if (method != nullptr) *method = std::move(resolved);
   return spec;
 }
 

@@ -20,14 +20,17 @@ struct CaseSpec {
   std::uint64_t seed = 1;        ///< channel realization (problems that use one)
   std::string solver;            ///< registry name
   std::string transcription;     ///< NLP solvers only
-  /// Sets the solver's option "algorithm" (NLopt's); refused for a solver without one.
+  /// Another spelling of the solver's option "algorithm" (NLopt's; `--algorithm`, a suite's
+  /// "algorithm"): ResolveCase moves it into `options`, where an entry of the same key must
+  /// agree. Refused for a solver without the option.
   std::string algorithm;
   int intervals = 0;  ///< N; 0: the problem's default grid
-  /// Sets the transcription's option "degree" (LGR's) when it has one; ignored otherwise.
-  int degree = 3;
-  /// Whether `degree` was given (a suite's "degree", `solve --degree`): without it, an option
-  /// "degree" in `options` sets the degree instead (ResolveCase moves it here, so that both
-  /// spellings make one case key); with it, the two must agree.
+  /// Another spelling of the transcription's option "degree" (LGR's; `--degree`, a suite's
+  /// "degree"): ResolveCase moves it into `options` when the transcription has the option
+  /// (an entry of the same key must agree) and drops it otherwise.
+  int degree = kDefaultDegree;
+  /// Whether `degree` was given: without it, an option "degree" in `options` is the degree and
+  /// the field's default gives way.
   bool degree_given = false;
   TerminalMode terminal = TerminalMode::kPenalty;
   Integrator integrator = Integrator::kEuler;  ///< the method's own integrator (Hamiltonian)
@@ -36,7 +39,8 @@ struct CaseSpec {
   Integrator evaluate_with = Integrator::kEuler;
   /// The method's options: each key is the solver's (SolverInfo::options) or, failing that,
   /// the transcription's (TranscriptionInfo::options). Text values are read by the option
-  /// grammar; ResolveCase turns them into typed values once.
+  /// grammar; ResolveCase turns them into typed values once (and moves `algorithm` and
+  /// `degree` here).
   OptionMap options;
   int repeats = 1;              ///< timing repeats; the record keeps the median CPU time
   bool keep_trajectory = true;  ///< store t, x, u in the record (for figures)
@@ -53,9 +57,17 @@ struct CaseSpec {
   OptionMap online;          ///< kind "online": scenario settings
   OptionMap replan_options;  ///< kind "online": re-plan solver options
 
+  /// The default of `degree`: LGR's own default degree.
+  static constexpr int kDefaultDegree = 3;
+
   /// A stable identifier of the case (for --resume, shards and compare): every field that
-  /// changes the result, options by their canonical text.
+  /// changes the result, options by their canonical text (ResolveCase). The options "algorithm"
+  /// and "degree" keep the places their case fields have always had in the key ("|LD_MMA|",
+  /// "deg=5"), whichever spelling gave them.
   std::string Key() const;
+  /// `options` without the ones a record and the key show in their own fields ("algorithm",
+  /// "degree": Record::algorithm and Record::degree).
+  OptionMap OptionsBesideCaseFields() const;
   /// The spec's own fields: throws std::invalid_argument naming the field when a value is out
   /// of range. ValidateCase checks everything else that can be checked without solving.
   void Validate() const;
@@ -73,10 +85,13 @@ struct MethodOptions {
 /// "algorithm: ..." when the solver has no option "algorithm".
 MethodOptions ResolveMethodOptions(const CaseSpec& spec);
 
-/// `spec` with every option, online setting and re-plan option resolved to its typed value
-/// (so that Key() shows canonical values). Throws std::invalid_argument as
-/// ResolveMethodOptions, and for unknown solvers or transcriptions.
-CaseSpec ResolveCase(CaseSpec spec);
+/// `spec` in canonical form: `algorithm` and `degree` moved into `options` (the field
+/// `algorithm` emptied, `degree` back at its default), every option, online setting and
+/// re-plan option resolved to its typed value (so that Key() shows canonical values). With
+/// `method`, also the options split by owner (ResolveMethodOptions, without resolving them
+/// twice). Throws std::invalid_argument as ResolveMethodOptions, and for unknown solvers or
+/// transcriptions.
+CaseSpec ResolveCase(CaseSpec spec, MethodOptions* method = nullptr);
 
 /// The fields of one suite case, read in place from the suite document (never copied out of
 /// it): the method's own fields over its group's, and the seed and N the case takes from the

@@ -123,15 +123,14 @@ void AddOnlineCommand(CLI::App& app) {
     s.replan_options = ParseKeyValues(*replan, "--replan-option");
     s.seed = ParseSeed(*seed, "--seed");
     // Every input and the output place are checked before anything is simulated or solved.
-    const CaseSpec resolved = ResolveCase(s);
-    ValidateCase(resolved);
+    const ResolvedCase resolved = ResolveAndValidate(s);
     // No output (--json, a solver's own output file) may be an input or another output.
     FilePlan plan;
-    AddCaseFiles(resolved, "", &plan);
+    AddCaseFiles(resolved.spec, "", &plan);
     if (!json_path->empty()) plan.Output(*json_path, "--json");
     plan.Check();
     if (!json_path->empty()) CheckOutputFile(*json_path, "--json");
-    const Record record = RunCase(s);
+    const Record record = RunCase(resolved);
     PrintOnlineReport(record);
     if (!json_path->empty()) WriteFileAtomically(*json_path, record.ToJson().dump(1) + "\n");
     if (IsFailure(record.status)) ReportSomeFailed();

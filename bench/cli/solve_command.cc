@@ -165,15 +165,14 @@ void AddSolveCommand(CLI::App& app) {
     spec.options = ParseKeyValues(args->options, "--option");
     if (spec.continuation == "none") spec.continuation.clear();
     // Every input and the output place are checked before anything is solved.
-    const CaseSpec resolved = ResolveCase(spec);
-    ValidateCase(resolved);
+    const ResolvedCase resolved = ResolveAndValidate(spec);
     // No output (--json, a solver's own output file) may be an input or another output.
     FilePlan plan;
-    AddCaseFiles(resolved, "", &plan);
+    AddCaseFiles(resolved.spec, "", &plan);
     if (!args->json_path.empty()) plan.Output(args->json_path, "--json");
     plan.Check();
     if (!args->json_path.empty()) CheckOutputFile(args->json_path, "--json");
-    const Record record = RunCase(spec);
+    const Record record = RunCase(resolved);
     PrintReport(record);
     if (!args->json_path.empty()) {
       WriteFileAtomically(args->json_path, record.ToJson().dump(1) + "\n");
