@@ -328,7 +328,7 @@ Record RunCase(const CaseSpec& spec) {
 
 Record RunCase(const ResolvedCase& c) {
   const CaseSpec& spec = c.spec;
-  if (spec.kind == "online") return RunOnlineCase(spec);
+  if (spec.kind == "online") return RunOnlineCase(spec, *c.online);
   const ProblemInfo& pinfo = *c.problem;
   const PreparedCase p = Prepare(c);
   std::vector<double> cpu, wall;

@@ -21,18 +21,7 @@ namespace {
 using nlohmann::json;
 
 OnlineScenario Resolve(const CaseSpec& spec) {
-  OnlineScenarioRequest request;
-  request.problem = spec.problem;
-  request.set = spec.set;
-  request.settings = spec.online;
-  request.solver = spec.solver;
-  request.transcription = spec.transcription;
-  const MethodOptions options = ResolveMethodOptions(spec);
-  request.transcription_options = options.transcription;
-  request.options = options.solver;
-  request.replan_options = spec.replan_options;
-  request.intervals = spec.intervals;
-  return ResolveOnlineScenario(request);
+  return ResolveOnlineCaseScenario(spec, ResolveMethodOptions(spec));
 }
 
 json ChannelJson(const ChannelParameters& p) {
@@ -147,8 +136,25 @@ std::string WorstCycleStatus(const std::vector<SolveStatus>& cycles) {
   return ToString(SolveStatus::kConverged);
 }
 
+OnlineScenario ResolveOnlineCaseScenario(const CaseSpec& spec, const MethodOptions& options) {
+  OnlineScenarioRequest request;
+  request.problem = spec.problem;
+  request.set = spec.set;
+  request.settings = spec.online;
+  request.solver = spec.solver;
+  request.transcription = spec.transcription;
+  request.transcription_options = options.transcription;
+  request.options = options.solver;
+  request.replan_options = spec.replan_options;
+  request.intervals = spec.intervals;
+  return ResolveOnlineScenario(request);
+}
+
 CaseEstimate ValidateOnlineCase(const CaseSpec& spec) {
-  const OnlineScenario s = Resolve(spec);
+  return CheckOnlineCase(spec, Resolve(spec));
+}
+
+CaseEstimate CheckOnlineCase(const CaseSpec& spec, const OnlineScenario& s) {
   // The re-plans solve comm-path2d over the scenario's own channel: its dimensions (from the
   // path-loss channel, which needs no measurements), for the transcription's own rules.
   Parameters dims = s.params;
@@ -184,8 +190,9 @@ CaseEstimate ValidateOnlineCase(const CaseSpec& spec) {
   return estimate;
 }
 
-Record RunOnlineCase(const CaseSpec& spec) {
-  const OnlineScenario s = Resolve(spec);
+Record RunOnlineCase(const CaseSpec& spec) { return RunOnlineCase(spec, Resolve(spec)); }
+
+Record RunOnlineCase(const CaseSpec& spec, const OnlineScenario& s) {
   OnlineChannel channel(spec.seed, s.channel);
   OnlineResult r;
   std::string failure;

@@ -9,6 +9,7 @@
 #include "bench/cli/case_spec.h"
 #include "bench/cli/record.h"
 #include "core/solve_result.h"
+#include "drivers/online/online_scenario.h"
 
 namespace ocpb {
 
@@ -27,6 +28,12 @@ std::string WorstCycleStatus(const std::vector<SolveStatus>& cycles);
 /// ResolveOnlineScenario; the record's size grows with N, the cycles and the maps).
 CaseEstimate ValidateOnlineCase(const CaseSpec& spec);
 
+/// The scenario of an online case (ResolveOnlineScenario) from the case and its options split
+/// by owner (ResolveMethodOptions, or ResolvedCase::options).
+OnlineScenario ResolveOnlineCaseScenario(const CaseSpec& spec, const MethodOptions& options);
+/// ValidateOnlineCase's checks of a resolved scenario.
+CaseEstimate CheckOnlineCase(const CaseSpec& spec, const OnlineScenario& scenario);
+
 /// Runs an online case (RunOnlineReplanning on realization spec.seed) and returns its record:
 /// the case's identity, the resolved settings (`online`), the re-plans' options
 /// (`replan_options`), status (the worst cycle's), cycles [{t0, predict_seconds,
@@ -41,5 +48,7 @@ CaseEstimate ValidateOnlineCase(const CaseSpec& spec);
 /// (every cycle's prediction and solve), and with keep_trajectory: executed and offline
 /// {t, x, u}, measurements {x, y, cycle}, s_map {x, y, log10_s (true), log10_s_predicted}.
 Record RunOnlineCase(const CaseSpec& spec);
+/// The same with the case's scenario already resolved (ResolvedCase::online).
+Record RunOnlineCase(const CaseSpec& spec, const OnlineScenario& scenario);
 
 }  // namespace ocpb

@@ -157,7 +157,9 @@ ResolvedCase ResolveAndValidate(const CaseSpec& given) {
   if (spec.kind == "online") {
     c.problem = &FindProblem(spec.problem);
     if (!spec.transcription.empty()) c.transcription = &FindTranscription(spec.transcription);
-    c.estimate = ValidateOnlineCase(spec);
+    auto scenario = std::make_shared<OnlineScenario>(ResolveOnlineCaseScenario(spec, c.options));
+    c.estimate = CheckOnlineCase(spec, *scenario);
+    c.online = std::move(scenario);
     return c;
   }
   c.problem = &FindProblem(spec.problem);

@@ -16,6 +16,8 @@
 
 namespace ocpb {
 
+struct OnlineScenario;  // drivers/online/online_scenario.h
+
 /// What the checks estimated for a valid case.
 struct CaseEstimate {
   double memory_bytes = 0.0;  ///< EstimateCaseMemoryBytes plus the problem's own
@@ -48,6 +50,8 @@ struct ResolvedCase {
   /// ProblemInfo::make_for_checks): the solve uses it instead of building it again. Empty
   /// otherwise (the channel problems: their channel is simulated only when the case runs).
   std::shared_ptr<const Ocp> built_problem;
+  /// Kind "online": the scenario, resolved and checked (CheckOnlineCase); nullptr otherwise.
+  std::shared_ptr<const OnlineScenario> online;
   /// The --initial-guess record, read and checked against the problem; empty without one.
   std::optional<InitialGuess> initial_guess;
   /// The memory the solve and its record take (ValidateCase's answer).

@@ -26,13 +26,17 @@ std::string IpoptVersion() {
 }
 
 std::string NloptVersion() {
-  return fmt::format("{}.{}.{}", nlopt::version_major(), nlopt::version_minor(),
-                     nlopt::version_bugfix());
+  return fmt::format(
+      "{}.{}.{}", nlopt::version_major(), nlopt::version_minor(), nlopt::version_bugfix());
 }
 
 std::string VersionString() {
-  return fmt::format("ocpbench {} (commit {}, {}, Ipopt {}, NLopt {})", OCPB_VERSION, GitCommit(),
-                     CompilerVersion(), IpoptVersion(), NloptVersion());
+  return fmt::format("ocpbench {} (commit {}, {}, Ipopt {}, NLopt {})",
+                     OCPB_VERSION,
+                     GitCommit(),
+                     CompilerVersion(),
+                     IpoptVersion(),
+                     NloptVersion());
 }
 
 }  // namespace ocpb

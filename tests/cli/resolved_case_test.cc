@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/cli/case_runner.h"
+#include "bench/cli/online_case.h"
 #include "problems/registry.h"
 #include "tests/core/user_double_integrator.h"
 
@@ -46,6 +47,20 @@ TEST(ResolveAndValidate, HoldsTheRegistryEntriesTypedOptionsParametersGridAndEst
   // The channel problems are checked on a build without their channel: that build is not kept.
   EXPECT_TRUE(c.built_problem);
   EXPECT_FALSE(ResolveAndValidate(CaseOf("comm-path2d", "hamiltonian")).built_problem);
+  EXPECT_FALSE(c.online);
+}
+
+// An online case keeps its resolved scenario (the run uses it instead of resolving it again).
+TEST(ResolveAndValidate, KeepsAnOnlineCasesScenario) {
+  CaseSpec spec = CaseOf("comm-path2d", "hamiltonian");
+  spec.kind = "online";
+  spec.online = {{"update_period", "5"}};
+  const ResolvedCase c = ResolveAndValidate(spec);
+  ASSERT_TRUE(c.online);
+  EXPECT_EQ(c.online->settings.Find("update_period")->number(), 5.0);
+  EXPECT_EQ(c.estimate.memory_bytes, ValidateOnlineCase(spec).memory_bytes);
+  spec.online = {{"update_period", "-5"}};
+  EXPECT_THROW(ResolveAndValidate(spec), std::invalid_argument);
 }
 
 // The problem is built once for a case whose checks build the real problem: by the checks,
