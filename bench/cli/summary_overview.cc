@@ -10,6 +10,7 @@
 
 #include "bench/cli/performance_profile.h"
 #include "bench/cli/summary.h"
+#include "problems/registry.h"
 
 namespace ocpb {
 namespace {
@@ -37,6 +38,15 @@ bool OverviewBetter(const Record& a, double ea, const Record& b, double eb) {
   if (fa != fb) return fa;
   if (fa && ea != eb) return ea < eb;
   return a.cpu_seconds < b.cpu_seconds;
+}
+
+// A registered problem's tags; none for a name the registry does not know (records of a
+// problem registered by another program).
+std::vector<std::string> RegisteredTags(const std::string& problem) {
+  for (const ProblemInfo& info : Problems()) {
+    if (info.name == problem) return info.tags;
+  }
+  return {};
 }
 
 std::string OverviewNumber(double v) {
@@ -96,6 +106,7 @@ Overview BuildOverview(const std::vector<Record>& records) {
       c.error = error_of(*b);
       c.cpu_seconds = b->cpu_seconds;
       c.solved = b->status == "converged" && std::isfinite(c.error) && c.error <= kOverviewAccuracy;
+      c.continuous = b->reference && b->reference->scheme == "continuous";
     }
   }
   return o;
@@ -184,6 +195,49 @@ std::string OverviewMarkdown(const std::vector<Record>& records, size_t min_prob
                       rho(2.0),
                       rho(10.0),
                       rho(100.0));
+  }
+  md << "\n" << TagTableMarkdown(o, RegisteredTags);
+  return md.str();
+}
+
+std::string TagTableMarkdown(
+    const Overview& o,
+    const std::function<std::vector<std::string>(const std::string& problem)>& tags_of) {
+  // Per problem with a continuous reference, its tags; per tag, how many such problems.
+  std::vector<std::vector<std::string>> tags(o.problems.size());
+  std::map<std::string, int> problems_of_tag;
+  for (size_t p = 0; p < o.problems.size(); ++p) {
+    bool continuous = false;
+    for (const OverviewCell& c : o.cell[p]) continuous = continuous || c.continuous;
+    if (!continuous) continue;
+    tags[p] = tags_of(o.problems[p]);
+    for (const std::string& t : tags[p]) ++problems_of_tag[t];
+  }
+  if (problems_of_tag.empty()) return "";
+  std::ostringstream md;
+  md << "Families by problem tag, over the problems with a continuous reference: each cell is "
+        "solved / applies to (the problems of the tag the family ran on without answering "
+        "not_applicable; solved as above). Tags overlap.\n\n| tag (problems) |";
+  for (const std::string& f : o.families) md << " " << f << " |";
+  md << "\n|---|";
+  for (size_t f = 0; f < o.families.size(); ++f) md << "---|";
+  md << "\n";
+  for (const ProblemTag& tag : ProblemTags()) {
+    const auto count = problems_of_tag.find(tag.name);
+    if (count == problems_of_tag.end()) continue;
+    md << "| " << tag.name << " (" << count->second << ") |";
+    for (size_t f = 0; f < o.families.size(); ++f) {
+      int applies = 0, solved = 0;
+      for (size_t p = 0; p < o.problems.size(); ++p) {
+        const OverviewCell& c = o.cell[p][f];
+        const bool tagged = std::find(tags[p].begin(), tags[p].end(), tag.name) != tags[p].end();
+        if (!tagged || c.cases == 0 || c.status == "not_applicable") continue;
+        ++applies;
+        solved += c.solved ? 1 : 0;
+      }
+      md << (applies == 0 ? std::string(" - |") : fmt::format(" {} / {} |", solved, applies));
+    }
+    md << "\n";
   }
   md << "\n";
   return md.str();

@@ -87,5 +87,42 @@ TEST(SummaryOverview, NlpReferenceRoundTripsAndIsCompared) {
   EXPECT_NE(md.find("| 3e-09 |"), std::string::npos) << md;
 }
 
+// The families by tag count, per tag, the problems with a continuous reference that each
+// family solved among those it applies to; a problem without a continuous reference, or whose
+// tags are unknown, is left out.
+TEST(SummaryOverview, TagTableCountsSolvedOverApplicableProblemsWithAContinuousReference) {
+  std::vector<Record> records = {
+      Case("a", "ipopt", "hermite-simpson", "converged", 1.0, 1.0),       // solved
+      Case("a", "ipopt", "euler", "converged", 1.0 + 1e-3, 1.0),          // not solved
+      Case("b", "ipopt", "hermite-simpson", "converged", 1.0, 1.0),       // solved
+      Case("b", "ipopt", "euler", "not_applicable", NAN, 0.0),            // does not apply
+      Case("c", "ipopt", "hermite-simpson", "max_iterations", 1.0, 1.0),  // not converged
+      Case("c", "ipopt", "euler", "converged", 1.0, 1.0),                 // solved
+      Case("d", "ipopt", "hermite-simpson", "converged", 5.0, 1.0),       // no continuous ref.
+  };
+  records.back().reference.reset();
+  const auto tags_of = [](const std::string& problem) -> std::vector<std::string> {
+    if (problem == "a") return {"smooth", "free-time"};
+    if (problem == "b" || problem == "d") return {"smooth"};
+    if (problem == "c") return {"bang-bang"};
+    return {};
+  };
+  const std::string md = TagTableMarkdown(BuildOverview(records), tags_of);
+  EXPECT_NE(md.find("| tag (problems) | ipopt + hermite-simpson | ipopt + euler |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| smooth (2) | 2 / 2 | 0 / 1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| free-time (1) | 1 / 1 | 0 / 1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| bang-bang (1) | 0 / 1 | 1 / 1 |"), std::string::npos) << md;
+  // One row per tag, in ProblemTags() order.
+  EXPECT_EQ(md.find("| smooth ("), md.rfind("| smooth ("));
+  EXPECT_LT(md.find("| smooth ("), md.find("| bang-bang ("));
+  EXPECT_LT(md.find("| bang-bang ("), md.find("| free-time ("));
+  // Nothing to count without tags.
+  EXPECT_EQ(TagTableMarkdown(BuildOverview(records),
+                             [](const std::string&) { return std::vector<std::string>{}; }),
+            "");
+}
+
 }  // namespace
 }  // namespace ocpb
