@@ -17,7 +17,8 @@ library.json (the main job's): per problem, one group in the hard terminal form:
     has, as its own case, so
     the summary's "NLP vs peer" column checks OCPBench's transcription against it.
 Methods that do not take a problem are recorded as not_applicable (with the reason), which
-costs nothing, so the generator does not need to know the rules.
+costs nothing, so the generator does not need to know the rules. Every case has a time limit
+(MAIN_JOB_LIMIT_S, PEERS_LIMIT_S): a case that reaches it is recorded as max_time.
 """
 import json
 import re
@@ -40,6 +41,27 @@ def describe(ocpbench, name):
 
 MAIN_JOB_N = 100       # the families' grid in the main job's suite (at most)
 MAIN_JOB_PEER_N = 200  # the largest peer NLP the main job's suite checks
+
+# Every case has a time limit, so that one case cannot hold the suite: Ipopt on space-shuttle's
+# LGR NLP (N = 100) iterates at 0.26 s per iteration towards its 3000 and ran 24 minutes before
+# it was killed (docs/problems.md). The longest case that converges, space-shuttle's Euler NLP
+# (1389 iterations), took 88 s on 2026-12-06 and 150 s on 2026-12-07 on the same machine: the
+# limit leaves it twice that. Each solver names its limit its own way (NLopt's is wall time).
+MAIN_JOB_LIMIT_S = 300
+PEERS_LIMIT_S = 600
+TIME_LIMIT_OPTION = {
+    "ipopt": "max_cpu_time",
+    "riccati-ip": "max_cpu_time",
+    "nlopt": "maxtime",
+    "hamiltonian-polish": "max_cpu_seconds",
+    "indirect-newton": "max_cpu_seconds",
+}
+
+
+def with_time_limit(method, seconds):
+    method = dict(method)
+    method["options"] = {TIME_LIMIT_OPTION[method["solver"]]: seconds}
+    return method
 
 
 def family_methods(n, nx):
@@ -82,8 +104,9 @@ def main():
             case = {"solver": "ipopt", "transcription": scheme, "N": n_peer}
             if case not in methods:
                 methods.append(case)
+        limit = PEERS_LIMIT_S if peers_suite else MAIN_JOB_LIMIT_S
         groups.append({"problem": name, "terminal": "hard", "keep_trajectory": False,
-                       "methods": methods})
+                       "methods": [with_time_limit(m, limit) for m in methods]})
     if peers_suite:
         suite = {
             "name": "library-peers",
@@ -91,7 +114,8 @@ def main():
                 "The library's problems with a peer's published discrete optima: Ipopt on every "
                 "such NLP (its scheme and N, up to CTBenchmarks' N = 2000) for the column 'NLP vs "
                 "peer', and Ipopt on Hermite-Simpson and LGR at the problem's default N. A sweep: "
-                "run sharded (docs/problems.md). Written by bench/suites/make_library.py --peers."),
+                "run sharded (docs/problems.md). Every case stops at 600 s (max_time). Written by "
+                "bench/suites/make_library.py --peers."),
             "groups": groups,
         }
     else:
@@ -104,7 +128,8 @@ def main():
                 "(Hermite-Simpson, N = 20) on problems of at most 6 states, hamiltonian-polish "
                 "and indirect-newton (not_applicable where they do not take the problem), and "
                 "Ipopt on each peer's published NLP up to N = 200 for the 'NLP vs peer' column "
-                "(the larger ones: library-peers.json). Written by bench/suites/make_library.py."),
+                "(the larger ones: library-peers.json). Every case stops at 300 s (max_time). Written by "
+                "bench/suites/make_library.py."),
             "groups": groups,
         }
     json.dump(suite, sys.stdout, indent=1)
