@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "bench/cli/initial_guess.h"
 #include "bench/cli/json_values.h"
 #include "bench/cli/online_case.h"
 #include "core/costate_error.h"
@@ -72,6 +73,8 @@ PreparedCase Prepare(const ResolvedCase& c) {
   p.request.transcription_options = p.options.transcription;
   p.request.options = p.options.solver;
   if (c.initial_guess) {
+    // Checked against the build for checks; a problem built now is checked too.
+    if (!c.built_problem) CheckInitialGuess(*c.initial_guess, *p.ocp, spec.initial_guess);
     p.request.initial_guess = c.initial_guess->controls;
     p.request.initial_states = c.initial_guess->states;
     p.request.initial_costates = c.initial_guess->costates;

@@ -17,60 +17,36 @@ namespace {
 
 using nlohmann::json;
 
-// The value a case field (algorithm, degree) gives its owner's option `key`, unless the options
-// give the key too: then both must agree (compared once resolved by `schema`).
+// Whether the registered solver `name` has its own option `key` (false for an unknown name:
+// keys and records are also made of cases that failed to resolve).
+bool SolverHasOption(const std::string& name, const std::string& key) {
+  for (const SolverInfo& info : Solvers()) {
+    if (info.name == name) return info.options.Contains(key);
+  }
+  return false;
+}
+
+// The option a case field (algorithm, degree) sets: its value resolved by the owner's
+// `schema`, into the owner's resolved options, agreeing with an entry the options gave too.
 void SetFromField(const char* field,
                   const OptionSchema& schema,
                   const std::string& key,
                   const OptionValue& value,
-                  OptionMap* options) {
+                  OptionMap* owner_options) {
   OptionValue resolved;
   try {
     resolved = schema.ResolveOne(key, value);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string(field) + ": " + e.what());
   }
-  if (const OptionValue* given = options->Find(key)) {
-    OptionValue option;
-    try {
-      option = schema.ResolveOne(key, *given);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("options: ") + e.what());
-    }
-    if (!(option == resolved)) {
+  if (const OptionValue* given = owner_options->Find(key)) {
+    if (!(*given == resolved)) {
       throw std::invalid_argument(std::string(field) + ": '" + resolved.ToText() +
-                                  "' disagrees with options." + key + " = '" + option.ToText() +
+                                  "' disagrees with options." + key + " = '" + given->ToText() +
                                   "' (give it once)");
     }
   }
-  options->Set(key, resolved);
-}
-
-// The case fields `algorithm` and `degree` are spellings of their owners' options (NLopt's
-// "algorithm", LGR's "degree"): moved into the options, so that every later stage sees one
-// option map and both spellings make one case.
-void MoveCaseFieldsIntoOptions(const SolverInfo& sinfo,
-                               const TranscriptionInfo* tinfo,
-                               CaseSpec* spec) {
-  if (!spec->algorithm.empty()) {
-    if (!sinfo.options.Contains("algorithm")) {
-      throw std::invalid_argument("algorithm: solver '" + spec->solver +
-                                  "' has no option 'algorithm' (it takes none)");
-    }
-    SetFromField(
-        "algorithm", sinfo.options, "algorithm", OptionValue(spec->algorithm), &spec->options);
-    spec->algorithm.clear();
-  }
-  if (tinfo != nullptr && tinfo->options.Contains("degree") &&
-      (spec->degree_given || !spec->options.Has("degree"))) {
-    SetFromField("degree",
-                 tinfo->options,
-                 "degree",
-                 OptionValue(static_cast<long long>(spec->degree)),
-                 &spec->options);
-  }
-  spec->degree = CaseSpec::kDefaultDegree;
-  spec->degree_given = false;
+  owner_options->Set(key, resolved);
 }
 
 // The transcription whose options the case may give: none for a solver that takes none.
@@ -79,13 +55,17 @@ const TranscriptionInfo* OptionTranscription(const SolverInfo& sinfo, const Case
   return &FindTranscription(spec.transcription);
 }
 
-// Each option resolved by its owner's schema, the solver's first, then the solver's own
-// cross-field rules.
-MethodOptions SplitOptions(const SolverInfo& sinfo,
-                           const TranscriptionInfo* tinfo,
-                           const CaseSpec& spec) {
+// The case's options resolved by their owners' schemas (the solver's first) and split by owner;
+// then the case fields `algorithm` and `degree`, spellings of the solver's option "algorithm"
+// (NLopt's) and the transcription's "degree" (LGR's), moved into `spec->options` and the
+// owner's map, so that both spellings make one case; then the solver's cross-field rules. The
+// errors come in that order. A solver with an option "degree" of its own keeps the
+// transcription's degree in the case field (the options' "degree" is the solver's).
+MethodOptions ResolveMethod(const SolverInfo& sinfo,
+                            const TranscriptionInfo* tinfo,
+                            CaseSpec* spec) {
   MethodOptions out;
-  for (const auto& [key, value] : spec.options) {
+  for (const auto& [key, value] : spec->options) {
     try {
       if (sinfo.options.Contains(key)) {
         out.solver.Set(key, sinfo.options.ResolveOne(key, value));
@@ -95,12 +75,37 @@ MethodOptions SplitOptions(const SolverInfo& sinfo,
         std::string valid = sinfo.options.Names();
         if (tinfo != nullptr)
           valid += "; transcription " + tinfo->name + ": " + tinfo->options.Names();
-        throw std::invalid_argument(spec.solver + ": unknown option '" + key +
+        throw std::invalid_argument(spec->solver + ": unknown option '" + key +
                                     "' (valid: " + valid + ")");
       }
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("options: ") + e.what());
     }
+  }
+  if (!spec->algorithm.empty()) {
+    if (!sinfo.options.Contains("algorithm")) {
+      throw std::invalid_argument("algorithm: solver '" + spec->solver +
+                                  "' has no option 'algorithm' (it takes none)");
+    }
+    SetFromField(
+        "algorithm", sinfo.options, "algorithm", OptionValue(spec->algorithm), &out.solver);
+    spec->options.Set("algorithm", *out.solver.Find("algorithm"));
+    spec->algorithm.clear();
+  }
+  if (tinfo != nullptr && tinfo->options.Contains("degree") &&
+      (spec->degree_given || !out.transcription.Has("degree"))) {
+    SetFromField("degree",
+                 tinfo->options,
+                 "degree",
+                 OptionValue(static_cast<long long>(spec->degree)),
+                 &out.transcription);
+  }
+  if (!sinfo.options.Contains("degree")) {
+    if (const OptionValue* degree = out.transcription.Find("degree")) {
+      spec->options.Set("degree", *degree);
+    }
+    spec->degree = CaseSpec::kDefaultDegree;
+    spec->degree_given = false;
   }
   if (sinfo.check_options) {
     try {
@@ -128,16 +133,18 @@ TerminalMode ParseTerminal(const std::string& s) {
 
 OptionMap CaseSpec::OptionsBesideCaseFields() const {
   OptionMap rest = options;
-  rest.Erase("algorithm");
-  rest.Erase("degree");
+  if (SolverHasOption(solver, "algorithm")) rest.Erase("algorithm");
+  if (!SolverHasOption(solver, "degree")) rest.Erase("degree");
   return rest;
 }
 
 std::string CaseSpec::Key() const {
   // NLopt's algorithm and LGR's degree in the places their case fields have had since the first
   // records (keys are how --resume, shards and compare find a case again).
-  const OptionValue* algorithm_option = options.Find("algorithm");
-  const OptionValue* degree_option = options.Find("degree");
+  const OptionValue* algorithm_option =
+      SolverHasOption(solver, "algorithm") ? options.Find("algorithm") : nullptr;
+  const OptionValue* degree_option =
+      SolverHasOption(solver, "degree") ? nullptr : options.Find("degree");
   std::string key = fmt::format("{}|seed={}|{}|{}|{}|N={}|deg={}|{}|{}|eval={}",
                                 problem,
                                 seed,
@@ -191,18 +198,14 @@ void CaseSpec::Validate() const {
 
 MethodOptions ResolveMethodOptions(const CaseSpec& given) {
   const SolverInfo& sinfo = FindSolver(given.solver);
-  const TranscriptionInfo* tinfo = OptionTranscription(sinfo, given);
   CaseSpec spec = given;
-  MoveCaseFieldsIntoOptions(sinfo, tinfo, &spec);
-  return SplitOptions(sinfo, tinfo, spec);
+  return ResolveMethod(sinfo, OptionTranscription(sinfo, spec), &spec);
 }
 
 CaseSpec ResolveCase(CaseSpec spec, MethodOptions* method) {
   const SolverInfo& sinfo = FindSolver(spec.solver);
   if (!spec.transcription.empty()) FindTranscription(spec.transcription);
-  const TranscriptionInfo* tinfo = OptionTranscription(sinfo, spec);
-  MoveCaseFieldsIntoOptions(sinfo, tinfo, &spec);
-  MethodOptions resolved = SplitOptions(sinfo, tinfo, spec);
+  MethodOptions resolved = ResolveMethod(sinfo, OptionTranscription(sinfo, spec), &spec);
   // The options as the case gave them, typed.
   OptionMap options;
   for (const auto& [key, value] : spec.options) {

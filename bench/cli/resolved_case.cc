@@ -148,18 +148,21 @@ void CheckHorizonSteps(double t0, double tf, int N, const std::string& which) {
 }
 
 ResolvedCase ResolveAndValidate(const CaseSpec& given) {
-  given.Validate();
+  // The names and options first, then the spec's own rules (the order `solve` has always
+  // reported them in).
   ResolvedCase c;
   c.spec = ResolveCase(given, &c.options);
   const CaseSpec& spec = c.spec;
+  spec.Validate();
   CheckSpecAndSizes(spec);
   c.solver = &FindSolver(spec.solver);
   if (spec.kind == "online") {
-    c.problem = &FindProblem(spec.problem);
-    if (!spec.transcription.empty()) c.transcription = &FindTranscription(spec.transcription);
+    // The scenario names its problem rule ("defined for comm-path2d only") before any lookup.
     auto scenario = std::make_shared<OnlineScenario>(ResolveOnlineCaseScenario(spec, c.options));
     c.estimate = CheckOnlineCase(spec, *scenario);
     c.online = std::move(scenario);
+    c.problem = &FindProblem(spec.problem);
+    if (!spec.transcription.empty()) c.transcription = &FindTranscription(spec.transcription);
     return c;
   }
   c.problem = &FindProblem(spec.problem);
