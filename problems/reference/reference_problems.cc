@@ -12,6 +12,7 @@
 #include "problems/reference/goddard.h"
 #include "problems/reference/goddard_three_phase.h"
 #include "problems/reference/hager.h"
+#include "problems/reference/launch_vehicle.h"
 #include "problems/reference/lqr.h"
 #include "problems/reference/methanol.h"
 #include "problems/reference/min_time_double_integrator.h"
@@ -46,6 +47,7 @@ void AppendReferenceProblems(std::vector<ProblemInfo>* list) {
   list->push_back(TimeParameterDoubleIntegratorProblemInfo());
   list->push_back(TwoPhaseDoubleIntegratorProblemInfo());
   list->push_back(GoddardThreePhaseProblemInfo());
+  list->push_back(LaunchVehicleProblemInfo());
   list->push_back(MinTimeDoubleIntegratorProblemInfo());
   list->push_back(GasOilProblemInfo());
   list->push_back(MethanolProblemInfo());
