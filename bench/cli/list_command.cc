@@ -60,6 +60,13 @@ void DescribeProblem(const std::string& name) {
   }
   for (const ProblemReference& r : p.additional_references)
     print_reference(r.quantity, r.value, r.scheme, r.intervals, r.source);
+  if (!p.reference_options.empty()) {
+    std::string options;
+    for (const auto& [key, value] : p.reference_options) {
+      options += (options.empty() ? "" : " ") + key + "=" + value;
+    }
+    std::cout << "ipopt options of the first reference (its NLP needs them): " << options << "\n";
+  }
   if (!p.hamiltonian_note.empty()) std::cout << "hamiltonian: " << p.hamiltonian_note << "\n";
   // The problem as its defaults build it (make_for_checks: without its expensive parts): its
   // sizes and which parts of the problem class it uses, which decide the methods that take it.

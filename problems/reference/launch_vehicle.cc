@@ -2,13 +2,15 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <numbers>
+#include <utility>
 #include <vector>
 
 namespace ocpb {
 namespace {
 
 using Constants = LaunchVehicleConstants;
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
+constexpr double kDegree = std::numbers::pi / 180.0;
 
 // The target orbit's unit angular momentum, periapsis direction P and h x P.
 struct OrbitFrame {
@@ -111,6 +113,7 @@ LaunchVehiclePhase<kFinal>::LaunchVehiclePhase(std::string name,
   if constexpr (kFinal) this->SetTerminalWeights(Vec::Constant(5, 1e3));
 }
 
+// The constructor is defined here, not in the header: the two phase kinds are made here.
 template class LaunchVehiclePhase<false>;
 template class LaunchVehiclePhase<true>;
 
@@ -188,7 +191,7 @@ ProblemInfo LaunchVehicleProblemInfo() {
       "MIT, 2004";
   p.hamiltonian_note =
       "not applicable: several phases, and a path constraint on the thrust direction";
-  p.tags = {"multi-phase", "free-time", "mayer", "aerospace", "high-dimensional"};
+  p.tags = {"multi-phase", "free-time", "mayer", "aerospace"};
   return p;
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <string>
 
 #include "core/autodiff_ocp.h"
@@ -58,7 +59,7 @@ struct LaunchVehicleConstants {
   static constexpr double kRho0 = 1.225;
   static constexpr double kScaleHeight = 7200.0;
   static constexpr double kDragCoefficient = 0.5;
-  static constexpr double kArea = 4.0 * 3.14159265358979323846;
+  static constexpr double kArea = 4.0 * std::numbers::pi;
   static constexpr double kLatitudeDeg = 28.5;
 
   static constexpr double kBoosterMass = 19290.0, kBoosterPropellant = 17010.0;

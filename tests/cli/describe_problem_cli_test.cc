@@ -62,6 +62,14 @@ TEST(DescribeProblemCli, TagsSelectAndDescribe) {
   EXPECT_NE(goddard.out.find("reference J = -1.01283 (trapezoid NLP at N = 400;"),
             std::string::npos)
       << goddard.out;
+  // The Ipopt options a reference's NLP needs (make_library.py --peers reads this line), only
+  // where the problem names some.
+  EXPECT_EQ(goddard.out.find("ipopt options"), std::string::npos) << goddard.out;
+  const ProgramRun jackson = RunOcpbenchProgram({"describe", "problem", "jackson"});
+  EXPECT_NE(jackson.out.find("\nipopt options of the first reference (its NLP needs them): "
+                             "mu_strategy=adaptive\n"),
+            std::string::npos)
+      << jackson.out;
 }
 
 }  // namespace

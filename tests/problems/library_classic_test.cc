@@ -1,5 +1,6 @@
 // The classic group of the reference library (problems/library/classic/): every problem is
-// registered with a reference and tags, and the closed forms the references rest on hold.
+// registered with a reference and tags, the closed forms the references rest on hold, and the
+// newer problems' physics and a solve against their published values.
 #include <cmath>
 #include <string>
 #include <vector>
@@ -92,17 +93,6 @@ TEST(LibraryClassic, OrbitRaisingReachesThePublishedRadiusWithFullThrust) {
   for (int n = 0; n <= request.grid.intervals(); ++n) {
     EXPECT_GT(r.controls(request.grid.t(n)).norm(), 1.0 - 1e-4) << "node " << n;  // the barrier
   }
-  // The Hamiltonian minimizer on the disc: u* = -(p_vr, p_vtheta) / |.|, no better u nearby.
-  const auto& problem = dynamic_cast<const OrbitRaising&>(*ocp);
-  const Eigen::Vector4d x(1.2, 0.3, 0.1, 0.9), p(0.4, -0.2, 0.7, -1.3);
-  Vec u(2);
-  problem.MinimizeHamiltonian(1.0, x, p, u);
-  EXPECT_NEAR(u.norm(), 1.0, 1e-15);
-  const double best = problem.Hamiltonian(1.0, x, u, p);
-  for (double angle = 0.0; angle < 6.28; angle += 0.01) {
-    const Eigen::Vector2d other(std::cos(angle), std::sin(angle));
-    EXPECT_GE(problem.Hamiltonian(1.0, x, other, p), best - 1e-15);
-  }
 }
 
 // The start of dynamic-soaring is a level banked turn closing one loop in the nominal 24 s
@@ -129,6 +119,39 @@ TEST(LibraryClassic, DynamicSoaringStartsFromALevelTurnAndClosesTheLoop) {
   EXPECT_NEAR(ocp->BoundaryViolation(x0, xf), 0.01, 1e-12);
   EXPECT_DOUBLE_EQ(*FindProblem("dynamic-soaring").reference_value,
                    DynamicSoaring::kReferenceGradient);
+}
+
+// Newton's law in the ground frame, written independently of the problem's scalar equations:
+// m d/dt (v e + (beta h, 0, 0)) = -D e + L (cos(phi) n + sin(phi) s) - m g z, with e the
+// direction of flight through the air, n = de/dgamma its upward normal and s = de/dpsi / cos
+// (gamma) its rightward one, at a point with wind, climb, heading and bank.
+TEST(LibraryClassic, DynamicSoaringIsNewtonsLawInTheShearedWind) {
+  const auto ocp = MakeProblem("dynamic-soaring", {}, 0);
+  using DS = DynamicSoaring;
+  Vec x(7);
+  x << 100.0, -50.0, 120.0, 140.0, 0.3, 0.7, 0.06;
+  const Eigen::Vector2d u(0.8, -0.4);
+  Vec f(7);
+  ocp->Dynamics(0.0, x, u, f);
+  const double h = x[2], v = x[3], gamma = x[4], psi = x[5], beta = x[6];
+  const Eigen::Vector3d e(
+      std::cos(gamma) * std::sin(psi), std::cos(gamma) * std::cos(psi), std::sin(gamma));
+  const Eigen::Vector3d n(
+      -std::sin(gamma) * std::sin(psi), -std::sin(gamma) * std::cos(psi), std::cos(gamma));
+  const Eigen::Vector3d side(std::cos(psi), -std::sin(psi), 0.0);
+  // Position: the air's velocity plus the wind at this height.
+  EXPECT_NEAR(f[0], v * e[0] + beta * h, 1e-12);
+  EXPECT_NEAR(f[1], v * e[1], 1e-12);
+  EXPECT_NEAR(f[2], v * e[2], 1e-12);
+  const Eigen::Vector3d acceleration = f[3] * e + v * f[4] * n + v * std::cos(gamma) * f[5] * side +
+                                       Eigen::Vector3d(beta * f[2], 0.0, 0.0);
+  const double q = 0.5 * DS::kRho * v * v;
+  const double lift = q * DS::kArea * u[0];
+  const double drag = q * DS::kArea * (DS::kCd0 + DS::kInducedDrag * u[0] * u[0]);
+  const Eigen::Vector3d force = -drag * e + lift * (std::cos(u[1]) * n + std::sin(u[1]) * side) -
+                                DS::kMass * DS::kGravity * Eigen::Vector3d::UnitZ();
+  EXPECT_LT((DS::kMass * acceleration - force).norm(), 1e-10 * force.norm());
+  EXPECT_EQ(f[6], 0.0);
 }
 
 }  // namespace

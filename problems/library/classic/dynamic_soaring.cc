@@ -1,12 +1,12 @@
 #include "problems/library/classic/dynamic_soaring.h"
 
-#include <limits>
 #include <memory>
+#include <numbers>
 
 namespace ocpb {
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kStartSpeed = 150.0;
 constexpr double kStartLoopTime = 24.0;
 
@@ -20,7 +20,9 @@ DynamicSoaring::DynamicSoaring(const Parameters& params) {
   SetHorizon(0.0, kStartLoopTime);
   SetFreeFinalTime(10.0, 30.0);
   Vec x0(7);
-  x0 << 0.0, 0.0, 0.0, kStartSpeed, 0.0, 0.0, 0.08;
+  // Heading -pi: the loop turns it to +pi, inside its bounds [-225, 225] deg, as psi(tf) =
+  // psi(0) + 2 pi asks (a start at 0 would end 135 deg past the upper bound).
+  x0 << 0.0, 0.0, 0.0, kStartSpeed, 0.0, -std::numbers::pi, 0.08;
   SetInitialState(x0);
   Vec lo(7), hi(7);
   lo << -1500.0, -1000.0, 0.0, 10.0, -75.0 * kDeg, -225.0 * kDeg, 0.0;
@@ -32,7 +34,7 @@ DynamicSoaring::DynamicSoaring(const Parameters& params) {
   hi0.head<3>().setZero();
   SetInitialStateBounds(lo0, hi0);
   SetStaticParameters(Vec::Constant(1, 0.0), Vec::Constant(1, 1.0), Vec::Constant(1, 0.08));
-  Eigen::Vector3d periodic(0.0, 0.0, 2.0 * 3.14159265358979323846);
+  Eigen::Vector3d periodic(0.0, 0.0, 2.0 * std::numbers::pi);
   SetBoundaryConstraints(periodic, periodic);
   SetControlSet(
       ControlSet::Box(Eigen::Vector2d(0.0, -75.0 * kDeg), Eigen::Vector2d(1.5, 75.0 * kDeg)));
@@ -42,7 +44,7 @@ DynamicSoaring::DynamicSoaring(const Parameters& params) {
 Vec DynamicSoaring::NominalControl() const {
   // A level turn at the start's speed closing one loop in the start's 24 s: tan(phi) = v
   // psi' / g with psi' = 2 pi / 24, and C_L holding the weight, q S C_L cos(phi) = m g.
-  const double turn_rate = 2.0 * 3.14159265358979323846 / kStartLoopTime;
+  const double turn_rate = 2.0 * std::numbers::pi / kStartLoopTime;
   const double bank = std::atan(kStartSpeed * turn_rate / kGravity);
   const double q = 0.5 * kRho * kStartSpeed * kStartSpeed;
   return Eigen::Vector2d(kMass * kGravity / (q * kArea * std::cos(bank)), bank);

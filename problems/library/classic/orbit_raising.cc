@@ -1,6 +1,7 @@
 #include "problems/library/classic/orbit_raising.h"
 
 #include <memory>
+#include <numbers>
 
 namespace ocpb {
 
@@ -13,7 +14,7 @@ OrbitRaising::OrbitRaising(const Parameters& params) {
   SetInitialState(Eigen::Vector4d(1.0, 0.0, 0.0, 1.0));
   SetTerminalWeights(Vec::Constant(2, params.Scalar("C")));
   SetControlSet(ControlSet::Box(Vec::Constant(2, -1.1), Vec::Constant(2, 1.1)));
-  const double pi = 3.14159265358979323846;
+  const double pi = std::numbers::pi;
   SetStateBounds(Eigen::Vector4d(1.0, -pi, -10.0, -10.0), Eigen::Vector4d(10.0, pi, 10.0, 10.0));
 }
 
@@ -35,7 +36,7 @@ ProblemInfo OrbitRaisingProblemInfo() {
   p.origin = "Bryson and Ho, Applied Optimal Control, 1975, section 2.5";
   p.hamiltonian_note =
       "not applicable: state bounds (inactive at the optimum) and the path constraint |u|^2 <= "
-      "1; the exact minimizer on the disc is there for a reformulation without them";
+      "1 on the controls";
   p.tags = {"control-constrained", "mayer", "aerospace"};
   return p;
 }

@@ -33,10 +33,6 @@ namespace ocpb {
 /// between collocation points where the direction turns fast (mid-course), which the judge
 /// reports where it exceeds 1e-3 (Hermite-Simpson at N = 50: 0.017).
 ///
-/// Hamiltonian minimizer: H = a (p_vr u_r + p_vtheta u_theta) + (terms without u), a > 0, on
-/// the disc |u| <= 1 is least at u = -(p_vr, p_vtheta) / |(p_vr, p_vtheta)| (and the path
-/// constraint then holds with equality).
-///
 /// A. E. Bryson and Y.-C. Ho, "Applied Optimal Control", 1975, section 2.5; the same problem is
 /// YAPSS's example orbit_raising, whose test asserts r(tf) = 1.5252777 to 1e-7.
 class OrbitRaising final : public AutoDiffOcp<OrbitRaising, 4, 2, 2, 1> {
@@ -74,13 +70,6 @@ class OrbitRaising final : public AutoDiffOcp<OrbitRaising, 4, 2, 2, 1> {
   template <class T>
   void EvalPathConstraints(double, const VecT<T, 4>&, const VecT<T, 2>& u, VecT<T, 1>* c) const {
     (*c)[0] = u[0] * u[0] + u[1] * u[1] - 1.0;
-  }
-
-  bool HasHamiltonianMinimizer() const override { return true; }
-  void MinimizeHamiltonian(double, ConstVecRef, ConstVecRef p, VecRef u) const override {
-    const double n = std::hypot(p[2], p[3]);
-    u[0] = n > 0.0 ? -p[2] / n : 0.0;
-    u[1] = n > 0.0 ? -p[3] / n : 1.0;
   }
 };
 
