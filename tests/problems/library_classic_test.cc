@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "problems/library/classic/dynamic_soaring.h"
+#include "problems/library/classic/fuller.h"
 #include "problems/library/classic/hypersensitive.h"
 #include "problems/library/classic/neuenhofen_kerrigan_x1.h"
 #include "problems/library/classic/orbit_raising.h"
@@ -32,6 +33,7 @@ const std::vector<std::string>& ClassicNames() {
       "min-energy-target-line",
       "orbit-raising",
       "dynamic-soaring",
+      "fuller",
   };
   return names;
 }
@@ -152,6 +154,27 @@ TEST(LibraryClassic, DynamicSoaringIsNewtonsLawInTheShearedWind) {
                                 DS::kMass * DS::kGravity * Eigen::Vector3d::UnitZ();
   EXPECT_LT((DS::kMass * acceleration - force).norm(), 1e-10 * force.norm());
   EXPECT_EQ(f[6], 0.0);
+}
+
+// Fuller's problem: Hermite-Simpson at N = 800 (Ipopt's defaults) is within a few times the
+// reference's own uncertainty (3e-6) of it, and its control is bang-bang, switching between both
+// bounds.
+TEST(LibraryClassic, FullerReachesTheComputedOptimumWithABangBangControl) {
+  const auto ocp = MakeProblem("fuller", {}, 0);
+  const SolveRequest request =
+      reference_testing::Request(*ocp, 800, TerminalMode::kHard, "hermite-simpson");
+  const SolveResult r = reference_testing::SolveWith("ipopt", *ocp, request);
+  ASSERT_EQ(r.status, SolveStatus::kConverged) << r.message;
+  EXPECT_LT(reference_testing::RelativeError(r.objective, Fuller::kReferenceCost), 2e-5)
+      << r.objective;
+  int switches = 0, last = 0;
+  for (int n = 0; n < request.grid.intervals(); ++n) {
+    const double u = r.controls(request.grid.t(n))[0];
+    const int side = u > 0.99 ? 1 : (u < -0.99 ? -1 : 0);
+    if (side != 0 && last != 0 && side != last) ++switches;
+    if (side != 0) last = side;
+  }
+  EXPECT_GE(switches, 2);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "problems/library/classic/alp_rider.h"
 #include "problems/library/classic/dynamic_soaring.h"
 #include "problems/library/classic/f8_aircraft.h"
+#include "problems/library/classic/fuller.h"
 #include "problems/library/classic/hypersensitive.h"
 #include "problems/library/classic/lotka_volterra_fishing.h"
 #include "problems/library/classic/min_energy_free_velocity.h"
@@ -27,6 +28,7 @@ void AppendClassicProblems(std::vector<ProblemInfo>* list) {
   list->push_back(MinEnergyTargetLineProblemInfo());
   list->push_back(OrbitRaisingProblemInfo());
   list->push_back(DynamicSoaringProblemInfo());
+  list->push_back(FullerProblemInfo());
 }
 
 }  // namespace ocpb
