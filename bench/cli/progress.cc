@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <iostream>
 
 #include <fmt/format.h>
@@ -29,9 +30,18 @@ double RunProgress::Elapsed() const {
 
 void RunProgress::CaseDone(size_t running, const std::string& last) {
   ++done_;
+  last_ = last;
   const double now = Elapsed();
   if (tty_ || now - last_shown_ >= interval_) {
     Show(running, last);
+    last_shown_ = now;
+  }
+}
+
+void RunProgress::Tick(size_t running) {
+  const double now = Elapsed();
+  if (now - last_shown_ >= (tty_ ? 1.0 : std::max(interval_, 60.0))) {
+    Show(running, last_);
     last_shown_ = now;
   }
 }

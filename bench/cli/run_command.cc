@@ -226,6 +226,7 @@ void Run(const RunArgs& args) {
       Record record = Record::FromJson(nlohmann::json::parse(line));
       record_done(i, std::move(record), line, running);
     };
+    tasks.idle = [&](size_t running) { progress.Tick(running); };
     RunInWorkerProcesses(tasks, jobs);
   }
   progress.Finish();

@@ -19,6 +19,9 @@
 namespace ocpb {
 namespace {
 
+// How long the pool waits for a result before it calls WorkerPoolTasks::idle.
+constexpr int kIdleMilliseconds = 1000;
+
 // Sends all of `text` (MSG_NOSIGNAL: a dead peer is an error, not SIGPIPE). False on failure.
 bool SendAll(int fd, const std::string& text) {
   size_t sent = 0;
@@ -108,9 +111,14 @@ class Pool {
     while (finished_ < tasks_.count) {
       std::vector<pollfd> fds;
       for (const Worker& w : workers_) fds.push_back({w.fd, POLLIN, 0});
-      if (::poll(fds.data(), fds.size(), -1) < 0) {
+      const int ready = ::poll(fds.data(), fds.size(), tasks_.idle ? kIdleMilliseconds : -1);
+      if (ready < 0) {
         if (errno == EINTR) continue;
         throw std::runtime_error(std::string("poll: ") + std::strerror(errno));
+      }
+      if (ready == 0) {
+        tasks_.idle(running_);
+        continue;
       }
       for (size_t i = 0; i < fds.size(); ++i) {
         if (fds[i].revents != 0) Serve(i);

@@ -20,6 +20,9 @@ struct WorkerPoolTasks {
   /// The result line of a task whose worker died while running it (`why`: "killed by signal
   /// 11", "exited with code 3"); it is passed to `done` like any other.
   std::function<std::string(size_t task, const std::string& why)> died;
+  /// Optional: called in this process about once a second while no result arrives (`running`
+  /// tasks in workers), so that a progress line keeps time while long tasks run.
+  std::function<void(size_t running)> idle;
 };
 
 /// Runs every task in `jobs` worker processes (at most `count`), forked from this one (which

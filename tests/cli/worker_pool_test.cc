@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -44,6 +45,26 @@ TEST(WorkerPool, RunsEveryTaskOnceInOtherProcesses) {
   EXPECT_LE(pids.size(), 3u);
   EXPECT_GE(pids.size(), 1u);
   EXPECT_LE(most_running, 2u);
+}
+
+// While a task runs longer than a second, the pool calls `idle` with the tasks still running
+// (what keeps `run`'s progress line current); a pool without `idle` waits as before.
+TEST(WorkerPool, CallsIdleWhileATaskRuns) {
+  WorkerPoolTasks tasks;
+  tasks.count = 1;
+  tasks.run = [](size_t) {
+    ::usleep(1500 * 1000);
+    return std::string("done");
+  };
+  tasks.died = [](size_t, const std::string& why) { return why; };
+  std::string result;
+  tasks.done = [&](size_t, std::string line, size_t) { result = std::move(line); };
+  std::vector<size_t> idle_running;
+  tasks.idle = [&](size_t running) { idle_running.push_back(running); };
+  RunInWorkerProcesses(tasks, 1);
+  EXPECT_EQ(result, "done");
+  ASSERT_GE(idle_running.size(), 1u);
+  for (size_t running : idle_running) EXPECT_EQ(running, 1u);
 }
 
 TEST(WorkerPool, AWorkerThatDiesCostsOnlyItsTask) {
