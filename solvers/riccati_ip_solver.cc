@@ -41,6 +41,38 @@ const OptionBinding<RiccatiIpOptions>& RiccatiIpBinding() {
              &O::compl_inf_tol,
              "unscaled complementarity a converged point must also meet",
              OptionBounds::Above(0));
+    t.Number("acceptable_tol",
+             &O::acceptable_tol,
+             "acceptable level of the scaled KKT error (Ipopt's); see acceptable_iter",
+             OptionBounds::Above(0));
+    t.Integer("acceptable_iter",
+              &O::acceptable_iter,
+              "stop as acceptable after this many consecutive acceptable iterates (0: never)",
+              OptionBounds::AtLeast(0));
+    t.Number("acceptable_dual_inf_tol",
+             &O::acceptable_dual_inf_tol,
+             "unscaled dual infeasibility an acceptable point must also meet",
+             OptionBounds::Above(0));
+    t.Number("acceptable_constr_viol_tol",
+             &O::acceptable_constr_viol_tol,
+             "unscaled constraint violation an acceptable point must also meet",
+             OptionBounds::Above(0));
+    t.Number("acceptable_compl_inf_tol",
+             &O::acceptable_compl_inf_tol,
+             "unscaled complementarity an acceptable point must also meet",
+             OptionBounds::Above(0));
+    t.Integer("min_refinement_steps",
+              &O::min_refinement_steps,
+              "iterative refinement corrections every Newton step takes at least",
+              OptionBounds::AtLeast(0));
+    t.Integer("max_refinement_steps",
+              &O::max_refinement_steps,
+              "iterative refinement corrections a Newton step takes at most (Ipopt's)",
+              OptionBounds::AtLeast(0));
+    t.Integer("max_soc",
+              &O::max_soc,
+              "second-order corrections tried per step at most (Ipopt's; 0: none)",
+              OptionBounds::AtLeast(0));
     t.Integer("max_iter", &O::max_iter, "iteration limit", OptionBounds::AtLeast(0));
     t.Number("max_cpu_time", &O::max_cpu_time, "CPU time limit, s", OptionBounds::Above(0));
     t.Number("mu_init", &O::mu_init, "first barrier parameter", OptionBounds::Above(0));
@@ -79,6 +111,13 @@ constexpr double kRipEps = std::numeric_limits<double>::epsilon();
 
 bool RipFinite(double v) { return std::isfinite(v); }
 
+// Ipopt's comparison with room for rounding (its Compare_le): lhs <= rhs up to 10 eps |base|.
+// Near a solution the changes of the barrier objective reach its rounding error; a strict test
+// then rejects every trial for noise and the line search stalls at tight tolerances.
+bool LeqUpToRounding(double lhs, double rhs, double base) {
+  return lhs - rhs <= 10.0 * std::numeric_limits<double>::epsilon() * std::abs(base);
+}
+
 template <class Derived>
 bool RipAllFinite(const Eigen::PlainObjectBase<Derived>& m) {
   return AllFinite(m.data(), static_cast<int>(m.size()));
@@ -89,7 +128,13 @@ bool RipAllFinite(const Eigen::PlainObjectBase<Derived>& m) {
 const OptionSchema& RiccatiIpOptions::Schema() { return RiccatiIpBinding().schema(); }
 
 RiccatiIpOptions RiccatiIpOptions::Apply(const OptionMap& options, RiccatiIpOptions base) {
-  return RiccatiIpBinding().Apply(options, std::move(base));
+  RiccatiIpOptions o = RiccatiIpBinding().Apply(options, std::move(base));
+  if (o.min_refinement_steps > o.max_refinement_steps) {
+    throw std::invalid_argument(
+        "riccati-ip option min_refinement_steps (" + std::to_string(o.min_refinement_steps) +
+        ") must be <= max_refinement_steps (" + std::to_string(o.max_refinement_steps) + ")");
+  }
+  return o;
 }
 
 // ---- the Euler NLP, stage by stage ------------------------------------------------------------
@@ -515,6 +560,59 @@ using StageEval = EulerStages::StageEval;
 using TerminalEval = EulerStages::TerminalEval;
 using Values = EulerStages::Values;
 
+// The constraint residuals on the right-hand side of the Newton system: at the iterate for a
+// regular step (the NLP's rows: defects, the copy row, psi, and c + s of the inequalities), and
+// the accumulated c_soc of a second-order correction.
+struct Residuals {
+  Mat defects;  // nx x N
+  Vec copy_row, psi;
+  std::vector<Vec> ineq;  // per stage, c_k + s_k
+};
+
+double MaxNorm(const Residuals& r) {
+  const auto norm = [](const auto& m) { return m.size() > 0 ? m.cwiseAbs().maxCoeff() : 0.0; };
+  double v = std::max({norm(r.defects), norm(r.copy_row), norm(r.psi)});
+  for (const Vec& c : r.ineq) v = std::max(v, norm(c));
+  return v;
+}
+
+void RhsOf(const RiccatiProblem& p, RiccatiRhs* r) {
+  const size_t N = p.stages.size();
+  r->q.resize(N);
+  r->b.resize(N);
+  for (size_t k = 0; k < N; ++k) {
+    r->q[k] = p.stages[k].q;
+    r->b[k] = p.stages[k].b;
+  }
+  r->qN = p.qN;
+  r->c = p.c;
+  r->x0 = p.x0;
+}
+
+// The max norm of p's right-hand side (its vectors).
+double RhsMaxNorm(const RiccatiProblem& p) {
+  const auto norm = [](const Vec& v) { return v.size() > 0 ? v.cwiseAbs().maxCoeff() : 0.0; };
+  double v = std::max({norm(p.qN), norm(p.c), norm(p.x0)});
+  for (const RiccatiStage& s : p.stages) v = std::max({v, norm(s.q), norm(s.b)});
+  return v;
+}
+
+double MaxNorm(const RiccatiSolution& z) {
+  const auto norm = [](const Vec& v) { return v.size() > 0 ? v.cwiseAbs().maxCoeff() : 0.0; };
+  double v = norm(z.nu);
+  for (const Vec& x : z.x) v = std::max(v, norm(x));
+  for (const Vec& u : z.u) v = std::max(v, norm(u));
+  for (const Vec& l : z.lambda) v = std::max(v, norm(l));
+  return v;
+}
+
+// What the filter line search compares a trial point with (Wächter & Biegler, Sec. 2.3).
+struct LineSearchReference {
+  double theta = 0, phi = 0, gphi = 0;  // at the iterate; gphi: barrier objective's slope along d
+  double theta_min = 0, theta_max = 0;
+  const std::vector<std::pair<double, double>>* filter = nullptr;
+};
+
 struct Direction {
   Mat dX, dU;  // dX col 0 = 0
   Vec dV;
@@ -535,7 +633,57 @@ class RiccatiInteriorPoint {
   double Theta(const Values& v, const std::vector<Vec>& s) const;
   double BarrierObjective(const Values& v, const Iterate& it) const;
   void Measure(double mu);
-  bool BuildAndSolve(double mu, Direction* d, std::string* failure);
+  // The residuals of the NLP's rows at values v with slacks s.
+  void ResidualsAt(const Values& v, const std::vector<Vec>& s, Residuals* r) const;
+  // Builds the condensed stagewise KKT system at it_ for barrier parameter mu with the constraint
+  // residuals r on its right-hand side and solves it (kind: below); fills the full direction.
+  // False with the reason when the system cannot be solved.
+  enum class StepKind {
+    kNewton,                 // the primal-dual Newton step, with inertia correction
+    kSecondOrderCorrection,  // the Newton step's matrix again (its delta_w, delta_c)
+    kFeasibility,  // the restoration phase's minimum-norm step: identity Hessian, no objective
+  };
+  bool BuildAndSolve(
+      double mu, const Residuals& r, StepKind kind, Direction* d, std::string* failure);
+  // Iterative refinement of sol_ in the stagewise system qp_ factorized with dw, dc (Ipopt's
+  // rule, on the condensed system): at least min_refinement_steps and at most
+  // max_refinement_steps corrections by RiccatiSolver::SolveFactored, stopping once the
+  // residual ratio ||r|| / (min(||sol||, 1e6 ||rhs||) + ||rhs||) is <= 1e-10 or stops falling.
+  // Near a solution the condensed system's entries reach mu / s^2 ~ 1 / mu; without refinement
+  // the multipliers carry the recursion's rounding and the dual infeasibility stalls (at
+  // tol 1e-12: brachistochrone's stopped at 1e-7 .. 1e-5).
+  void Refine(double dw, double dc);
+  // The largest primal and dual steps in (0, 1] that keep slacks, control bounds and their
+  // multipliers at least a fraction 1 - tau from their bounds (fraction to the boundary).
+  void StepToBoundary(const Direction& d,
+                      double tau,
+                      double* alpha_primal,
+                      double* alpha_dual) const;
+  // it_'s primal variables moved by alpha along d into trial (its storage reused).
+  void PrimalTrial(const Direction& d, double alpha, Iterate* trial) const;
+  // Whether a trial point is acceptable: to the filter, and against the iterate either by the
+  // Armijo condition on the barrier objective (an f-type step, when theta <= theta_min and the
+  // switching condition holds for alpha) or by sufficient decrease in theta or phi.
+  bool Acceptable(const LineSearchReference& ref,
+                  const Values& v,
+                  const Iterate& trial,
+                  double alpha,
+                  bool* f_type) const;
+  // Ipopt's second-order correction (Wächter & Biegler, Sec. 2.4, steps ), tried
+  // when the full first trial x + alpha0 d was rejected without a decrease in theta (the Maratos
+  // effect): the step's KKT matrix is solved again with the constraint residuals replaced by
+  // c_soc = alpha0 c(x) + c(x + alpha0 d), up to four times (c_soc <- alpha_soc c_soc +
+  // c(x_soc)) while theta falls by 1 % from one correction to the next. On success *d, *alpha,
+  // *trial and *tv hold the corrected step, its fraction-to-the-boundary step size and the
+  // accepted point.
+  bool SecondOrderCorrection(const LineSearchReference& ref,
+                             double alpha0,
+                             double tau,
+                             Direction* d,
+                             double* alpha,
+                             Iterate* trial,
+                             Values* tv,
+                             bool* f_type);
   void LeastSquaresMultipliers();
   // Stage k's Q, q (from the Hessian H and gradient g of its (x_k, u_k); stage 0 keeps the u
   // block, x_0 being fixed), A and B of the linearized Euler step x_{k+1} = x_k + h f, and on the
@@ -544,8 +692,27 @@ class RiccatiInteriorPoint {
   bool StageBlocks(int k, const Mat& H, const Vec& g, RiccatiStage* q) const;
   // Adds stage k's inequalities with their slacks and multipliers eliminated to the (x, u)
   // Hessian H and gradient g (n = nx + nu): J^T S^-1 V J and J^T (mu S^-1 e - kappa_d mu e +
-  // S^-1 V (c + s)), J = [c_x c_u].
-  void CondenseInequalities(int k, double mu, int n, Mat* H, Vec* g);
+  // S^-1 V rc), J = [c_x c_u], rc the rows' residuals (c + s at the iterate).
+  void CondenseInequalities(int k, double mu, const Vec& rc, int n, Mat* H, Vec* g);
+  // The restoration phase, entered when the filter line search reaches its minimal step at a
+  // point that is not acceptable (Wächter & Biegler's A-9; not their restoration NLP, see the
+  // README): the iterate where it begins enters the filter; then minimum-norm Gauss-Newton
+  // steps on the constraints (StepKind::kFeasibility, whose barrier terms keep slacks and
+  // controls inside their bounds), each backtracked until theta falls by the factor
+  // 1 - gamma_theta, until a point is acceptable to the filter and decreases theta or phi
+  // against the iterate where the phase began; the equality multipliers are then reset to their
+  // least-squares estimates. Leaves it_, vals_ and the first derivatives consistent; true when
+  // the method can go on (also when an iteration or time limit ends the phase: the main loop
+  // then stops), false with the reason when a step cannot decrease theta.
+  bool Restore(const LineSearchReference& ref,
+               double tau,
+               std::vector<std::pair<double, double>>* filter,
+               std::string* why);
+  // Keeps the slacks' and the control bounds' multipliers within a factor kappa_sigma of
+  // mu / distance (Ipopt's safeguard after every step).
+  void ClampBoundMultipliers();
+  // Ipopt's acceptable level at it_ (after Measure()).
+  bool CurrentIsAcceptable() const;
   NlpSolution Finish(SolveStatus status, const std::string& solver_status, std::string message);
 
   const EulerStages& S_;
@@ -560,6 +727,18 @@ class RiccatiInteriorPoint {
   double E0_ = 0, Emu_ = 0;
   Mat rx_, ru_;
   Vec rv_;
+  Residuals res_, soc_res_, trial_res_;
+  RiccatiRhs rhs_, refine_rhs_;
+  RiccatiSolution correction_;
+  int refinement_steps_ = 0;
+  Direction soc_d_;
+  double dw_ = 0.0, dc_ = 0.0;  // the regularization of the last solve
+  int soc_trials_ = 0, soc_accepted_ = 0;
+  int restoration_phases_ = 0, restoration_iterations_ = 0, acceptable_count_ = 0;
+  // The last step, for print_level 1: its primal and dual step sizes and kind (f: Armijo, h:
+  // filter, s: a second-order correction, r: after the restoration phase).
+  double last_alpha_ = 0.0, last_alpha_z_ = 0.0;
+  const char* last_step_ = "";
   RiccatiProblem qp_;
   RiccatiSolver riccati_;
   RiccatiSolution sol_;
@@ -662,9 +841,23 @@ void RiccatiInteriorPoint::Measure(double mu) {
   Emu_ = std::max({dual / s_d_, cv, complmu / s_c_});
 }
 
-// Builds the condensed stagewise KKT system at it_ for barrier parameter mu and solves it with
-// inertia correction; fills the full direction.
-bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* failure) {
+void RiccatiInteriorPoint::ResidualsAt(const Values& v,
+                                       const std::vector<Vec>& s,
+                                       Residuals* r) const {
+  r->defects = v.defects;
+  r->copy_row = v.copy_row;
+  r->psi = v.psi;
+  r->ineq.resize(S_.N + 1);
+  for (int k = 0; k <= S_.N; ++k) {
+    r->ineq[k].resize(s[k].size());
+    if (s[k].size() > 0) r->ineq[k] = v.c[k] + s[k];
+  }
+}
+
+bool RiccatiInteriorPoint::BuildAndSolve(
+    double mu, const Residuals& r, StepKind kind, Direction* d, std::string* failure) {
+  const bool same_regularization = kind == StepKind::kSecondOrderCorrection;
+  const bool feasibility = kind == StepKind::kFeasibility;
   const int N = S_.N, nx = S_.nx, nu = S_.nu;
   const double cpu0 = CpuSeconds();
   qp_.stages.resize(N);
@@ -673,11 +866,16 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
     RiccatiStage& q = qp_.stages[k];
     // The stage's (x_k, u_k) Hessian and gradient with the slacks and bound multipliers
     // eliminated, in the workspace H_, g_; then cut into Q, q, A, B.
-    H_ = e.H;
-    g_.resize(nx + nu);
-    g_.head(nx) = sigma_ * S_.h[k] * e.Lx;
-    g_.tail(nu) = sigma_ * S_.h[k] * e.Lu;
-    if (it_.s[k].size() > 0) CondenseInequalities(k, mu, nx + nu, &H_, &g_);
+    if (feasibility) {
+      H_.setIdentity(nx + nu, nx + nu);
+      g_.setZero(nx + nu);
+    } else {
+      H_ = e.H;
+      g_.resize(nx + nu);
+      g_.head(nx) = sigma_ * S_.h[k] * e.Lx;
+      g_.tail(nu) = sigma_ * S_.h[k] * e.Lu;
+    }
+    if (it_.s[k].size() > 0) CondenseInequalities(k, mu, r.ineq[k], nx + nu, &H_, &g_);
     for (int j = 0; j < nu; ++j) {
       const double u = it_.U(j, k);
       if (HasLb(j)) {
@@ -695,30 +893,38 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
     }
     const bool last_copy = StageBlocks(k, H_, g_, &q);
     q.b.resize(q.B.rows());
-    q.b.head(nx) = -vals_.defects.col(k);
-    if (last_copy) q.b.tail(nu) = -vals_.copy_row;
+    q.b.head(nx) = -r.defects.col(k);
+    if (last_copy) q.b.tail(nu) = -r.copy_row;
   }
   const int nxN = nx + (S_.copy ? nu : 0);
   qp_.QN.setZero(nxN, nxN);
   qp_.qN.setZero(nxN);
-  qp_.QN.topLeftCorner(nx, nx) = te_.H;
-  qp_.qN.head(nx) = sigma_ * te_.grad;
+  if (feasibility) {
+    qp_.QN.setIdentity();
+  } else {
+    qp_.QN.topLeftCorner(nx, nx) = te_.H;
+    qp_.qN.head(nx) = sigma_ * te_.grad;
+  }
   if (S_.copy) {
-    qp_.QN += st_[N].H;
-    CondenseInequalities(N, mu, nxN, &qp_.QN, &qp_.qN);
+    if (!feasibility) qp_.QN += st_[N].H;
+    CondenseInequalities(N, mu, r.ineq[N], nxN, &qp_.QN, &qp_.qN);
   }
   qp_.C.setZero(S_.npsi, nxN);
   qp_.c.resize(S_.npsi);
   if (S_.npsi > 0) {
     qp_.C.leftCols(nx) = te_.psix;
-    qp_.c = vals_.psi;
+    qp_.c = r.psi;
   }
   qp_.x0.resize(0);
 
+  if (same_regularization) {  // the matrix is the last Newton step's: solve with its factors
+    RhsOf(qp_, &rhs_);
+    riccati_.SolveFactored(qp_, rhs_, &sol_);
+  }
   // Inertia correction (Ipopt's rule, Wächter & Biegler Sec. 3.1, on the Riccati recursion).
   double dw = 0.0, dc = 0.0;
   bool regularized = false;
-  for (;;) {
+  for (; !same_regularization;) {
     ++factorizations_;
     const RiccatiOutcome out = riccati_.Solve(qp_, dw, dc, &sol_);
     if (out == RiccatiOutcome::kSolved) break;
@@ -738,9 +944,14 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
       return false;
     }
   }
-  if (regularized) {
-    ++regularizations_;
-    delta_last_ = dw;
+  Refine(same_regularization ? dw_ : dw, same_regularization ? dc_ : dc);
+  if (kind == StepKind::kNewton) {  // the restoration's steps leave Ipopt's memory alone
+    if (regularized) {
+      ++regularizations_;
+      delta_last_ = dw;
+    }
+    dw_ = dw;
+    dc_ = dc;
   }
 
   // The full direction.
@@ -783,7 +994,7 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
     d->dy[k].resize(m);
     d->dv[k].resize(m);
     for (int i = 0; i < m; ++i) {
-      const double rc = vals_.c[k][i] + s[i];
+      const double rc = r.ineq[k][i];
       const double sig = it_.v[k][i] / s[i];
       const double mu_s = mu / s[i];
       const double ds = -rc - Jd[i];
@@ -811,7 +1022,257 @@ bool RiccatiInteriorPoint::BuildAndSolve(double mu, Direction* d, std::string* f
   return true;
 }
 
-void RiccatiInteriorPoint::CondenseInequalities(int k, double mu, int n, Mat* H, Vec* g) {
+void RiccatiInteriorPoint::Refine(double dw, double dc) {
+  const double rhs_norm = RhsMaxNorm(qp_);
+  double last_ratio = kRipInf;
+  for (int step = 0; step < o_.max_refinement_steps; ++step) {
+    const double residual = RiccatiKktResidual(qp_, dw, dc, sol_, &refine_rhs_);
+    const double ratio = residual / (std::min(MaxNorm(sol_), 1e6 * rhs_norm) + rhs_norm);
+    if (step >= o_.min_refinement_steps && (ratio <= 1e-10 || ratio >= last_ratio)) break;
+    if (!(residual > 0.0)) break;  // exact (or not finite: the step's checks catch it)
+    last_ratio = ratio;
+    riccati_.SolveFactored(qp_, refine_rhs_, &correction_);
+    ++refinement_steps_;
+    const int N = static_cast<int>(sol_.u.size());
+    for (int k = 0; k <= N; ++k) sol_.x[k] -= correction_.x[k];
+    for (int k = 0; k < N; ++k) {
+      sol_.u[k] -= correction_.u[k];
+      sol_.lambda[k] -= correction_.lambda[k];
+    }
+    sol_.nu -= correction_.nu;
+  }
+}
+
+void RiccatiInteriorPoint::StepToBoundary(const Direction& d,
+                                          double tau,
+                                          double* alpha_primal,
+                                          double* alpha_dual) const {
+  double ap = 1.0, ad = 1.0;
+  auto ftb = [&](double value, double step, double* alpha) {
+    if (step < 0.0) *alpha = std::min(*alpha, -tau * value / step);
+  };
+  for (int k = 0; k <= S_.N; ++k) {
+    for (int i = 0; i < it_.s[k].size(); ++i) {
+      ftb(it_.s[k][i], d.ds[k][i], &ap);
+      ftb(it_.v[k][i], d.dv[k][i], &ad);
+    }
+  }
+  for (int k = 0; k < S_.N; ++k) {
+    for (int j = 0; j < S_.nu; ++j) {
+      if (HasLb(j)) {
+        ftb(it_.U(j, k) - S_.lb[j], d.dU(j, k), &ap);
+        ftb(it_.zl(j, k), d.dzl(j, k), &ad);
+      }
+      if (HasUb(j)) {
+        ftb(S_.ub[j] - it_.U(j, k), -d.dU(j, k), &ap);
+        ftb(it_.zu(j, k), d.dzu(j, k), &ad);
+      }
+    }
+  }
+  *alpha_primal = ap;
+  *alpha_dual = ad;
+}
+
+void RiccatiInteriorPoint::PrimalTrial(const Direction& d, double alpha, Iterate* trial) const {
+  trial->X = it_.X + alpha * d.dX;
+  trial->U = it_.U + alpha * d.dU;
+  if (S_.copy) {
+    trial->V = it_.V + alpha * d.dV;
+  } else {
+    trial->V.resize(0);
+  }
+  trial->s.resize(S_.N + 1);
+  for (int k = 0; k <= S_.N; ++k) trial->s[k] = it_.s[k] + alpha * d.ds[k];
+}
+
+bool RiccatiInteriorPoint::Acceptable(const LineSearchReference& ref,
+                                      const Values& v,
+                                      const Iterate& trial,
+                                      double alpha,
+                                      bool* f_type) const {
+  *f_type = false;
+  if (!v.ok) return false;
+  const double th_t = Theta(v, trial.s);
+  const double phi_t = BarrierObjective(v, trial);
+  if (!(th_t <= ref.theta_max) || !RipFinite(phi_t)) return false;
+  for (const auto& [fth, fphi] : *ref.filter) {
+    if (th_t >= fth && phi_t >= fphi) return false;
+  }
+  const bool switching = ref.gphi < 0.0 && alpha * std::pow(-ref.gphi, kSPhi) >
+                                               kDeltaSwitch * std::pow(ref.theta, kSTheta);
+  if (ref.theta <= ref.theta_min && switching) {
+    *f_type = true;
+    return LeqUpToRounding(phi_t - ref.phi, kEtaPhi * alpha * ref.gphi, ref.phi);
+  }
+  return LeqUpToRounding(th_t, (1.0 - kGammaTheta) * ref.theta, ref.theta) ||
+         LeqUpToRounding(phi_t - ref.phi, -kGammaPhi * ref.theta, ref.phi);
+}
+
+bool RiccatiInteriorPoint::SecondOrderCorrection(const LineSearchReference& ref,
+                                                 double alpha0,
+                                                 double tau,
+                                                 Direction* d,
+                                                 double* alpha,
+                                                 Iterate* trial,
+                                                 Values* tv,
+                                                 bool* f_type) {
+  constexpr double kKappaSoc = 0.99;  // Ipopt's kappa_soc
+  // c_soc = alpha0 c(x) + c(x + alpha0 d): residuals scale linearly, so the residual structs
+  // combine entry by entry.
+  const auto accumulate = [](double a, const Residuals& at_trial, Residuals* acc) {
+    acc->defects = a * acc->defects + at_trial.defects;
+    acc->copy_row = a * acc->copy_row + at_trial.copy_row;
+    acc->psi = a * acc->psi + at_trial.psi;
+    for (size_t k = 0; k < acc->ineq.size(); ++k) {
+      acc->ineq[k] = a * acc->ineq[k] + at_trial.ineq[k];
+    }
+  };
+  soc_res_ = res_;
+  ResidualsAt(*tv, trial->s, &trial_res_);
+  accumulate(alpha0, trial_res_, &soc_res_);
+  double theta_old = ref.theta;
+  for (int p = 1; p <= o_.max_soc; ++p) {
+    ++soc_trials_;
+    std::string failure;
+    if (!BuildAndSolve(mu_, soc_res_, StepKind::kSecondOrderCorrection, &soc_d_, &failure)) {
+      return false;
+    }
+    double alpha_soc = 1.0, unused = 1.0;
+    StepToBoundary(soc_d_, tau, &alpha_soc, &unused);
+    ++trials_;
+    PrimalTrial(soc_d_, alpha_soc, trial);
+    const double cpu0 = CpuSeconds();
+    S_.EvalValues(*trial, tv);
+    callback_cpu_ += CpuSeconds() - cpu0;
+    if (!tv->ok) return false;
+    // Acceptability with the original step's alpha0 (the switching and Armijo conditions
+    // refer to the uncorrected direction, as in Wächter & Biegler's ).
+    if (Acceptable(ref, *tv, *trial, alpha0, f_type)) {
+      std::swap(*d, soc_d_);
+      *alpha = alpha_soc;
+      ++soc_accepted_;
+      return true;
+    }
+    const double theta_soc = Theta(*tv, trial->s);
+    if (p == o_.max_soc || theta_soc > kKappaSoc * theta_old) return false;
+    theta_old = theta_soc;
+    ResidualsAt(*tv, trial->s, &trial_res_);
+    accumulate(alpha_soc, trial_res_, &soc_res_);
+  }
+  return false;
+}
+
+void RiccatiInteriorPoint::ClampBoundMultipliers() {
+  for (int k = 0; k <= S_.N; ++k) {
+    for (int i = 0; i < it_.s[k].size(); ++i) {
+      const double s = it_.s[k][i];
+      it_.v[k][i] = std::clamp(it_.v[k][i], mu_ / (kKappaSigma * s), kKappaSigma * mu_ / s);
+    }
+  }
+  for (int k = 0; k < S_.N; ++k) {
+    for (int j = 0; j < S_.nu; ++j) {
+      if (HasLb(j)) {
+        const double s = it_.U(j, k) - S_.lb[j];
+        it_.zl(j, k) = std::clamp(it_.zl(j, k), mu_ / (kKappaSigma * s), kKappaSigma * mu_ / s);
+      }
+      if (HasUb(j)) {
+        const double s = S_.ub[j] - it_.U(j, k);
+        it_.zu(j, k) = std::clamp(it_.zu(j, k), mu_ / (kKappaSigma * s), kKappaSigma * mu_ / s);
+      }
+    }
+  }
+}
+
+bool RiccatiInteriorPoint::CurrentIsAcceptable() const {
+  return E0_ <= o_.acceptable_tol && dual_inf_ / sigma_ <= o_.acceptable_dual_inf_tol &&
+         constr_viol_ <= o_.acceptable_constr_viol_tol &&
+         compl_ / sigma_ <= o_.acceptable_compl_inf_tol;
+}
+
+bool RiccatiInteriorPoint::Restore(const LineSearchReference& ref,
+                                   double tau,
+                                   std::vector<std::pair<double, double>>* filter,
+                                   std::string* why) {
+  ++restoration_phases_;
+  filter->emplace_back((1.0 - kGammaTheta) * ref.theta, ref.phi - kGammaPhi * ref.theta);
+  Iterate trial;
+  Values tv;
+  double theta = ref.theta;
+  for (;;) {
+    ResidualsAt(vals_, it_.s, &res_);
+    std::string failure;
+    if (!BuildAndSolve(mu_, res_, StepKind::kFeasibility, &soc_d_, &failure)) {
+      *why = "restoration phase: " + failure;
+      return false;
+    }
+    double alpha = 1.0, unused = 1.0;
+    StepToBoundary(soc_d_, tau, &alpha, &unused);
+    bool decreased = false;
+    double theta_t = theta;
+    for (; alpha >= 1e-10; alpha *= 0.5) {
+      ++trials_;
+      PrimalTrial(soc_d_, alpha, &trial);
+      const double cpu0 = CpuSeconds();
+      S_.EvalValues(trial, &tv);
+      callback_cpu_ += CpuSeconds() - cpu0;
+      if (!tv.ok) continue;
+      theta_t = Theta(tv, trial.s);
+      // Strictly lower, by the sufficient-decrease factor up to rounding.
+      if (theta_t < theta && LeqUpToRounding(theta_t, (1.0 - kGammaTheta) * theta, theta)) {
+        decreased = true;
+        break;
+      }
+    }
+    if (!decreased) {
+      char buf[160];
+      std::snprintf(buf,
+                    sizeof buf,
+                    "the restoration phase could not decrease the constraint violation "
+                    "(theta = %.3e, %d restoration iterations)",
+                    theta,
+                    restoration_iterations_);
+      *why = buf;
+      return false;
+    }
+    it_.X.swap(trial.X);
+    it_.U.swap(trial.U);
+    it_.V.swap(trial.V);
+    it_.s.swap(trial.s);
+    std::swap(vals_, tv);
+    ClampBoundMultipliers();
+    theta = theta_t;
+    ++iterations_;
+    ++restoration_iterations_;
+    const double cpu0 = CpuSeconds();
+    const bool ok = S_.EvalDerivatives(it_, &st_, &te_);
+    callback_cpu_ += CpuSeconds() - cpu0;
+    if (!ok) {
+      *why = "restoration phase: a derivative at an iterate is not finite";
+      return false;
+    }
+    IterationRecord rec;  // dual infeasibility is not measured in the restoration phase
+    rec.iteration = iterations_;
+    rec.J = vals_.f;
+    ResidualsAt(vals_, it_.s, &res_);
+    rec.primal_inf = MaxNorm(res_);
+    rec.cpu_seconds = watch_.cpu();
+    history_.push_back(rec);
+    const double phi = BarrierObjective(vals_, it_);
+    bool in_filter = theta <= ref.theta_max && RipFinite(phi);
+    for (const auto& [fth, fphi] : *filter) {
+      if (theta >= fth && phi >= fphi) in_filter = false;
+    }
+    if (in_filter && (LeqUpToRounding(theta, (1.0 - kGammaTheta) * ref.theta, ref.theta) ||
+                      LeqUpToRounding(phi - ref.phi, -kGammaPhi * ref.theta, ref.phi))) {
+      LeastSquaresMultipliers();
+      return true;
+    }
+    if (iterations_ >= o_.max_iter || watch_.cpu() >= o_.max_cpu_time) return true;
+  }
+}
+
+void RiccatiInteriorPoint::CondenseInequalities(
+    int k, double mu, const Vec& rc, int n, Mat* H, Vec* g) {
   const StageEval& e = st_[k];
   const Vec& s = it_.s[k];
   const int m = static_cast<int>(s.size());
@@ -821,7 +1282,7 @@ void RiccatiInteriorPoint::CondenseInequalities(int k, double mu, int n, Mat* H,
   for (int i = 0; i < m; ++i) {
     const double sig = it_.v[k][i] / s[i];
     w_[i] = sig;
-    r_[i] = mu / s[i] - kKappaD * mu + sig * (vals_.c[k][i] + s[i]);
+    r_[i] = mu / s[i] - kKappaD * mu + sig * rc[i];
   }
   const auto column = [&](int j) {
     return j < nx ? e.cx.data() + static_cast<long>(j) * m
@@ -1046,18 +1507,29 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
       history_.push_back(rec);
       if (o_.print_level >= 1) {
         std::fprintf(stderr,
-                     "riccati-ip %4d  f %+.10e  inf_pr %.2e  inf_du %.2e  mu %.1e  E0 %.2e\n",
+                     "riccati-ip %4d  f %+.10e  inf_pr %.2e  inf_du %.2e  mu %.1e  E0 %.2e  "
+                     "alpha_pr %.2e  alpha_du %.2e %s\n",
                      iterations_,
                      vals_.f,
                      constr_viol_,
                      dual_inf_,
                      mu_,
-                     E0_);
+                     E0_,
+                     last_alpha_,
+                     last_alpha_z_,
+                     last_step_);
       }
     }
     if (E0_ <= o_.tol && dual_inf_ / sigma_ <= o_.dual_inf_tol &&
         constr_viol_ <= o_.constr_viol_tol && compl_ / sigma_ <= o_.compl_inf_tol) {
       return Finish(SolveStatus::kConverged, "Solve_Succeeded", "");
+    }
+    acceptable_count_ = CurrentIsAcceptable() ? acceptable_count_ + 1 : 0;
+    if (o_.acceptable_iter > 0 && acceptable_count_ >= o_.acceptable_iter) {
+      return Finish(SolveStatus::kAcceptable,
+                    "Solved_To_Acceptable_Level",
+                    std::to_string(acceptable_count_) +
+                        " consecutive iterates at the acceptable level, not at tol");
     }
     if (iterations_ >= o_.max_iter) {
       return Finish(SolveStatus::kMaxIterations, "Maximum_Iterations_Exceeded", "");
@@ -1066,7 +1538,9 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
       return Finish(SolveStatus::kMaxTime, "Maximum_CpuTime_Exceeded", "");
     }
     // Monotone (Fiacco-McCormick) barrier update.
-    const double mu_min = o_.tol / 10.0;
+    // Ipopt's floor of the monotone mode: the level at which the barrier problem's own test
+    // (E_mu <= kappa_eps mu) implies the overall one, min(tol, compl_inf_tol) / (kappa_eps + 1).
+    const double mu_min = std::min(o_.tol, o_.compl_inf_tol) / (kKappaEps + 1.0);
     bool mu_changed = false;
     while (Emu_ <= kKappaEps * mu_ && mu_ > mu_min) {
       mu_ = std::max(mu_min, std::min(kKappaMu * mu_, std::pow(mu_, kThetaMu)));
@@ -1077,32 +1551,12 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     if (mu_changed) filter.clear();
 
     std::string failure;
-    if (!BuildAndSolve(mu_, &d, &failure)) {
+    ResidualsAt(vals_, it_.s, &res_);
+    if (!BuildAndSolve(mu_, res_, StepKind::kNewton, &d, &failure)) {
       return Finish(SolveStatus::kNumericalFailure, "Error_In_Step_Computation", failure);
     }
-    // Fraction to the boundary.
     double alpha_max = 1.0, alpha_z = 1.0;
-    auto ftb = [&](double value, double step, double* alpha) {
-      if (step < 0.0) *alpha = std::min(*alpha, -tau * value / step);
-    };
-    for (int k = 0; k <= N; ++k) {
-      for (int i = 0; i < it_.s[k].size(); ++i) {
-        ftb(it_.s[k][i], d.ds[k][i], &alpha_max);
-        ftb(it_.v[k][i], d.dv[k][i], &alpha_z);
-      }
-    }
-    for (int k = 0; k < N; ++k) {
-      for (int j = 0; j < nu; ++j) {
-        if (HasLb(j)) {
-          ftb(it_.U(j, k) - S_.lb[j], d.dU(j, k), &alpha_max);
-          ftb(it_.zl(j, k), d.dzl(j, k), &alpha_z);
-        }
-        if (HasUb(j)) {
-          ftb(S_.ub[j] - it_.U(j, k), -d.dU(j, k), &alpha_max);
-          ftb(it_.zu(j, k), d.dzu(j, k), &alpha_z);
-        }
-      }
-    }
+    StepToBoundary(d, tau, &alpha_max, &alpha_z);
     // Directional derivative of the barrier objective.
     double gphi = 0.0;
     for (int k = 0; k < N; ++k) {
@@ -1120,8 +1574,14 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
         gphi += mu_ * (kKappaD * d.ds[k].sum() - d.ds[k].cwiseQuotient(it_.s[k]).sum());
       }
     }
-    const double theta = Theta(vals_, it_.s);
-    const double phi = BarrierObjective(vals_, it_);
+    LineSearchReference ref;
+    ref.theta = Theta(vals_, it_.s);
+    ref.phi = BarrierObjective(vals_, it_);
+    ref.gphi = gphi;
+    ref.theta_min = theta_min;
+    ref.theta_max = theta_max;
+    ref.filter = &filter;
+    const double theta = ref.theta, phi = ref.phi;
     // A tiny step (Ipopt's tiny_step_tol): taken in full, no line search.
     double rel = 0.0;
     for (int k = 0; k < N; ++k) {
@@ -1133,20 +1593,12 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     const bool tiny = rel < 10.0 * kRipEps && theta < 1e-4;
 
     double alpha = alpha_max;
-    bool accepted = false, f_type = false;
+    bool accepted = false, f_type = false, restored = false, soc = false;
     // A trial point's primal variables (the only part of it the line search reads), written
     // in place from it_ and the direction; swapped into it_ on acceptance.
-    trial.s.resize(N + 1);
     for (int backtracks = 0;; ++backtracks) {
       ++trials_;
-      trial.X = it_.X + alpha * d.dX;
-      trial.U = it_.U + alpha * d.dU;
-      if (S_.copy) {
-        trial.V = it_.V + alpha * d.dV;
-      } else {
-        trial.V.resize(0);
-      }
-      for (int k = 0; k <= N; ++k) trial.s[k] = it_.s[k] + alpha * d.ds[k];
+      PrimalTrial(d, alpha, &trial);
       cpu0 = CpuSeconds();
       S_.EvalValues(trial, &tv);
       callback_cpu_ += CpuSeconds() - cpu0;
@@ -1155,26 +1607,15 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
         f_type = true;
         if (accepted) break;
       }
-      if (tv.ok) {
-        const double th_t = Theta(tv, trial.s);
-        const double phi_t = BarrierObjective(tv, trial);
-        bool in_filter = th_t <= theta_max && RipFinite(phi_t);
-        for (const auto& [fth, fphi] : filter) {
-          if (th_t >= fth && phi_t >= fphi) in_filter = false;
-        }
-        if (in_filter) {
-          const bool switching = gphi < 0.0 && alpha * std::pow(-gphi, kSPhi) >
-                                                   kDeltaSwitch * std::pow(theta, kSTheta);
-          if (theta <= theta_min && switching) {
-            f_type = true;
-            accepted = phi_t <= phi + kEtaPhi * alpha * gphi;
-          } else {
-            f_type = false;
-            accepted = th_t <= (1.0 - kGammaTheta) * theta || phi_t <= phi - kGammaPhi * theta;
-          }
-        }
-      }
+      accepted = Acceptable(ref, tv, trial, alpha, &f_type);
       if (accepted) break;
+      if (backtracks == 0 && !tiny && o_.max_soc > 0 && tv.ok && Theta(tv, trial.s) >= theta &&
+          SecondOrderCorrection(ref, alpha, tau, &d, &alpha, &trial, &tv, &f_type)) {
+        StepToBoundary(d, tau, &alpha_max, &alpha_z);  // the corrected step's dual step size
+        accepted = true;
+        soc = true;
+        break;
+      }
       double alpha_min = kGammaTheta;
       if (gphi < 0.0) {
         alpha_min = std::min(kGammaTheta, kGammaPhi * theta / -gphi);
@@ -1186,12 +1627,26 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
       alpha_min *= kGammaAlpha;
       alpha *= 0.5;
       if (alpha < alpha_min || alpha < 1e-16) {
-        return Finish(SolveStatus::kStepTooSmall,
-                      "Restoration_Needed",
-                      "the filter line search reached its minimal step size; this version has "
-                      "no restoration phase");
+        if (CurrentIsAcceptable()) {
+          return Finish(SolveStatus::kAcceptable,
+                        "Solved_To_Acceptable_Level",
+                        "the filter line search failed at an acceptable point");
+        }
+        std::string why;
+        if (!Restore(ref, tau, &filter, &why)) {
+          return Finish(SolveStatus::kNumericalFailure, "Restoration_Failed", why);
+        }
+        restored = true;
+        break;
       }
     }
+    if (restored) {  // it_ and its first derivatives are the restored point's
+      last_step_ = "r";
+      continue;
+    }
+    last_alpha_ = alpha;
+    last_alpha_z_ = alpha_z;
+    last_step_ = soc ? "s" : f_type ? "f" : "h";
     if (!f_type) filter.emplace_back((1.0 - kGammaTheta) * theta, phi - kGammaPhi * theta);
 
     // Accept: primal and equality multipliers with alpha, bound multipliers with alpha_z.
@@ -1206,25 +1661,10 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
       if (it_.s[k].size() == 0) continue;
       it_.y[k] += alpha * d.dy[k];
       it_.v[k] += alpha_z * d.dv[k];
-      for (int i = 0; i < it_.s[k].size(); ++i) {
-        const double s = it_.s[k][i];
-        it_.v[k][i] = std::clamp(it_.v[k][i], mu_ / (kKappaSigma * s), kKappaSigma * mu_ / s);
-      }
     }
     it_.zl += alpha_z * d.dzl;
     it_.zu += alpha_z * d.dzu;
-    for (int k = 0; k < N; ++k) {
-      for (int j = 0; j < nu; ++j) {
-        if (HasLb(j)) {
-          const double s = it_.U(j, k) - S_.lb[j];
-          it_.zl(j, k) = std::clamp(it_.zl(j, k), mu_ / (kKappaSigma * s), kKappaSigma * mu_ / s);
-        }
-        if (HasUb(j)) {
-          const double s = S_.ub[j] - it_.U(j, k);
-          it_.zu(j, k) = std::clamp(it_.zu(j, k), mu_ / (kKappaSigma * s), kKappaSigma * mu_ / s);
-        }
-      }
-    }
+    ClampBoundMultipliers();
     std::swap(vals_, tv);
     ++iterations_;
     cpu0 = CpuSeconds();
@@ -1283,6 +1723,11 @@ NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
   out.stats["riccati_ip_regularizations"] = regularizations_;
   out.stats["riccati_ip_factorizations"] = factorizations_;
   out.stats["riccati_ip_line_search_trials"] = trials_;
+  out.stats["riccati_ip_refinement_steps"] = refinement_steps_;
+  out.stats["riccati_ip_soc_trials"] = soc_trials_;
+  out.stats["riccati_ip_soc_accepted"] = soc_accepted_;
+  out.stats["riccati_ip_restoration_phases"] = restoration_phases_;
+  out.stats["riccati_ip_restoration_iterations"] = restoration_iterations_;
   out.stats["riccati_ip_kkt_cpu_seconds"] = kkt_cpu_;
   out.stats["riccati_ip_callback_cpu_seconds"] = callback_cpu_;
   out.stats["riccati_ip_cpu_seconds"] = watch_.cpu();

@@ -23,12 +23,36 @@ struct RiccatiIpOptions {
   double dual_inf_tol = 1.0;
   double constr_viol_tol = 1e-4;
   double compl_inf_tol = 1e-4;
-  /// Iteration limit (status max_iterations). Ipopt's default.
+  /// Ipopt's acceptable level: a point whose scaled KKT error is <= acceptable_tol and whose
+  /// unscaled dual infeasibility, constraint violation and complementarity are below the three
+  /// acceptable_*_tol is acceptable. The solve stops with Solved_To_Acceptable_Level (status
+  /// acceptable) after acceptable_iter consecutive acceptable iterates (0: never), or when the
+  /// line search fails at an acceptable point. Ipopt's defaults.
+  double acceptable_tol = 1e-6;
+  int acceptable_iter = 15;
+  double acceptable_dual_inf_tol = 1e10;
+  double acceptable_constr_viol_tol = 1e-2;
+  double acceptable_compl_inf_tol = 1e-2;
+  /// Iterative refinement of every Newton step in the condensed stagewise system: at least
+  /// min_refinement_steps and at most max_refinement_steps corrections (each a vector pass of
+  /// the factorized recursion), stopping once the residual ratio
+  /// ||r|| / (min(||sol||, 1e6 ||rhs||) + ||rhs||) is <= 1e-10 or stops falling; min <= max.
+  /// Ipopt's names and rule (Ipopt refines the full primal-dual system); the default minimum is
+  /// 0, not Ipopt's 1: the residual is checked every step and corrected where the ratio asks
+  /// for it (a correction every step cost 31 % more instructions on comm-path2d at N = 400,
+  /// the check alone 8 %; solvers/README-riccati-ip.md).
+  int min_refinement_steps = 0;
+  int max_refinement_steps = 10;
+  /// Second-order corrections tried when a full first trial step is rejected without a
+  /// decrease in the constraint violation (Wächter & Biegler's, Ipopt's max_soc); 0: none.
+  int max_soc = 4;
+  /// Iteration limit (status max_iterations; restoration iterations count). Ipopt's default.
   int max_iter = 3000;
   /// CPU time limit in seconds (status max_time).
   double max_cpu_time = 1e6;
   /// The first barrier parameter; then Fiacco-McCormick (monotone) decreases
-  /// mu <- max(tol / 10, min(0.2 mu, mu^1.5)) whenever the barrier problem's error <= 10 mu.
+  /// mu <- max(min(tol, compl_inf_tol) / 11, min(0.2 mu, mu^1.5)) whenever the barrier
+  /// problem's error <= 10 mu. Ipopt's rule and default.
   double mu_init = 0.1;
   /// How far the starting controls (and slacks) are pushed inside their bounds, absolutely
   /// (bound_push, times max(1, |bound|)) and relative to the interval (bound_frac). Ipopt's.
@@ -64,20 +88,25 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request);
 /// multiplier convention (core/nlp.h), so SolveTranscribed fills a SolveResult from it as it does
 /// for Ipopt. A NLP of another shape gives status kNotApplicable.
 ///
-/// Statuses (solver_status verbatim): Solve_Succeeded (kConverged), Maximum_Iterations_Exceeded
-/// (kMaxIterations), Maximum_CpuTime_Exceeded (kMaxTime), Restoration_Needed (kStepTooSmall: the
-/// filter line search reached its minimal step; this version has no restoration phase),
+/// Statuses (solver_status verbatim): Solve_Succeeded (kConverged), Solved_To_Acceptable_Level
+/// (kAcceptable: RiccatiIpOptions' acceptable level), Maximum_Iterations_Exceeded
+/// (kMaxIterations), Maximum_CpuTime_Exceeded (kMaxTime), Restoration_Failed
+/// (kNumericalFailure, as Ipopt's is mapped: the filter line search reached its minimal step and
+/// the restoration phase could not find a point the filter accepts),
 /// Error_In_Step_Computation (kNumericalFailure: the regularization exceeded 1e40),
 /// Invalid_Number_Detected (kNumericalFailure: a value at the starting point or a derivative is
 /// not finite), not_applicable (kNotApplicable).
 ///
 /// Stats: riccati_ip_iterations, riccati_ip_regularizations (iterations whose KKT matrix needed
 /// delta_w > 0), riccati_ip_factorizations (Riccati recursions run, retries included),
-/// riccati_ip_line_search_trials, riccati_ip_kkt_cpu_seconds (building and solving the
-/// stagewise KKT system), riccati_ip_callback_cpu_seconds (Ocp evaluations), riccati_ip_cpu_seconds
-/// (the whole method), riccati_ip_kkt_error (scaled E_0 at the end), riccati_ip_dual_inf,
-/// riccati_ip_constr_viol, riccati_ip_complementarity (unscaled), riccati_ip_mu (final),
-/// riccati_ip_objective_scale.
+/// riccati_ip_line_search_trials, riccati_ip_refinement_steps (iterative refinement
+/// corrections), riccati_ip_soc_trials (second-order corrections computed),
+/// riccati_ip_soc_accepted, riccati_ip_restoration_phases (times the restoration phase was
+/// entered), riccati_ip_restoration_iterations, riccati_ip_kkt_cpu_seconds (building and solving
+/// the stagewise KKT system), riccati_ip_callback_cpu_seconds (Ocp evaluations),
+/// riccati_ip_cpu_seconds (the whole method), riccati_ip_kkt_error (scaled E_0 at the end),
+/// riccati_ip_dual_inf, riccati_ip_constr_viol, riccati_ip_complementarity (unscaled),
+/// riccati_ip_mu (final), riccati_ip_objective_scale.
 NlpSolution SolveEulerNlpWithRiccatiIp(const TranscribedNlp& nlp, const RiccatiIpOptions& options);
 
 /// The solver, registered as "riccati-ip". Solve returns not_applicable (with

@@ -175,13 +175,15 @@ bool RiccatiSolver::BackwardStage(const RiccatiStage& s, int k, double dw, int n
   f.K = Hux_;
   f.k = gu_;
   f.M = BE_;
+  f.cholesky = true;
   if (nu > 0) {
-    L_ = Huu_;
-    if (CholeskyInPlace<kNu>(L_.data(), nu)) {
-      CholeskySolveNegated<kNu, kNx>(L_.data(), nu, f.K.data(), nx, nu);
-      CholeskySolveNegated<kNu, 1>(L_.data(), nu, f.k.data(), 1, nu);
-      CholeskySolveNegated<kNu, 0>(L_.data(), nu, f.M.data(), npsi, nu);
+    f.L = Huu_;
+    if (CholeskyInPlace<kNu>(f.L.data(), nu)) {
+      CholeskySolveNegated<kNu, kNx>(f.L.data(), nu, f.K.data(), nx, nu);
+      CholeskySolveNegated<kNu, 1>(f.L.data(), nu, f.k.data(), 1, nu);
+      CholeskySolveNegated<kNu, 0>(f.L.data(), nu, f.M.data(), npsi, nu);
     } else {
+      f.cholesky = false;
       // H_uu is not positive definite. With terminal rows that may still be the right
       // inertia (a direction of negative curvature the terminal rows remove): count the
       // negative eigenvalues and go on with the symmetric eigendecomposition, unless H_uu is
@@ -197,12 +199,12 @@ bool RiccatiSolver::BackwardStage(const RiccatiStage& s, int k, double dw, int n
         return false;
       }
       const Mat& V = eig_.eigenvectors();
-      Hinv_.noalias() = V * lam.cwiseInverse().asDiagonal() * V.transpose();
+      f.Hinv.noalias() = V * lam.cwiseInverse().asDiagonal() * V.transpose();
       GemmNN<kNu, kNx, kNu>(
-          nu, nx, nu, -1.0, Hinv_.data(), nu, Hux_.data(), nu, 0.0, f.K.data(), nu);
-      GemmNN<kNu, 1, kNu>(nu, 1, nu, -1.0, Hinv_.data(), nu, gu_.data(), nu, 0.0, f.k.data(), nu);
+          nu, nx, nu, -1.0, f.Hinv.data(), nu, Hux_.data(), nu, 0.0, f.K.data(), nu);
+      GemmNN<kNu, 1, kNu>(nu, 1, nu, -1.0, f.Hinv.data(), nu, gu_.data(), nu, 0.0, f.k.data(), nu);
       GemmNN<kNu, 0, kNu>(
-          nu, npsi, nu, -1.0, Hinv_.data(), nu, BE_.data(), nu, 0.0, f.M.data(), nu);
+          nu, npsi, nu, -1.0, f.Hinv.data(), nu, BE_.data(), nu, 0.0, f.M.data(), nu);
     }
   }
   // V_k: P = sym(H_xx + H_ux^T K), p = g_x + H_ux^T k, E = A^T E + H_ux^T M, and the
@@ -267,39 +269,44 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
     if (!ok) return RiccatiOutcome::kNotPositiveDefinite;
   }
 
-  // The terminal multiplier from the final Schur complement.
-  nu_.setZero(npsi);
+  // The inertia of the whole KKT matrix is that of the dynamics pairs, plus the H_uu's, plus that
+  // of G_0 - dc I (Haynsworth): it is right when -(G_0 - dc I) has exactly as many negative
+  // eigenvalues as the H_uu's had, and no zero one.
   if (npsi > 0) {
     S_ = -0.5 * (G_ + G_.transpose());
     S_.diagonal().array() += dc;
-    // The inertia of the whole KKT matrix is that of the dynamics pairs, plus the H_uu's, plus
-    // that of G_0 - dc I (Haynsworth): it is right when -(G_0 - dc I) has exactly as many
-    // negative eigenvalues as the H_uu's had, and no zero one.
-    eig_.compute(S_);
-    const Vec& lam = eig_.eigenvalues();
+    schur_.compute(S_);
+    const Vec& lam = schur_.eigenvalues();
     const double scale = std::max(1.0, lam.cwiseAbs().maxCoeff());
-    if (eig_.info() != Eigen::Success || lam.cwiseAbs().minCoeff() <= 1e-13 * scale) {
+    if (schur_.info() != Eigen::Success || lam.cwiseAbs().minCoeff() <= 1e-13 * scale) {
       return RiccatiOutcome::kTerminalRowsDegenerate;
     }
     if (static_cast<int>((lam.array() < 0.0).count()) != negative_) {
       failed_stage_ = N;
       return RiccatiOutcome::kNotPositiveDefinite;
     }
-    const Mat& V = eig_.eigenvectors();
+  }
+  b_.resize(N);
+  for (int k = 0; k < N; ++k) b_[k] = &problem.stages[k].b;
+  TerminalMultiplierAndForwardSweep(problem, b_, problem.x0, solution);
+  return RiccatiOutcome::kSolved;
+}
+
+void RiccatiSolver::TerminalMultiplierAndForwardSweep(const RiccatiProblem& problem,
+                                                      const std::vector<const Vec*>& b,
+                                                      const Vec& x0,
+                                                      RiccatiSolution* solution) {
+  const int N = static_cast<int>(problem.stages.size());
+  const int npsi = static_cast<int>(problem.C.rows());
+  // The terminal multiplier from the final Schur complement.
+  nu_.setZero(npsi);
+  if (npsi > 0) {
+    const Vec& lam = schur_.eigenvalues();
+    const Mat& V = schur_.eigenvectors();
     rhs_ = e_;
-    const int nx0 = static_cast<int>(problem.x0.size());
+    const int nx0 = static_cast<int>(x0.size());
     if (nx0 > 0) {
-      GemmTN(npsi,
-             1,
-             nx0,
-             1.0,
-             values_[0].E.data(),
-             nx0,
-             problem.x0.data(),
-             nx0,
-             1.0,
-             rhs_.data(),
-             npsi);
+      GemmTN(npsi, 1, nx0, 1.0, values_[0].E.data(), nx0, x0.data(), nx0, 1.0, rhs_.data(), npsi);
     }
     // (G - dc I) nu = -rhs <=> S nu = rhs.
     nu_.noalias() = V * (V.transpose() * rhs_).cwiseQuotient(lam);
@@ -311,7 +318,7 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
   solution->x.resize(N + 1);
   solution->u.resize(N);
   solution->lambda.resize(N);
-  solution->x[0] = problem.x0;
+  solution->x[0] = x0;
   for (int k = 0; k < N; ++k) {
     const RiccatiStage& s = problem.stages[k];
     const StageFactor& f = factors_[k];
@@ -326,7 +333,7 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
     uk = f.k;
     GemmNN(nu_k, 1, nx, 1.0, f.K.data(), nu_k, xk.data(), nx, 1.0, uk.data(), nu_k);
     GemmNN(nu_k, 1, npsi, 1.0, f.M.data(), nu_k, nu, npsi, 1.0, uk.data(), nu_k);
-    xn = s.b;
+    xn = *b[k];
     GemmNN(nn, 1, nx, 1.0, s.A.data(), nn, xk.data(), nx, 1.0, xn.data(), nn);
     GemmNN(nn, 1, nu_k, 1.0, s.B.data(), nn, uk.data(), nu_k, 1.0, xn.data(), nn);
     lam = vn.p;
@@ -334,7 +341,121 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
     GemmNN(nn, 1, npsi, 1.0, vn.E.data(), nn, nu, npsi, 1.0, lam.data(), nn);
     for (int i = 0; i < nn; ++i) lam[i] = -lam[i];
   }
-  return RiccatiOutcome::kSolved;
+}
+
+void RiccatiSolver::SolveFactored(const RiccatiProblem& problem,
+                                  const RiccatiRhs& rhs,
+                                  RiccatiSolution* solution) {
+  const int N = static_cast<int>(problem.stages.size());
+  const int npsi = static_cast<int>(problem.C.rows());
+  // The vector part of the backward recursion with the factors of the last Solve: with
+  // Pbp = P_{k+1} b + p_{k+1}, g = q + [A B]^T Pbp, k_k = -H_uu^-1 g_u and
+  // p_k = g_x + H_ux^T k_k = g_x + K_k^T g_u (H_ux^T = -K_k^T H_uu); the parameter's
+  // e += E_{k+1}^T (b + B k_k). G, P, E, K and M do not depend on the right-hand side.
+  values_[N].p = rhs.qN;
+  e_ = rhs.c;
+  for (int k = N - 1; k >= 0; --k) {
+    const RiccatiStage& s = problem.stages[k];
+    StageFactor& f = factors_[k];
+    const ValueFunction& vn = values_[k + 1];
+    const int nx = static_cast<int>(s.A.cols());
+    const int nu = static_cast<int>(s.B.cols());
+    const int nn = static_cast<int>(s.A.rows());
+    const Vec& b = rhs.b[k];
+    Pbp_ = vn.p;
+    GemmNN(nn, 1, nn, 1.0, vn.P.data(), nn, b.data(), nn, 1.0, Pbp_.data(), nn);
+    gx_ = rhs.q[k].head(nx);
+    gu_ = rhs.q[k].tail(nu);
+    GemmTN(nx, 1, nn, 1.0, s.A.data(), nn, Pbp_.data(), nn, 1.0, gx_.data(), nx);
+    GemmTN(nu, 1, nn, 1.0, s.B.data(), nn, Pbp_.data(), nn, 1.0, gu_.data(), nu);
+    if (nu > 0) {
+      if (f.cholesky) {
+        f.k = gu_;
+        CholeskySolveNegated(f.L.data(), nu, f.k.data(), 1, nu);
+      } else {
+        f.k.noalias() = -f.Hinv * gu_;
+      }
+    } else {
+      f.k.resize(0);
+    }
+    ValueFunction& v = values_[k];
+    v.p = gx_;
+    GemmTN(nx, 1, nu, 1.0, f.K.data(), nu, gu_.data(), nu, 1.0, v.p.data(), nx);
+    if (npsi > 0) {
+      rhs_ = b;  // b + B k_k
+      GemmNN(nn, 1, nu, 1.0, s.B.data(), nn, f.k.data(), nu, 1.0, rhs_.data(), nn);
+      GemmTN(npsi, 1, nn, 1.0, vn.E.data(), nn, rhs_.data(), nn, 1.0, e_.data(), npsi);
+    }
+  }
+  b_.resize(N);
+  for (int k = 0; k < N; ++k) b_[k] = &rhs.b[k];
+  TerminalMultiplierAndForwardSweep(problem, b_, rhs.x0, solution);
+}
+
+double RiccatiKktResidual(
+    const RiccatiProblem& p, double dw, double dc, const RiccatiSolution& z, RiccatiRhs* r) {
+  const int N = static_cast<int>(p.stages.size());
+  const int npsi = static_cast<int>(p.C.rows());
+  double worst = 0.0;
+  const auto max_abs = [](const Vec& v) { return v.size() > 0 ? v.cwiseAbs().maxCoeff() : 0.0; };
+  r->q.resize(N);
+  r->b.resize(N);
+  for (int k = 0; k < N; ++k) {
+    const RiccatiStage& s = p.stages[k];
+    const int nx = static_cast<int>(s.A.cols()), nu = static_cast<int>(s.B.cols());
+    const int nn = static_cast<int>(s.A.rows()), nw = nx + nu;
+    // Stationarity in (x_k, u_k): (Q + dw I) w + q - [A B]^T lambda_k + [lambda_{k-1}; 0],
+    // in the plain-loop kernels (Eigen's dynamic-size products cost more than the arithmetic
+    // on blocks this small).
+    Vec& st = r->q[k];
+    st = s.q;
+    GemmNN(nw, 1, nx, 1.0, s.Q.data(), nw, z.x[k].data(), nx, 1.0, st.data(), nw);
+    GemmNN(nw,
+           1,
+           nu,
+           1.0,
+           s.Q.data() + static_cast<long>(nx) * nw,
+           nw,
+           z.u[k].data(),
+           nu,
+           1.0,
+           st.data(),
+           nw);
+    for (int i = 0; i < nx; ++i) st[i] += dw * z.x[k][i];
+    for (int i = 0; i < nu; ++i) st[nx + i] += dw * z.u[k][i];
+    GemmTN(nx, 1, nn, -1.0, s.A.data(), nn, z.lambda[k].data(), nn, 1.0, st.data(), nw);
+    GemmTN(nu, 1, nn, -1.0, s.B.data(), nn, z.lambda[k].data(), nn, 1.0, st.data() + nx, nw);
+    if (k > 0) {
+      for (int i = 0; i < nx; ++i) st[i] += z.lambda[k - 1][i];
+    } else {
+      for (int i = 0; i < nx; ++i) st[i] = 0.0;  // x_0 is given, not a variable: no row
+    }
+    Vec& dyn = r->b[k];
+    dyn = z.x[k + 1] - s.b;
+    GemmNN(nn, 1, nx, -1.0, s.A.data(), nn, z.x[k].data(), nx, 1.0, dyn.data(), nn);
+    GemmNN(nn, 1, nu, -1.0, s.B.data(), nn, z.u[k].data(), nu, 1.0, dyn.data(), nn);
+    worst = std::max({worst, max_abs(st), max_abs(dyn)});
+    st = -st;  // the correction's q: its stationarity rows are the residual
+  }
+  Vec& stN = r->qN;
+  const int nxN = static_cast<int>(p.QN.rows());
+  stN = p.qN + dw * z.x[N];
+  GemmNN(nxN, 1, nxN, 1.0, p.QN.data(), nxN, z.x[N].data(), nxN, 1.0, stN.data(), nxN);
+  if (N > 0) stN += z.lambda[N - 1];
+  if (npsi > 0) {
+    GemmTN(nxN, 1, npsi, 1.0, p.C.data(), npsi, z.nu.data(), npsi, 1.0, stN.data(), nxN);
+  }
+  worst = std::max(worst, max_abs(stN));
+  stN = -stN;
+  r->c.resize(npsi);
+  if (npsi > 0) {
+    r->c = p.c - dc * z.nu;
+    GemmNN(npsi, 1, nxN, 1.0, p.C.data(), npsi, z.x[N].data(), nxN, 1.0, r->c.data(), npsi);
+    worst = std::max(worst, max_abs(r->c));
+    r->c = -r->c;
+  }
+  r->x0.setZero(p.x0.size());
+  return worst;
 }
 
 }  // namespace ocpb

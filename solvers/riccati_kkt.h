@@ -43,6 +43,13 @@ struct RiccatiProblem {
   Vec x0;  ///< nx_0 (often 0: the initial state is fixed and not a variable)
 };
 
+/// The vectors of a RiccatiProblem's right-hand side, for RiccatiSolver::SolveFactored (the
+/// matrices stay those of the factorized problem): per stage q and b, then qN, c and x0.
+struct RiccatiRhs {
+  std::vector<Vec> q, b;
+  Vec qN, c, x0;
+};
+
 struct RiccatiSolution {
   std::vector<Vec> x;       ///< N + 1 entries (x[0] = x0)
   std::vector<Vec> u;       ///< N entries
@@ -87,9 +94,23 @@ class RiccatiSolver {
                        RiccatiSolution* solution);
   int failed_stage() const { return failed_stage_; }
 
+  /// Solves the system of the last successful Solve again with another right-hand side: the
+  /// matrices (Q, A, B, QN, C, dw, dc) must be those of `problem`, which that Solve factorized;
+  /// the vectors come from `rhs`. Only the recursion's vector part and the forward sweep run,
+  /// O(N (nx + nu)^2): what iterative refinement and a second-order correction need.
+  void SolveFactored(const RiccatiProblem& problem,
+                     const RiccatiRhs& rhs,
+                     RiccatiSolution* solution);
+
  private:
   template <int kNx, int kNu>
   bool BackwardStage(const RiccatiStage& s, int k, double dw, int npsi);
+  // The terminal multiplier from the final Schur complement's eigendecomposition (schur_) and
+  // the forward sweep; b[k] and x0 are the right-hand side's.
+  void TerminalMultiplierAndForwardSweep(const RiccatiProblem& problem,
+                                         const std::vector<const Vec*>& b,
+                                         const Vec& x0,
+                                         RiccatiSolution* solution);
 
   // The workspace, sized on the first call and reused (no heap allocation once the stage
   // dimensions repeat): per stage the factors u_k = K x_k + k + M nu, and the cost-to-go of every
@@ -97,6 +118,10 @@ class RiccatiSolver {
   struct StageFactor {
     Mat K, M;  // nu x nx, nu x npsi
     Vec k;     // nu
+    // H_uu's factorization, kept for SolveFactored: its Cholesky factor L (lower triangle), or,
+    // where H_uu was not positive definite, its inverse.
+    bool cholesky = true;
+    Mat L, Hinv;
   };
   struct ValueFunction {
     Mat P, E;  // nx_k x nx_k, nx_k x npsi
@@ -105,14 +130,22 @@ class RiccatiSolver {
   std::vector<StageFactor> factors_;
   std::vector<ValueFunction> values_;
   // One stage's scratch: P [A B] (nx_{k+1} x (nx + nu)), P b + p, the blocks H_xx, H_ux, H_uu,
-  // the gradients g_x, g_u, B^T E, and the Cholesky factor of H_uu.
-  Mat PW_, Hxx_, Hux_, Huu_, BE_, L_;
+  // the gradients g_x, g_u, B^T E.
+  Mat PW_, Hxx_, Hux_, Huu_, BE_;
   Vec Pbp_, gx_, gu_, e_, rhs_, nu_;
   Mat G_, S_;
   int failed_stage_ = -1;
   int negative_ = 0;  // negative eigenvalues of the H_uu's so far
   Eigen::SelfAdjointEigenSolver<Mat> eig_;
-  Mat Hinv_;
+  // The final Schur complement's eigendecomposition (npsi > 0), kept for SolveFactored.
+  Eigen::SelfAdjointEigenSolver<Mat> schur_;
+  std::vector<const Vec*> b_;
 };
+
+/// The residual of z in the KKT conditions of p (with its dw and dc): returns its max norm and
+/// writes into r the right-hand side whose solution, by SolveFactored on p's factorization, is
+/// the correction to subtract from z (one step of iterative refinement).
+double RiccatiKktResidual(
+    const RiccatiProblem& p, double dw, double dc, const RiccatiSolution& z, RiccatiRhs* r);
 
 }  // namespace ocpb
