@@ -159,6 +159,9 @@ class EulerStages {
   bool copy = false;  // path constraints at t_N: stage N carries v = u_{N-1}
   std::vector<double> t, h;
   Vec lb, ub;  // per control component, +-inf where unbounded (balls: none)
+  // Per state component, +-inf where unbounded: the problem's state bounds, which the Euler
+  // NLP imposes on x_1..x_N as variable bounds (not on the fixed x_0).
+  Vec xlb, xub;
   std::vector<ControlSet::Block> balls;
   std::vector<int> state_off, control_off;
   // Ipopt's bound_relax_factor: the inequality rows are c - relax_path <= 0 and
@@ -173,20 +176,30 @@ class EulerStages {
     for (int b = 0; b < nball; ++b) {
       relax_ball[b] = factor * std::max(1.0, balls[b].radius * balls[b].radius);
     }
-    for (int j = 0; j < nu; ++j) {
-      if (RipFinite(lb[j])) lb[j] -= factor * std::max(1.0, std::abs(lb[j]));
-      if (RipFinite(ub[j])) ub[j] += factor * std::max(1.0, std::abs(ub[j]));
+    for (Vec* lower : {&lb, &xlb}) {
+      for (double& v : *lower) {
+        if (RipFinite(v)) v -= factor * std::max(1.0, std::abs(v));
+      }
+    }
+    for (Vec* upper : {&ub, &xub}) {
+      for (double& v : *upper) {
+        if (RipFinite(v)) v += factor * std::max(1.0, std::abs(v));
+      }
     }
   }
 
   int ni(int k) const { return k < N ? nc + nball : (copy ? nc : 0); }
+  bool has_state_bounds() const {
+    return xlb.array().isFinite().any() || xub.array().isFinite().any();
+  }
 
   struct Iterate {
     Mat X, U;  // nx x (N+1), nu x N
     Vec V;     // nu (copy) or empty
     std::vector<Vec> s, y, v;
-    Mat zl, zu;  // nu x N (0 where no bound)
-    Mat lam;     // nx x N, defect multipliers (NLP convention, scaled problem)
+    Mat zl, zu;    // nu x N (0 where no bound)
+    Mat zxl, zxu;  // nx x (N+1), the state bounds' (column 0 and unbounded entries 0)
+    Mat lam;       // nx x N, defect multipliers (NLP convention, scaled problem)
     Vec lamV, nu;
   };
   struct StageEval {
@@ -311,6 +324,20 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
       if (RipFinite(lo) && RipFinite(hi) && !(lo < hi)) {
         *why_not = "riccati-ip needs lower < upper for every bounded control (component " +
                    std::to_string(b.offset + i) + " is fixed)";
+        return nullptr;
+      }
+    }
+  }
+  st->xlb = Vec::Constant(st->nx, -kRipInf);
+  st->xub = Vec::Constant(st->nx, kRipInf);
+  if (const auto& sb = ocp.state_bounds()) {
+    for (int i = 0; i < st->nx; ++i) {
+      const double lo = sb->lower[i], hi = sb->upper[i];
+      st->xlb[i] = lo <= -kRipInfBound ? -kRipInf : lo;
+      st->xub[i] = hi >= kRipInfBound ? kRipInf : hi;
+      if (RipFinite(lo) && RipFinite(hi) && !(lo < hi)) {
+        *why_not = "riccati-ip needs lower < upper for every bounded state (component " +
+                   std::to_string(i) + " is fixed)";
         return nullptr;
       }
     }
@@ -618,7 +645,8 @@ struct Direction {
   Vec dV;
   std::vector<Vec> ds, dy, dv;
   Mat dzl, dzu;
-  Mat lam;  // new values
+  Mat dzxl, dzxu;  // the state bounds' multipliers
+  Mat lam;         // new values
   Vec lamV, nu;
 };
 
@@ -628,8 +656,46 @@ class RiccatiInteriorPoint {
   NlpSolution Run(const Vec& z0);
 
  private:
-  bool HasLb(int j) const { return RipFinite(S_.lb[j]); }
-  bool HasUb(int j) const { return RipFinite(S_.ub[j]); }
+  // The simple bounds, one Box per kind of bounded variable: the controls u_k (nodes 0..N-1, at
+  // offset nx of stage k's (x_k, u_k)) and the states x_k (nodes 1..N, offset 0; x_N's block
+  // is the terminal one), each entry with a lower and an upper multiplier in z (zl, zu or zxl,
+  // zxu). Every barrier, step and multiplier rule below loops over them.
+  struct Box {
+    bool state = false;
+    const Vec* lb = nullptr;
+    const Vec* ub = nullptr;
+    int first = 0, last = 0;  // nodes [first, last)
+    int offset = 0;           // in a stage's (x, u)
+  };
+  std::vector<Box> boxes_;
+  static Mat& Value(Iterate& it, const Box& b) { return b.state ? it.X : it.U; }
+  static const Mat& Value(const Iterate& it, const Box& b) { return b.state ? it.X : it.U; }
+  static Mat& Zl(Iterate& it, const Box& b) { return b.state ? it.zxl : it.zl; }
+  static Mat& Zu(Iterate& it, const Box& b) { return b.state ? it.zxu : it.zu; }
+  static const Mat& Zl(const Iterate& it, const Box& b) { return b.state ? it.zxl : it.zl; }
+  static const Mat& Zu(const Iterate& it, const Box& b) { return b.state ? it.zxu : it.zu; }
+  static const Mat& Step(const Direction& d, const Box& b) { return b.state ? d.dX : d.dU; }
+  static Mat& DZl(Direction& d, const Box& b) { return b.state ? d.dzxl : d.dzl; }
+  static Mat& DZu(Direction& d, const Box& b) { return b.state ? d.dzxu : d.dzu; }
+  static const Mat& DZl(const Direction& d, const Box& b) { return b.state ? d.dzxl : d.dzl; }
+  static const Mat& DZu(const Direction& d, const Box& b) { return b.state ? d.dzxu : d.dzu; }
+  // Calls f(box, node k, component j, lower bound, upper bound) for every entry with a finite
+  // bound on at least one side (the other side +-inf).
+  template <class F>
+  void ForEachBounded(F&& f) const {
+    for (const Box& b : boxes_) {
+      for (int k = b.first; k < b.last; ++k) {
+        for (int j = 0; j < b.lb->size(); ++j) {
+          const double lo = (*b.lb)[j], hi = (*b.ub)[j];
+          if (RipFinite(lo) || RipFinite(hi)) f(b, k, j, lo, hi);
+        }
+      }
+    }
+  }
+  // Adds node k's bound terms (Sigma = z / distance to H's diagonal, the barrier gradient
+  // -+ mu / distance, and kappa_d mu for one-sided bounds to g) at their offsets in the node's
+  // block: stage k's (x_k, u_k) for k < N, x_N for k = N.
+  void AddBoundTerms(int k, double mu, Mat* H, Vec* g) const;
   double Theta(const Values& v, const std::vector<Vec>& s) const;
   double BarrierObjective(const Values& v, const Iterate& it) const;
   void Measure(double mu);
@@ -701,13 +767,16 @@ class RiccatiInteriorPoint {
   // controls inside their bounds), each backtracked until theta falls by the factor
   // 1 - gamma_theta, until a point is acceptable to the filter and decreases theta or phi
   // against the iterate where the phase began; the equality multipliers are then reset to their
-  // least-squares estimates. Leaves it_, vals_ and the first derivatives consistent; true when
-  // the method can go on (also when an iteration or time limit ends the phase: the main loop
-  // then stops), false with the reason when a step cannot decrease theta.
+  // least-squares estimates (the bound multipliers are only kept within their kappa_sigma
+  // window). Leaves it_, vals_ and the first derivatives consistent; true when the method can
+  // go on (also when an iteration or time limit ends the phase: the main loop then stops),
+  // false with the reason and the status: Restoration_Failed when a step cannot decrease theta,
+  // Error_In_Step_Computation or Invalid_Number_Detected as in the main loop.
   bool Restore(const LineSearchReference& ref,
                double tau,
                std::vector<std::pair<double, double>>* filter,
-               std::string* why);
+               std::string* why,
+               std::string* solver_status);
   // Keeps the slacks' and the control bounds' multipliers within a factor kappa_sigma of
   // mu / distance (Ipopt's safeguard after every step).
   void ClampBoundMultipliers();
@@ -768,14 +837,13 @@ double RiccatiInteriorPoint::BarrierObjective(const Values& v, const Iterate& it
       phi += mu_ * (kKappaD * it.s[k][i] - std::log(it.s[k][i]));
     }
   }
-  for (int k = 0; k < S_.N; ++k) {
-    for (int j = 0; j < S_.nu; ++j) {
-      if (HasLb(j)) phi -= mu_ * std::log(it.U(j, k) - S_.lb[j]);
-      if (HasUb(j)) phi -= mu_ * std::log(S_.ub[j] - it.U(j, k));
-      if (HasLb(j) && !HasUb(j)) phi += kKappaD * mu_ * (it.U(j, k) - S_.lb[j]);
-      if (HasUb(j) && !HasLb(j)) phi += kKappaD * mu_ * (S_.ub[j] - it.U(j, k));
-    }
-  }
+  ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
+    const double x = Value(it, b)(j, k);
+    if (RipFinite(lo)) phi -= mu_ * std::log(x - lo);
+    if (RipFinite(hi)) phi -= mu_ * std::log(hi - x);
+    if (RipFinite(lo) && !RipFinite(hi)) phi += kKappaD * mu_ * (x - lo);
+    if (RipFinite(hi) && !RipFinite(lo)) phi += kKappaD * mu_ * (hi - x);
+  });
   return phi;
 }
 
@@ -784,6 +852,10 @@ void RiccatiInteriorPoint::Measure(double mu) {
   S_.LagrangianGradient(it_, sigma_, st_, te_, &rx_, &ru_, &rv_);
   ru_ -= it_.zl;
   ru_ += it_.zu;
+  if (S_.has_state_bounds()) {
+    rx_.rightCols(N) -= it_.zxl.rightCols(N);
+    rx_.rightCols(N) += it_.zxu.rightCols(N);
+  }
   double dual = rx_.rightCols(N).lpNorm<Eigen::Infinity>();
   dual = std::max(dual, ru_.lpNorm<Eigen::Infinity>());
   if (rv_.size() > 0) dual = std::max(dual, rv_.lpNorm<Eigen::Infinity>());
@@ -810,26 +882,25 @@ void RiccatiInteriorPoint::Measure(double mu) {
     m += static_cast<int>(s.size());
     nb += static_cast<int>(s.size());
   }
-  for (int k = 0; k < N; ++k) {
-    for (int j = 0; j < S_.nu; ++j) {
-      const double u = it_.U(j, k);
-      if (HasLb(j)) {
-        const double c = (u - S_.lb[j]) * it_.zl(j, k);
-        compl0 = std::max(compl0, std::abs(c));
-        complmu = std::max(complmu, std::abs(c - mu));
-        bound_sum += it_.zl(j, k);
-        ++nb;
-      }
-      if (HasUb(j)) {
-        const double c = (S_.ub[j] - u) * it_.zu(j, k);
-        compl0 = std::max(compl0, std::abs(c));
-        complmu = std::max(complmu, std::abs(c - mu));
-        bound_sum += it_.zu(j, k);
-        ++nb;
-      }
+  ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
+    const double x = Value(it_, b)(j, k);
+    if (RipFinite(lo)) {
+      const double z = Zl(it_, b)(j, k), c = (x - lo) * z;
+      compl0 = std::max(compl0, std::abs(c));
+      complmu = std::max(complmu, std::abs(c - mu));
+      bound_sum += z;
+      mult_sum += z;
+      ++nb;
     }
-  }
-  mult_sum += it_.zl.lpNorm<1>() + it_.zu.lpNorm<1>();
+    if (RipFinite(hi)) {
+      const double z = Zu(it_, b)(j, k), c = (hi - x) * z;
+      compl0 = std::max(compl0, std::abs(c));
+      complmu = std::max(complmu, std::abs(c - mu));
+      bound_sum += z;
+      mult_sum += z;
+      ++nb;
+    }
+  });
   const int n = N * (S_.nx + S_.nu) + static_cast<int>(it_.V.size()) + nb;  // slacks count too
   s_d_ = std::max(kSMax, mult_sum / std::max(1, m + n)) / kSMax;
   s_c_ = std::max(kSMax, bound_sum / std::max(1, n)) / kSMax;
@@ -876,21 +947,7 @@ bool RiccatiInteriorPoint::BuildAndSolve(
       g_.tail(nu) = sigma_ * S_.h[k] * e.Lu;
     }
     if (it_.s[k].size() > 0) CondenseInequalities(k, mu, r.ineq[k], nx + nu, &H_, &g_);
-    for (int j = 0; j < nu; ++j) {
-      const double u = it_.U(j, k);
-      if (HasLb(j)) {
-        const double dl = u - S_.lb[j];
-        H_(nx + j, nx + j) += it_.zl(j, k) / dl;
-        g_[nx + j] -= mu / dl;
-        if (!HasUb(j)) g_[nx + j] += kKappaD * mu;
-      }
-      if (HasUb(j)) {
-        const double du = S_.ub[j] - u;
-        H_(nx + j, nx + j) += it_.zu(j, k) / du;
-        g_[nx + j] += mu / du;
-        if (!HasLb(j)) g_[nx + j] -= kKappaD * mu;
-      }
-    }
+    AddBoundTerms(k, mu, &H_, &g_);
     const bool last_copy = StageBlocks(k, H_, g_, &q);
     q.b.resize(q.B.rows());
     q.b.head(nx) = -r.defects.col(k);
@@ -909,6 +966,7 @@ bool RiccatiInteriorPoint::BuildAndSolve(
     if (!feasibility) qp_.QN += st_[N].H;
     CondenseInequalities(N, mu, r.ineq[N], nxN, &qp_.QN, &qp_.qN);
   }
+  AddBoundTerms(N, mu, &qp_.QN, &qp_.qN);
   qp_.C.setZero(S_.npsi, nxN);
   qp_.c.resize(S_.npsi);
   if (S_.npsi > 0) {
@@ -1005,19 +1063,19 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   }
   d->dzl.setZero(nu, N);
   d->dzu.setZero(nu, N);
-  for (int k = 0; k < N; ++k) {
-    for (int j = 0; j < nu; ++j) {
-      const double u = it_.U(j, k), du = d->dU(j, k);
-      if (HasLb(j)) {
-        const double dl = u - S_.lb[j];
-        d->dzl(j, k) = mu / dl - it_.zl(j, k) - it_.zl(j, k) / dl * du;
-      }
-      if (HasUb(j)) {
-        const double dh = S_.ub[j] - u;
-        d->dzu(j, k) = mu / dh - it_.zu(j, k) + it_.zu(j, k) / dh * du;
-      }
+  d->dzxl.setZero(it_.zxl.rows(), it_.zxl.cols());
+  d->dzxu.setZero(it_.zxu.rows(), it_.zxu.cols());
+  ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
+    const double x = Value(it_, b)(j, k), dx = Step(*d, b)(j, k);
+    if (RipFinite(lo)) {
+      const double dl = x - lo, z = Zl(it_, b)(j, k);
+      DZl(*d, b)(j, k) = mu / dl - z - z / dl * dx;
     }
-  }
+    if (RipFinite(hi)) {
+      const double dh = hi - x, z = Zu(it_, b)(j, k);
+      DZu(*d, b)(j, k) = mu / dh - z + z / dh * dx;
+    }
+  });
   kkt_cpu_ += CpuSeconds() - cpu0;
   return true;
 }
@@ -1043,6 +1101,30 @@ void RiccatiInteriorPoint::Refine(double dw, double dc) {
   }
 }
 
+void RiccatiInteriorPoint::AddBoundTerms(int k, double mu, Mat* H, Vec* g) const {
+  for (const Box& b : boxes_) {
+    if (k < b.first || k >= b.last) continue;
+    const int off = k < S_.N ? b.offset : 0;  // x_N leads the terminal block
+    const Mat& x = Value(it_, b);
+    for (int j = 0; j < b.lb->size(); ++j) {
+      const double lo = (*b.lb)[j], hi = (*b.ub)[j];
+      const int i = off + j;
+      if (RipFinite(lo)) {
+        const double dl = x(j, k) - lo;
+        (*H)(i, i) += Zl(it_, b)(j, k) / dl;
+        (*g)[i] -= mu / dl;
+        if (!RipFinite(hi)) (*g)[i] += kKappaD * mu;
+      }
+      if (RipFinite(hi)) {
+        const double dh = hi - x(j, k);
+        (*H)(i, i) += Zu(it_, b)(j, k) / dh;
+        (*g)[i] += mu / dh;
+        if (!RipFinite(lo)) (*g)[i] -= kKappaD * mu;
+      }
+    }
+  }
+}
+
 void RiccatiInteriorPoint::StepToBoundary(const Direction& d,
                                           double tau,
                                           double* alpha_primal,
@@ -1057,18 +1139,17 @@ void RiccatiInteriorPoint::StepToBoundary(const Direction& d,
       ftb(it_.v[k][i], d.dv[k][i], &ad);
     }
   }
-  for (int k = 0; k < S_.N; ++k) {
-    for (int j = 0; j < S_.nu; ++j) {
-      if (HasLb(j)) {
-        ftb(it_.U(j, k) - S_.lb[j], d.dU(j, k), &ap);
-        ftb(it_.zl(j, k), d.dzl(j, k), &ad);
-      }
-      if (HasUb(j)) {
-        ftb(S_.ub[j] - it_.U(j, k), -d.dU(j, k), &ap);
-        ftb(it_.zu(j, k), d.dzu(j, k), &ad);
-      }
+  ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
+    const double x = Value(it_, b)(j, k), dx = Step(d, b)(j, k);
+    if (RipFinite(lo)) {
+      ftb(x - lo, dx, &ap);
+      ftb(Zl(it_, b)(j, k), DZl(d, b)(j, k), &ad);
     }
-  }
+    if (RipFinite(hi)) {
+      ftb(hi - x, -dx, &ap);
+      ftb(Zu(it_, b)(j, k), DZu(d, b)(j, k), &ad);
+    }
+  });
   *alpha_primal = ap;
   *alpha_dual = ad;
 }
@@ -1169,18 +1250,17 @@ void RiccatiInteriorPoint::ClampBoundMultipliers() {
       it_.v[k][i] = std::clamp(it_.v[k][i], mu_ / (kKappaSigma * s), kKappaSigma * mu_ / s);
     }
   }
-  for (int k = 0; k < S_.N; ++k) {
-    for (int j = 0; j < S_.nu; ++j) {
-      if (HasLb(j)) {
-        const double s = it_.U(j, k) - S_.lb[j];
-        it_.zl(j, k) = std::clamp(it_.zl(j, k), mu_ / (kKappaSigma * s), kKappaSigma * mu_ / s);
-      }
-      if (HasUb(j)) {
-        const double s = S_.ub[j] - it_.U(j, k);
-        it_.zu(j, k) = std::clamp(it_.zu(j, k), mu_ / (kKappaSigma * s), kKappaSigma * mu_ / s);
-      }
+  ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
+    const double x = Value(it_, b)(j, k);
+    if (RipFinite(lo)) {
+      double& z = Zl(it_, b)(j, k);
+      z = std::clamp(z, mu_ / (kKappaSigma * (x - lo)), kKappaSigma * mu_ / (x - lo));
     }
-  }
+    if (RipFinite(hi)) {
+      double& z = Zu(it_, b)(j, k);
+      z = std::clamp(z, mu_ / (kKappaSigma * (hi - x)), kKappaSigma * mu_ / (hi - x));
+    }
+  });
 }
 
 bool RiccatiInteriorPoint::CurrentIsAcceptable() const {
@@ -1192,8 +1272,10 @@ bool RiccatiInteriorPoint::CurrentIsAcceptable() const {
 bool RiccatiInteriorPoint::Restore(const LineSearchReference& ref,
                                    double tau,
                                    std::vector<std::pair<double, double>>* filter,
-                                   std::string* why) {
+                                   std::string* why,
+                                   std::string* solver_status) {
   ++restoration_phases_;
+  *solver_status = "Restoration_Failed";
   filter->emplace_back((1.0 - kGammaTheta) * ref.theta, ref.phi - kGammaPhi * ref.theta);
   Iterate trial;
   Values tv;
@@ -1203,6 +1285,7 @@ bool RiccatiInteriorPoint::Restore(const LineSearchReference& ref,
     std::string failure;
     if (!BuildAndSolve(mu_, res_, StepKind::kFeasibility, &soc_d_, &failure)) {
       *why = "restoration phase: " + failure;
+      *solver_status = "Error_In_Step_Computation";
       return false;
     }
     double alpha = 1.0, unused = 1.0;
@@ -1248,15 +1331,9 @@ bool RiccatiInteriorPoint::Restore(const LineSearchReference& ref,
     callback_cpu_ += CpuSeconds() - cpu0;
     if (!ok) {
       *why = "restoration phase: a derivative at an iterate is not finite";
+      *solver_status = "Invalid_Number_Detected";
       return false;
     }
-    IterationRecord rec;  // dual infeasibility is not measured in the restoration phase
-    rec.iteration = iterations_;
-    rec.J = vals_.f;
-    ResidualsAt(vals_, it_.s, &res_);
-    rec.primal_inf = MaxNorm(res_);
-    rec.cpu_seconds = watch_.cpu();
-    history_.push_back(rec);
     const double phi = BarrierObjective(vals_, it_);
     bool in_filter = theta <= ref.theta_max && RipFinite(phi);
     for (const auto& [fth, fphi] : *filter) {
@@ -1265,9 +1342,18 @@ bool RiccatiInteriorPoint::Restore(const LineSearchReference& ref,
     if (in_filter && (LeqUpToRounding(theta, (1.0 - kGammaTheta) * ref.theta, ref.theta) ||
                       LeqUpToRounding(phi - ref.phi, -kGammaPhi * ref.theta, ref.phi))) {
       LeastSquaresMultipliers();
-      return true;
+      return true;  // the main loop records this iterate
     }
     if (iterations_ >= o_.max_iter || watch_.cpu() >= o_.max_cpu_time) return true;
+    // An intermediate iterate of the phase: in the history without a dual infeasibility (not
+    // measured here).
+    IterationRecord rec;
+    rec.iteration = iterations_;
+    rec.J = vals_.f;
+    ResidualsAt(vals_, it_.s, &res_);
+    rec.primal_inf = MaxNorm(res_);
+    rec.cpu_seconds = watch_.cpu();
+    history_.push_back(rec);
   }
 }
 
@@ -1358,6 +1444,7 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
     Vec g(nx + nu);
     g.head(nx) = sigma_ * S_.h[k] * e.Lx;
     g.tail(nu) = sigma_ * S_.h[k] * e.Lu - it_.zl.col(k) + it_.zu.col(k);
+    if (k > 0 && S_.has_state_bounds()) g.head(nx) += it_.zxu.col(k) - it_.zxl.col(k);
     Mat J(S_.ni(k), nx + nu);
     if (S_.ni(k) > 0) {
       J << e.cx, e.cu;
@@ -1374,6 +1461,7 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
   qp_.QN.topLeftCorner(nx, nx).setIdentity();
   qp_.qN.setZero(nxN);
   qp_.qN.head(nx) = sigma_ * te_.grad;
+  if (S_.has_state_bounds()) qp_.qN.head(nx) += it_.zxu.col(N) - it_.zxl.col(N);
   Mat JN(S_.ni(N), nxN);
   if (S_.copy) {
     JN << st_[N].cx, st_[N].cu;
@@ -1414,22 +1502,22 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   // x_0 is fixed by the NLP's bounds, which the method never leaves: take it from the problem,
   // not from the starting point (an initial guess's states need not start at x0).
   it_.X.col(0) = S_.nlp.ocp().x0();
-  // Controls pushed into their bounds (Ipopt's bound_push, bound_frac).
-  for (int k = 0; k < N; ++k) {
-    for (int j = 0; j < nu; ++j) {
-      const double lo = S_.lb[j], hi = S_.ub[j];
-      double& u = it_.U(j, k);
-      const double width = HasLb(j) && HasUb(j) ? hi - lo : kRipInf;
-      if (HasLb(j)) {
-        u = std::max(
-            u, lo + std::min(o_.bound_push * std::max(1.0, std::abs(lo)), o_.bound_frac * width));
-      }
-      if (HasUb(j)) {
-        u = std::min(
-            u, hi - std::min(o_.bound_push * std::max(1.0, std::abs(hi)), o_.bound_frac * width));
-      }
+  boxes_.clear();
+  boxes_.push_back({false, &S_.lb, &S_.ub, 0, N, nx});
+  if (S_.has_state_bounds()) boxes_.push_back({true, &S_.xlb, &S_.xub, 1, N + 1, 0});
+  // Controls and states pushed into their bounds (Ipopt's bound_push, bound_frac).
+  ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
+    double& x = Value(it_, b)(j, k);
+    const double width = RipFinite(lo) && RipFinite(hi) ? hi - lo : kRipInf;
+    if (RipFinite(lo)) {
+      x = std::max(
+          x, lo + std::min(o_.bound_push * std::max(1.0, std::abs(lo)), o_.bound_frac * width));
     }
-  }
+    if (RipFinite(hi)) {
+      x = std::min(
+          x, hi - std::min(o_.bound_push * std::max(1.0, std::abs(hi)), o_.bound_frac * width));
+    }
+  });
   if (S_.copy) it_.V = it_.U.col(N - 1);
   double cpu0 = CpuSeconds();
   S_.EvalValues(it_, &vals_);
@@ -1449,10 +1537,12 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   }
   it_.zl.setZero(nu, N);
   it_.zu.setZero(nu, N);
-  for (int j = 0; j < nu; ++j) {
-    if (HasLb(j)) it_.zl.row(j).setOnes();
-    if (HasUb(j)) it_.zu.row(j).setOnes();
-  }
+  it_.zxl.setZero(S_.has_state_bounds() ? nx : 0, S_.has_state_bounds() ? N + 1 : 0);
+  it_.zxu.setZero(it_.zxl.rows(), it_.zxl.cols());
+  ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
+    if (RipFinite(lo)) Zl(it_, b)(j, k) = 1.0;
+    if (RipFinite(hi)) Zu(it_, b)(j, k) = 1.0;
+  });
   it_.lam.setZero(nx, N);
   it_.lamV.setZero(S_.copy ? nu : 0);
   it_.nu.setZero(S_.npsi);
@@ -1562,12 +1652,13 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     for (int k = 0; k < N; ++k) {
       const StageEval& e = st_[k];
       gphi += sigma_ * S_.h[k] * (e.Lx.dot(d.dX.col(k)) + e.Lu.dot(d.dU.col(k)));
-      for (int j = 0; j < nu; ++j) {
-        if (HasLb(j)) gphi -= mu_ * d.dU(j, k) / (it_.U(j, k) - S_.lb[j]);
-        if (HasUb(j)) gphi += mu_ * d.dU(j, k) / (S_.ub[j] - it_.U(j, k));
-        if (HasLb(j) != HasUb(j)) gphi += (HasLb(j) ? 1.0 : -1.0) * kKappaD * mu_ * d.dU(j, k);
-      }
     }
+    ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
+      const double x = Value(it_, b)(j, k), dx = Step(d, b)(j, k);
+      if (RipFinite(lo)) gphi -= mu_ * dx / (x - lo);
+      if (RipFinite(hi)) gphi += mu_ * dx / (hi - x);
+      if (RipFinite(lo) != RipFinite(hi)) gphi += (RipFinite(lo) ? 1.0 : -1.0) * kKappaD * mu_ * dx;
+    });
     gphi += sigma_ * te_.grad.dot(d.dX.col(N));
     for (int k = 0; k <= N; ++k) {
       if (it_.s[k].size() > 0) {
@@ -1632,9 +1723,16 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
                         "Solved_To_Acceptable_Level",
                         "the filter line search failed at an acceptable point");
         }
-        std::string why;
-        if (!Restore(ref, tau, &filter, &why)) {
-          return Finish(SolveStatus::kNumericalFailure, "Restoration_Failed", why);
+        std::string why, solver_status;
+        if (!Restore(ref, tau, &filter, &why, &solver_status)) {
+          if (solver_status == "Invalid_Number_Detected") {
+            // The point's measures are not defined: say so rather than keep the last ones.
+            E0_ = dual_inf_ = constr_viol_ = compl_ = std::numeric_limits<double>::quiet_NaN();
+            rx_.resize(0, 0);
+          } else {
+            Measure(mu_);  // the reported point's measures, wherever the phase left it
+          }
+          return Finish(SolveStatus::kNumericalFailure, solver_status, why);
         }
         restored = true;
         break;
@@ -1664,6 +1762,10 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     }
     it_.zl += alpha_z * d.dzl;
     it_.zu += alpha_z * d.dzu;
+    if (S_.has_state_bounds()) {
+      it_.zxl += alpha_z * d.dzxl;
+      it_.zxu += alpha_z * d.dzxu;
+    }
     ClampBoundMultipliers();
     std::swap(vals_, tv);
     ++iterations_;
@@ -1712,6 +1814,10 @@ NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
     for (int k = 0; k < N; ++k) {
       out.z_lower.segment(S_.control_off[k], nu) = inv * it_.zl.col(k);
       out.z_upper.segment(S_.control_off[k], nu) = inv * it_.zu.col(k);
+      if (S_.has_state_bounds()) {
+        out.z_lower.segment(S_.state_off[k + 1], nx) = inv * it_.zxl.col(k + 1);
+        out.z_upper.segment(S_.state_off[k + 1], nx) = inv * it_.zxu.col(k + 1);
+      }
     }
     if (rx_.cols() == N + 1) {  // x_0's bound multipliers from stationarity in x_0
       const Vec r = inv * rx_.col(0);
@@ -1774,7 +1880,8 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
            "' has a free final time, which riccati-ip does not take (it keeps the horizon fixed); "
            "ipopt on a collocation transcription solves it";
   }
-  ProblemFeatures takes;  // its stage blocks fix x(t0) and bound controls only
+  ProblemFeatures takes;  // its stage blocks fix x(t0); controls and states have bounds
+  takes.state_bounds = true;
   if (std::string why = UnsupportedFeature(ocp, "riccati-ip", takes); !why.empty()) return why;
   const TranscriptionOptions options = TranscriptionOptionsFor(request);
   if (!options.scaling.IsIdentity()) {

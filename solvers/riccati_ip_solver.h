@@ -39,7 +39,7 @@ struct RiccatiIpOptions {
   /// ||r|| / (min(||sol||, 1e6 ||rhs||) + ||rhs||) is <= 1e-10 or stops falling; min <= max.
   /// Ipopt's names and rule (Ipopt refines the full primal-dual system); the default minimum is
   /// 0, not Ipopt's 1: the residual is checked every step and corrected where the ratio asks
-  /// for it (a correction every step cost 31 % more instructions on comm-path2d at N = 400,
+  /// for it (a correction every step cost 30 % more instructions on comm-path2d at N = 400,
   /// the check alone 8 %; solvers/README-riccati-ip.md).
   int min_refinement_steps = 0;
   int max_refinement_steps = 10;
@@ -92,7 +92,8 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request);
 /// (kAcceptable: RiccatiIpOptions' acceptable level), Maximum_Iterations_Exceeded
 /// (kMaxIterations), Maximum_CpuTime_Exceeded (kMaxTime), Restoration_Failed
 /// (kNumericalFailure, as Ipopt's is mapped: the filter line search reached its minimal step and
-/// the restoration phase could not find a point the filter accepts),
+/// the restoration phase could not decrease the constraint violation; in the phase a step that
+/// cannot be computed or a derivative that is not finite end as in the main loop, below),
 /// Error_In_Step_Computation (kNumericalFailure: the regularization exceeded 1e40),
 /// Invalid_Number_Detected (kNumericalFailure: a value at the starting point or a derivative is
 /// not finite), not_applicable (kNotApplicable).

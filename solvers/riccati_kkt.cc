@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "solvers/small_dims.h"
 #include "solvers/small_lu.h"  // SmallDim
@@ -238,6 +239,7 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
   const int npsi = static_cast<int>(problem.C.rows());
   failed_stage_ = -1;
   negative_ = 0;
+  factored_ = false;
   factors_.resize(N);
   values_.resize(N + 1);
 
@@ -289,6 +291,7 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
   b_.resize(N);
   for (int k = 0; k < N; ++k) b_[k] = &problem.stages[k].b;
   TerminalMultiplierAndForwardSweep(problem, b_, problem.x0, solution);
+  factored_ = true;
   return RiccatiOutcome::kSolved;
 }
 
@@ -346,8 +349,14 @@ void RiccatiSolver::TerminalMultiplierAndForwardSweep(const RiccatiProblem& prob
 void RiccatiSolver::SolveFactored(const RiccatiProblem& problem,
                                   const RiccatiRhs& rhs,
                                   RiccatiSolution* solution) {
+  if (!factored_) {
+    throw std::logic_error("RiccatiSolver::SolveFactored: the last Solve did not succeed");
+  }
   const int N = static_cast<int>(problem.stages.size());
   const int npsi = static_cast<int>(problem.C.rows());
+  if (static_cast<int>(factors_.size()) != N) {
+    throw std::logic_error("RiccatiSolver::SolveFactored: not the factorized problem's stages");
+  }
   // The vector part of the backward recursion with the factors of the last Solve: with
   // Pbp = P_{k+1} b + p_{k+1}, g = q + [A B]^T Pbp, k_k = -H_uu^-1 g_u and
   // p_k = g_x + H_ux^T k_k = g_x + K_k^T g_u (H_ux^T = -K_k^T H_uu); the parameter's

