@@ -882,24 +882,19 @@ void RiccatiInteriorPoint::Measure(double mu) {
     m += static_cast<int>(s.size());
     nb += static_cast<int>(s.size());
   }
+  // A bound at `distance` with multiplier z.
+  const auto bound = [&](double distance, double z) {
+    const double c = distance * z;
+    compl0 = std::max(compl0, std::abs(c));
+    complmu = std::max(complmu, std::abs(c - mu));
+    bound_sum += z;
+    mult_sum += z;
+    ++nb;
+  };
   ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
     const double x = Value(it_, b)(j, k);
-    if (RipFinite(lo)) {
-      const double z = Zl(it_, b)(j, k), c = (x - lo) * z;
-      compl0 = std::max(compl0, std::abs(c));
-      complmu = std::max(complmu, std::abs(c - mu));
-      bound_sum += z;
-      mult_sum += z;
-      ++nb;
-    }
-    if (RipFinite(hi)) {
-      const double z = Zu(it_, b)(j, k), c = (hi - x) * z;
-      compl0 = std::max(compl0, std::abs(c));
-      complmu = std::max(complmu, std::abs(c - mu));
-      bound_sum += z;
-      mult_sum += z;
-      ++nb;
-    }
+    if (RipFinite(lo)) bound(x - lo, Zl(it_, b)(j, k));
+    if (RipFinite(hi)) bound(hi - x, Zu(it_, b)(j, k));
   });
   const int n = N * (S_.nx + S_.nu) + static_cast<int>(it_.V.size()) + nb;  // slacks count too
   s_d_ = std::max(kSMax, mult_sum / std::max(1, m + n)) / kSMax;

@@ -60,7 +60,10 @@ def continuous_error(record):
 
 
 def setting_of(record, settings):
-    options = record.get("solver_options", {})
+    # The case's own options (what the suite set), not the resolved solver_options: those list
+    # every option with its value, defaults included, so `default` would match no case once a
+    # setting names an option Ipopt's table resolves (tol, mu_strategy).
+    options = record.get("options", {})
     for setting in settings:
         wanted = parse_setting(setting)
         names = set().union(*(parse_setting(s).keys() for s in settings))
