@@ -78,16 +78,17 @@ const OptionBinding<RiccatiIpOptions>& RiccatiIpBinding() {
     t.Number("mu_init", &O::mu_init, "first barrier parameter", OptionBounds::Above(0));
     t.Number("bound_push",
              &O::bound_push,
-             "absolute push of starting controls and slacks into their bounds",
+             "absolute push of starting controls, states and slacks into their bounds",
              OptionBounds::Above(0));
     t.Number("bound_frac",
              &O::bound_frac,
-             "relative push of starting controls into their bounds' interval",
+             "relative push of starting controls and states into their bounds' interval",
              OptionBounds::OpenClosed(0, 0.5));
-    t.Number("bound_relax_factor",
-             &O::bound_relax_factor,
-             "inequalities and control bounds relaxed by this times max(1, |bound|) (Ipopt's)",
-             OptionBounds::AtLeast(0));
+    t.Number(
+        "bound_relax_factor",
+        &O::bound_relax_factor,
+        "inequalities, control and state bounds relaxed by this times max(1, |bound|) (Ipopt's)",
+        OptionBounds::AtLeast(0));
     t.Text("nlp_scaling_method",
            &O::nlp_scaling_method,
            "objective scaling: gradient-based (Ipopt's rule, objective only) or none",

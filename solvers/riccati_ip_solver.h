@@ -54,12 +54,12 @@ struct RiccatiIpOptions {
   /// mu <- max(min(tol, compl_inf_tol) / 11, min(0.2 mu, mu^1.5)) whenever the barrier
   /// problem's error <= 10 mu. Ipopt's rule and default.
   double mu_init = 0.1;
-  /// How far the starting controls (and slacks) are pushed inside their bounds, absolutely
+  /// How far the starting controls, states (and slacks) are pushed inside their bounds, absolutely
   /// (bound_push, times max(1, |bound|)) and relative to the interval (bound_frac). Ipopt's.
   double bound_push = 1e-2;
   double bound_frac = 1e-2;
-  /// Every inequality (control bounds, path constraints, balls) is relaxed by this factor times
-  /// max(1, |bound|) before the solve, as Ipopt does with the same default, so that the two
+  /// Every inequality (control and state bounds, path constraints, balls) is relaxed by this factor
+  /// times max(1, |bound|) before the solve, as Ipopt does with the same default, so that the two
   /// solve the same problem. 0: no relaxation.
   double bound_relax_factor = 1e-8;
   /// "gradient-based" (Ipopt's default rule, objective only: f is multiplied by

@@ -89,10 +89,9 @@ void DescribeProblem(const std::string& name) {
   std::cout << "features: "
             << (features.empty()
                     ? "none (fixed horizon, fixed x(t0), no state bounds or boundary constraints)"
-                    : features +
-                          " (ipopt and nlopt on a collocation transcription take them, "
-                          "riccati-ip on euler state bounds; methods that do not say "
-                          "not_applicable)")
+                    : features + " (ipopt and nlopt on a collocation transcription take them" +
+                          std::string(f.state_bounds ? ", riccati-ip on euler state bounds" : "") +
+                          "; methods that do not say not_applicable)")
             << "\n";
   std::cout << "parameters (--set key=value, suite \"set\"):\n" << parameters.Describe();
 }
