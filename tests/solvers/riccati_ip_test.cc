@@ -13,8 +13,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "core/autodiff_ocp.h"
 #include "problems/registry.h"
+#include "solvers/forwarding_ocp.h"
 #include "solvers/ipopt_adapter.h"
 #include "solvers/nlp_solve.h"
 #include "solvers/registry.h"
@@ -528,6 +528,24 @@ TEST(RiccatiIpSolver, IterationLimitIsReported) {
   EXPECT_EQ(rip.iterations, 2);
 }
 
+// Ipopt and riccati-ip on `nlp` at `tol`, both from its starting point: each must converge, to
+// objectives within 1e-8 relative.
+void BothConvergeToOneOptimum(const TranscribedNlp& nlp,
+                              double tol,
+                              NlpSolution* ip,
+                              NlpSolution* rip) {
+  IpoptOptions ipopt_options;
+  ipopt_options.tol = tol;
+  RiccatiIpOptions options;
+  options.tol = tol;
+  *ip = SolveNlpWithIpopt(nlp, nlp.StartingPoint(), ipopt_options);
+  ASSERT_EQ(ip->status, SolveStatus::kConverged) << ip->solver_status;
+  *rip = SolveEulerNlpWithRiccatiIp(nlp, options);
+  ASSERT_EQ(rip->status, SolveStatus::kConverged) << rip->message;
+  EXPECT_LE(std::abs(rip->objective - ip->objective),
+            1e-8 * std::max(1.0, std::abs(ip->objective)));
+}
+
 // State bounds as bounds (x_1..x_N, with bound multipliers like the controls'): on five
 // problems with state bounds the optimum of the Euler NLP is Ipopt's, the bounds hold, and the
 // states' bound multipliers handed back are Ipopt's where a bound is active.
@@ -543,15 +561,8 @@ TEST(RiccatiIpSolver, StateBoundsReachIpoptsOptimum) {
     const auto nlp = EulerNlp(*ocp, 50, TerminalMode::kHard);
     // tol 1e-10: at 1e-8 the two stop at points whose bound multipliers differ by up to 8.5e-4
     // of the largest (beam, robbins).
-    IpoptOptions ipopt_options;
-    ipopt_options.tol = 1e-10;
-    RiccatiIpOptions options;
-    options.tol = 1e-10;
-    const NlpSolution ip = SolveNlpWithIpopt(*nlp, nlp->StartingPoint(), ipopt_options);
-    ASSERT_EQ(ip.status, SolveStatus::kConverged) << ip.solver_status;
-    const NlpSolution rip = SolveEulerNlpWithRiccatiIp(*nlp, options);
-    ASSERT_EQ(rip.status, SolveStatus::kConverged) << rip.message;
-    EXPECT_LE(std::abs(rip.objective - ip.objective), 1e-8 * std::max(1.0, std::abs(ip.objective)));
+    NlpSolution ip, rip;
+    ASSERT_NO_FATAL_FAILURE(BothConvergeToOneOptimum(*nlp, 1e-10, &ip, &rip));
     // Both solvers relax every bound by 1e-8 max(1, |bound|) (Ipopt's bound_relax_factor) and
     // end just inside the relaxed bound: 9.9999e-9 against the original bounds, by design.
     EXPECT_LT(NlpViolation(*nlp, rip.z),
@@ -592,50 +603,23 @@ TEST(RiccatiIpSolver, StateBoundsReachIpoptsOptimum) {
 // (x_N, v) with v the copy of u_{N-1}: bryson-denham (its path row x1 <= 1/9) in the penalty
 // form with x2 >= -0.9, which the terminal penalty pushes x2(1) against (the hard form would be
 // infeasible: x2(1) = -1).
-class BrysonDenhamVelocityBound final : public AutoDiffOcp<BrysonDenhamVelocityBound, 2, 1, 2, 1> {
+// bryson-denham with a lower bound on its velocity, everything else forwarded.
+class WithVelocityBound final : public ForwardingOcp {
  public:
-  BrysonDenhamVelocityBound() {
-    SetDimensions(2, 1, 2, 1);
-    SetHorizon(0.0, 1.0);
-    SetInitialState(Eigen::Vector2d(0.0, 1.0));
-    SetTerminalWeights(Vec::Constant(2, 1e4));
+  explicit WithVelocityBound(const Ocp& inner) : ForwardingOcp(inner) {
     const double inf = std::numeric_limits<double>::infinity();
     SetStateBounds(Eigen::Vector2d(-inf, -0.9), Eigen::Vector2d(inf, inf));
-  }
-  std::string name() const override { return "bryson-denham-velocity-bound"; }
-  template <class T>
-  void EvalDynamics(double, const VecT<T, 2>& x, const VecT<T, 1>& u, VecT<T, 2>* f) const {
-    (*f)[0] = x[1];
-    (*f)[1] = u[0];
-  }
-  template <class T>
-  T EvalRunningCost(double, const VecT<T, 2>&, const VecT<T, 1>& u) const {
-    return 0.5 * u[0] * u[0];
-  }
-  template <class T>
-  void EvalTerminalConstraints(const VecT<T, 2>& x, VecT<T, 2>* psi) const {
-    (*psi)[0] = x[0];
-    (*psi)[1] = x[1] + 1.0;
-  }
-  template <class T>
-  void EvalPathConstraints(double, const VecT<T, 2>& x, const VecT<T, 1>&, VecT<T, 1>* c) const {
-    (*c)[0] = x[0] - 1.0 / 9.0;
   }
 };
 
 TEST(RiccatiIpSolver, StateBoundAtTheLastNodeWithTheCopiedControl) {
-  const BrysonDenhamVelocityBound problem;
-  const Ocp* ocp = &problem;
+  const auto inner = MakeProblem("bryson-denham", {}, 1);
+  ASSERT_GT(inner->num_path(), 0);
+  const WithVelocityBound bounded(*inner);
+  const Ocp* ocp = &bounded;
   const auto nlp = EulerNlp(*ocp, 40, TerminalMode::kPenalty);
-  IpoptOptions ipopt_options;
-  ipopt_options.tol = 1e-10;
-  RiccatiIpOptions options;
-  options.tol = 1e-10;
-  const NlpSolution ip = SolveNlpWithIpopt(*nlp, nlp->StartingPoint(), ipopt_options);
-  ASSERT_EQ(ip.status, SolveStatus::kConverged) << ip.solver_status;
-  const NlpSolution rip = SolveEulerNlpWithRiccatiIp(*nlp, options);
-  ASSERT_EQ(rip.status, SolveStatus::kConverged) << rip.message;
-  EXPECT_LE(std::abs(rip.objective - ip.objective), 1e-8 * std::max(1.0, std::abs(ip.objective)));
+  NlpSolution ip, rip;
+  ASSERT_NO_FATAL_FAILURE(BothConvergeToOneOptimum(*nlp, 1e-10, &ip, &rip));
   // x2(t_N) sits on its bound, with a multiplier, in both solvers.
   const auto& lay = dynamic_cast<const CollocationNlp&>(*nlp).layout();
   const int x2N = lay.states.back().offset + 1;
