@@ -143,9 +143,12 @@ RiccatiIpOptions RiccatiIpOptions::Apply(const OptionMap& options, RiccatiIpOpti
 namespace {
 
 // The Euler NLP of one CollocationNlp read as stages: x_{k+1} = x_k + h_k f(t_k, x_k, u_k),
-// stage k < N with variables (x_k, u_k) (x_0 fixed), stage N with x_N and, when there are path
+// stage k < N with variables (x_k, u_k), stage N with x_N and, when there are path
 // constraints, a copy v = u_{N-1} (the NLP's path constraint at t_N reads u_{N-1}, which the
-// copy turns into a stage-N function; the copy row v - u_{N-1} = 0 is linear).
+// copy turns into a stage-N function; the copy row v - u_{N-1} = 0 is linear). x_0's fixed
+// components are no variables; its free ones (a free or partly free initial state, static
+// parameters: Ocp::InitialNodeBounds with lower < upper) are variables of stage 0 beside u_0,
+// within their initial-state bounds, with the initial cost phi0(x_0) when the problem has one.
 class EulerStages {
  public:
   // nullptr with the reason when `nlp` is not an Euler NLP of the supported class.
@@ -161,8 +164,14 @@ class EulerStages {
   std::vector<double> t, h;
   Vec lb, ub;  // per control component, +-inf where unbounded (balls: none)
   // Per state component, +-inf where unbounded: the problem's state bounds, which the Euler
-  // NLP imposes on x_1..x_N as variable bounds (not on the fixed x_0).
+  // NLP imposes on x_1..x_N as variable bounds (not on x_0).
   Vec xlb, xub;
+  // x_0: its free components (ascending), their initial-state bounds (per state component,
+  // +-inf where unbounded and for the fixed components, which are no variables), and whether
+  // the initial cost phi0(x_0) counts (Ocp::HasInitialCost with a free initial state).
+  std::vector<int> free0;
+  Vec x0lb, x0ub;
+  bool initial_cost = false;
   std::vector<ControlSet::Block> balls;
   std::vector<int> state_off, control_off;
   // Ipopt's bound_relax_factor: the inequality rows are c - relax_path <= 0 and
@@ -177,12 +186,12 @@ class EulerStages {
     for (int b = 0; b < nball; ++b) {
       relax_ball[b] = factor * std::max(1.0, balls[b].radius * balls[b].radius);
     }
-    for (Vec* lower : {&lb, &xlb}) {
+    for (Vec* lower : {&lb, &xlb, &x0lb}) {
       for (double& v : *lower) {
         if (RipFinite(v)) v -= factor * std::max(1.0, std::abs(v));
       }
     }
-    for (Vec* upper : {&ub, &xub}) {
+    for (Vec* upper : {&ub, &xub, &x0ub}) {
       for (double& v : *upper) {
         if (RipFinite(v)) v += factor * std::max(1.0, std::abs(v));
       }
@@ -193,13 +202,20 @@ class EulerStages {
   bool has_state_bounds() const {
     return xlb.array().isFinite().any() || xub.array().isFinite().any();
   }
+  bool has_initial_bounds() const {
+    return x0lb.array().isFinite().any() || x0ub.array().isFinite().any();
+  }
+  // Whether the iterate carries state-bound multipliers (zxl, zxu: x_0's in column 0).
+  bool has_state_multipliers() const { return has_state_bounds() || has_initial_bounds(); }
+  int nw() const { return static_cast<int>(free0.size()); }
 
   struct Iterate {
     Mat X, U;  // nx x (N+1), nu x N
     Vec V;     // nu (copy) or empty
     std::vector<Vec> s, y, v;
     Mat zl, zu;    // nu x N (0 where no bound)
-    Mat zxl, zxu;  // nx x (N+1), the state bounds' (column 0 and unbounded entries 0)
+    Mat zxl, zxu;  // nx x (N+1): x_0's initial-state bounds' in column 0, then the state
+                   // bounds' (0 where unbounded or fixed; empty without either)
     Mat lam;       // nx x N, defect multipliers (NLP convention, scaled problem)
     Vec lamV, nu;
   };
@@ -212,12 +228,15 @@ class EulerStages {
     Mat cx, cu;  // ni x nx, ni x nu
     Mat H;       // (nx + nu)^2 Hessian of the stage Lagrangian (filled by Hessians())
   };
-  struct TerminalEval {
-    double Phi = 0.0;  // terminal objective (penalty included)
-    Vec grad;          // nx
-    Vec psi;           // npsi (hard form)
+  struct TerminalEval {  // the two ends: x_N's terms, and x_0's initial cost
+    double Phi = 0.0;    // terminal objective (penalty included)
+    Vec grad;            // nx
+    Vec psi;             // npsi (hard form)
     Mat psix;
-    Mat H;  // nx x nx Hessian of sigma Phi + nu^T psi
+    Mat H;              // nx x nx Hessian of sigma Phi + nu^T psi
+    double Phi0 = 0.0;  // phi0(x_0), its gradient and sigma times its Hessian (initial_cost)
+    Vec grad0;
+    Mat H0;
   };
   struct Values {  // what a line-search trial needs
     double f = 0.0;
@@ -343,6 +362,17 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
       }
     }
   }
+  const VectorBounds initial = ocp.InitialNodeBounds();
+  st->x0lb = Vec::Constant(st->nx, -kRipInf);
+  st->x0ub = Vec::Constant(st->nx, kRipInf);
+  for (int i = 0; i < st->nx; ++i) {
+    const double lo = initial.lower[i], hi = initial.upper[i];
+    if (!(lo < hi)) continue;  // fixed: x0's value, no variable
+    st->free0.push_back(i);
+    st->x0lb[i] = lo <= -kRipInfBound ? -kRipInf : lo;
+    st->x0ub[i] = hi >= kRipInfBound ? kRipInf : hi;
+  }
+  st->initial_cost = !st->free0.empty() && ocp.HasInitialCost();
   st->nball = static_cast<int>(st->balls.size());
   st->relax_ball.assign(st->nball, 0.0);
   st->copy = st->nc > 0;
@@ -396,6 +426,7 @@ void EulerStages::EvalValues(const Iterate& it, Values* out) const {
     v.copy_row = it.V - it.U.col(N - 1);
   }
   J += ocp.TerminalObjective(it.X.col(N), hard ? TerminalMode::kHard : TerminalMode::kPenalty);
+  if (initial_cost) J += ocp.InitialCost(it.X.col(0));
   if (hard) {
     v.psi.resize(npsi);
     ocp.TerminalConstraints(it.X.col(N), v.psi);
@@ -466,6 +497,11 @@ bool EulerStages::EvalDerivatives(const Iterate& it,
   }
   ok = ok && RipFinite(te->Phi) && RipAllFinite(te->grad) && RipAllFinite(te->psi) &&
        RipAllFinite(te->psix);
+  if (initial_cost) {
+    te->grad0.resize(nx);
+    ocp.InitialCostGradient(it.X.col(0), &te->Phi0, te->grad0);
+    ok = ok && RipFinite(te->Phi0) && RipAllFinite(te->grad0);
+  }
   return ok;
 }
 
@@ -506,6 +542,11 @@ bool EulerStages::EvalHessians(const Iterate& it,
   ocp.TerminalHessian(xN, sigma, nu_terms, te->H);
   if (!hard && ocp.num_terminal() > 0) {
     te->H += 2.0 * sigma * te->psix.transpose() * ocp.terminal_weights().asDiagonal() * te->psix;
+  }
+  if (initial_cost) {
+    te->H0.resize(nx, nx);
+    ocp.InitialCostHessian(it.X.col(0), sigma, te->H0);
+    ok = ok && RipAllFinite(te->H0);
   }
   return ok && RipAllFinite(te->H);
 }
@@ -550,6 +591,7 @@ void EulerStages::LagrangianGradient(const Iterate& it,
       gu[j] = g;
     }
   }
+  if (initial_cost) rx->col(0) += sigma * te.grad0;
   auto gN = rx->col(N);
   gN = sigma * te.grad + it.lam.col(N - 1);
   if (hard && npsi > 0) gN.noalias() += te.psix.transpose() * it.nu;
@@ -816,6 +858,7 @@ class RiccatiInteriorPoint {
   Mat H_;
   Vec g_, jd_, w_, r_;
   std::vector<int> nonzero_;
+  mutable std::vector<int> stage0_;  // StageBlocks' stage-0 indices: x_0's free components, u_0
   double delta_last_ = 0.0;
   int iterations_ = 0, regularizations_ = 0, factorizations_ = 0, trials_ = 0;
   double kkt_cpu_ = 0.0, callback_cpu_ = 0.0, mu_ = 0.1;
@@ -853,11 +896,12 @@ void RiccatiInteriorPoint::Measure(double mu) {
   S_.LagrangianGradient(it_, sigma_, st_, te_, &rx_, &ru_, &rv_);
   ru_ -= it_.zl;
   ru_ += it_.zu;
-  if (S_.has_state_bounds()) {
-    rx_.rightCols(N) -= it_.zxl.rightCols(N);
-    rx_.rightCols(N) += it_.zxu.rightCols(N);
+  if (S_.has_state_multipliers()) {
+    rx_ -= it_.zxl;
+    rx_ += it_.zxu;
   }
   double dual = rx_.rightCols(N).lpNorm<Eigen::Infinity>();
+  for (int i : S_.free0) dual = std::max(dual, std::abs(rx_(i, 0)));
   dual = std::max(dual, ru_.lpNorm<Eigen::Infinity>());
   if (rv_.size() > 0) dual = std::max(dual, rv_.lpNorm<Eigen::Infinity>());
   double cv = std::max(vals_.defects.lpNorm<Eigen::Infinity>(),
@@ -897,7 +941,8 @@ void RiccatiInteriorPoint::Measure(double mu) {
     if (RipFinite(lo)) bound(x - lo, Zl(it_, b)(j, k));
     if (RipFinite(hi)) bound(hi - x, Zu(it_, b)(j, k));
   });
-  const int n = N * (S_.nx + S_.nu) + static_cast<int>(it_.V.size()) + nb;  // slacks count too
+  const int n =
+      N * (S_.nx + S_.nu) + S_.nw() + static_cast<int>(it_.V.size()) + nb;  // slacks count too
   s_d_ = std::max(kSMax, mult_sum / std::max(1, m + n)) / kSMax;
   s_c_ = std::max(kSMax, bound_sum / std::max(1, n)) / kSMax;
   dual_inf_ = dual;
@@ -941,6 +986,10 @@ bool RiccatiInteriorPoint::BuildAndSolve(
       g_.resize(nx + nu);
       g_.head(nx) = sigma_ * S_.h[k] * e.Lx;
       g_.tail(nu) = sigma_ * S_.h[k] * e.Lu;
+      if (k == 0 && S_.initial_cost) {
+        H_.topLeftCorner(nx, nx) += te_.H0;
+        g_.head(nx) += sigma_ * te_.grad0;
+      }
     }
     if (it_.s[k].size() > 0) CondenseInequalities(k, mu, r.ineq[k], nx + nu, &H_, &g_);
     AddBoundTerms(k, mu, &H_, &g_);
@@ -1011,10 +1060,11 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   // The full direction.
   d->dX.resize(nx, N + 1);
   d->dX.col(0).setZero();
+  for (int i = 0; i < S_.nw(); ++i) d->dX(S_.free0[i], 0) = sol_.u[0][i];
   d->dU.resize(nu, N);
   d->lam.resize(nx, N);
   for (int k = 0; k < N; ++k) {
-    d->dU.col(k) = sol_.u[k];
+    d->dU.col(k) = sol_.u[k].tail(nu);
     d->dX.col(k + 1) = sol_.x[k + 1].head(nx);
     d->lam.col(k) = sol_.lambda[k].head(nx);
   }
@@ -1412,10 +1462,22 @@ bool RiccatiInteriorPoint::StageBlocks(int k, const Mat& H, const Vec& g, Riccat
   const StageEval& e = st_[k];
   const bool last_copy = S_.copy && k == N - 1;
   const int rows = nx + (last_copy ? nu : 0);
-  if (k == 0) {
-    q->Q = H.bottomRightCorner(nu, nu);
-    q->q = g.tail(nu);
+  if (k == 0) {  // no x_0 but its free components, which lead the stage's "controls"
+    const int nw = S_.nw();
+    stage0_.resize(nw + nu);
+    for (int i = 0; i < nw; ++i) stage0_[i] = S_.free0[i];
+    for (int j = 0; j < nu; ++j) stage0_[nw + j] = nx + j;
+    q->Q = H(stage0_, stage0_);
+    q->q = g(stage0_);
     q->A.setZero(rows, 0);
+    q->B.setZero(rows, nw + nu);
+    for (int i = 0; i < nw; ++i) {
+      q->B.col(i).head(nx) = S_.h[0] * e.fx.col(S_.free0[i]);
+      q->B(S_.free0[i], i) += 1.0;
+    }
+    q->B.topRightCorner(nx, nu) = S_.h[0] * e.fu;
+    if (last_copy) q->B.bottomRightCorner(nu, nu).setIdentity();
+    return last_copy;
   } else {
     q->Q = H;
     q->q = g;
@@ -1440,7 +1502,8 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
     Vec g(nx + nu);
     g.head(nx) = sigma_ * S_.h[k] * e.Lx;
     g.tail(nu) = sigma_ * S_.h[k] * e.Lu - it_.zl.col(k) + it_.zu.col(k);
-    if (k > 0 && S_.has_state_bounds()) g.head(nx) += it_.zxu.col(k) - it_.zxl.col(k);
+    if (S_.has_state_multipliers()) g.head(nx) += it_.zxu.col(k) - it_.zxl.col(k);
+    if (k == 0 && S_.initial_cost) g.head(nx) += sigma_ * te_.grad0;
     Mat J(S_.ni(k), nx + nu);
     if (S_.ni(k) > 0) {
       J << e.cx, e.cu;
@@ -1482,8 +1545,10 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
     for (int k = 0; k <= N; ++k) {
       if (S_.ni(k) == 0) continue;
       const StageEval& e = st_[k];
-      const Vec du = k < N ? Vec(sol_.u[k]) : Vec(sol_.x[N].tail(nu));
-      const Vec dx = k == 0 ? Vec::Zero(nx) : Vec(sol_.x[k].head(nx));
+      const Vec du = k < N ? Vec(sol_.u[k].tail(nu)) : Vec(sol_.x[N].tail(nu));
+      Vec dx = Vec::Zero(nx);
+      if (k > 0) dx = sol_.x[k].head(nx);
+      for (int i = 0; k == 0 && i < S_.nw(); ++i) dx[S_.free0[i]] = sol_.u[0][i];
       trial.y[k] = e.cx * dx + e.cu * du + it_.v[k];
       largest = std::max(largest, trial.y[k].lpNorm<Eigen::Infinity>());
     }
@@ -1495,11 +1560,17 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
 NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   const int N = S_.N, nx = S_.nx, nu = S_.nu;
   S_.ToIterate(z0, &it_);
-  // x_0 is fixed by the NLP's bounds, which the method never leaves: take it from the problem,
-  // not from the starting point (an initial guess's states need not start at x0).
-  it_.X.col(0) = S_.nlp.ocp().x0();
+  // x_0's fixed components are fixed by the NLP's bounds, which the method never leaves: take
+  // them from the problem, not from the starting point (an initial guess's states need not start
+  // at x0). Its free components start where the NLP's starting point has them.
+  {
+    Vec x0 = S_.nlp.ocp().x0();
+    for (int i : S_.free0) x0[i] = it_.X(i, 0);
+    it_.X.col(0) = x0;
+  }
   boxes_.clear();
   boxes_.push_back({false, &S_.lb, &S_.ub, 0, N, nx});
+  if (S_.has_initial_bounds()) boxes_.push_back({true, &S_.x0lb, &S_.x0ub, 0, 1, 0});
   if (S_.has_state_bounds()) boxes_.push_back({true, &S_.xlb, &S_.xub, 1, N + 1, 0});
   // Controls and states pushed into their bounds (Ipopt's bound_push, bound_frac).
   ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
@@ -1533,7 +1604,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   }
   it_.zl.setZero(nu, N);
   it_.zu.setZero(nu, N);
-  it_.zxl.setZero(S_.has_state_bounds() ? nx : 0, S_.has_state_bounds() ? N + 1 : 0);
+  it_.zxl.setZero(S_.has_state_multipliers() ? nx : 0, S_.has_state_multipliers() ? N + 1 : 0);
   it_.zxu.setZero(it_.zxl.rows(), it_.zxl.cols());
   ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
     if (RipFinite(lo)) Zl(it_, b)(j, k) = 1.0;
@@ -1557,6 +1628,11 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     double gmax = 0.0;
     for (int k = 0; k < N; ++k) {
       if (k > 0) gmax = std::max(gmax, S_.h[k] * st_[k].Lx.lpNorm<Eigen::Infinity>());
+      for (int i = 0; k == 0 && i < S_.nw(); ++i) {
+        const int j = S_.free0[i];
+        const double g0 = S_.h[0] * st_[0].Lx[j] + (S_.initial_cost ? te_.grad0[j] : 0.0);
+        gmax = std::max(gmax, std::abs(g0));
+      }
       gmax = std::max(gmax, S_.h[k] * st_[k].Lu.lpNorm<Eigen::Infinity>());
     }
     gmax = std::max(gmax, te_.grad.lpNorm<Eigen::Infinity>());
@@ -1758,7 +1834,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     }
     it_.zl += alpha_z * d.dzl;
     it_.zu += alpha_z * d.dzu;
-    if (S_.has_state_bounds()) {
+    if (S_.has_state_multipliers()) {
       it_.zxl += alpha_z * d.dzxl;
       it_.zxu += alpha_z * d.dzxu;
     }
@@ -1810,15 +1886,19 @@ NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
     for (int k = 0; k < N; ++k) {
       out.z_lower.segment(S_.control_off[k], nu) = inv * it_.zl.col(k);
       out.z_upper.segment(S_.control_off[k], nu) = inv * it_.zu.col(k);
-      if (S_.has_state_bounds()) {
+      if (S_.has_state_multipliers()) {
         out.z_lower.segment(S_.state_off[k + 1], nx) = inv * it_.zxl.col(k + 1);
         out.z_upper.segment(S_.state_off[k + 1], nx) = inv * it_.zxu.col(k + 1);
       }
     }
-    if (rx_.cols() == N + 1) {  // x_0's bound multipliers from stationarity in x_0
+    if (rx_.cols() == N + 1) {  // a fixed x_0 component's bound multiplier: its stationarity
       const Vec r = inv * rx_.col(0);
       out.z_lower.segment(S_.state_off[0], nx) = r.cwiseMax(0.0);
       out.z_upper.segment(S_.state_off[0], nx) = (-r).cwiseMax(0.0);
+    }
+    for (int i : S_.free0) {  // a free one's: its own
+      out.z_lower[S_.state_off[0] + i] = S_.has_state_multipliers() ? inv * it_.zxl(i, 0) : 0.0;
+      out.z_upper[S_.state_off[0] + i] = S_.has_state_multipliers() ? inv * it_.zxu(i, 0) : 0.0;
     }
   }
   out.stats["riccati_ip_iterations"] = iterations_;
@@ -1876,8 +1956,9 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
            "' has a free final time, which riccati-ip does not take (it keeps the horizon fixed); "
            "ipopt on a collocation transcription solves it";
   }
-  ProblemFeatures takes;  // its stage blocks fix x(t0); controls and states have bounds
+  ProblemFeatures takes;  // x(t0)'s free components are stage-0 variables; states have bounds
   takes.state_bounds = true;
+  takes.free_initial_state = true;
   if (std::string why = UnsupportedFeature(ocp, "riccati-ip", takes); !why.empty()) return why;
   const TranscriptionOptions options = TranscriptionOptionsFor(request);
   if (!options.scaling.IsIdentity()) {
@@ -1974,6 +2055,7 @@ bool EulerStageLagrangian(const TranscribedNlp& nlp,
   }
   const int xN = S->state_off[N];
   H.block(xN, xN, nx, nx) += te.H;
+  if (S->initial_cost) H.block(S->state_off[0], S->state_off[0], nx, nx) += te.H0;
   if (S->copy) {
     const int uo = S->control_off[N - 1];
     const Mat& Hk = st[N].H;

@@ -17,6 +17,14 @@ constexpr const char* kCollocationSolvers =
     "ipopt and nlopt on a collocation transcription (euler, trapezoid, hermite-simpson, lgr) "
     "solve it";
 
+// kCollocationSolvers, and riccati-ip where it takes every feature the problem uses.
+std::string WhoSolvesIt(const ProblemFeatures& uses) {
+  std::string who = kCollocationSolvers;
+  if (!uses.free_final_time && !uses.boundary_constraints)
+    who += ", and so does riccati-ip on euler";
+  return who;
+}
+
 }  // namespace
 
 SolveResult NotApplicableResult(const std::string& solver, const std::string& why) {
@@ -54,17 +62,17 @@ std::string UnsupportedFeature(const Ocp& ocp,
     return "problem '" + ocp.name() +
            "' has static parameters (constant decisions, posed as a "
            "partly free initial state), which " +
-           solver + " does not take: " + kCollocationSolvers;
+           solver + " does not take: " + WhoSolvesIt(uses);
   }
   if (uses.free_initial_state && !takes.free_initial_state) {
     return "problem '" + ocp.name() + "' has a free initial state, which " + solver +
-           " does not take (it starts every trajectory from x0): " + kCollocationSolvers;
+           " does not take (it starts every trajectory from x0): " + WhoSolvesIt(uses);
   }
   if (uses.state_bounds && !takes.state_bounds) {
     return "problem '" + ocp.name() + "' has state bounds, which " + solver +
            " does not take (its states follow from the controls, or it has no bounds on "
            "them): " +
-           kCollocationSolvers + ", and so does riccati-ip on euler";
+           WhoSolvesIt(uses);
   }
   if (uses.boundary_constraints && !takes.boundary_constraints) {
     return "problem '" + ocp.name() + "' has boundary constraints b(x(t0), x(tf)), which " +

@@ -381,6 +381,8 @@ TEST(RiccatiIpStages, LagrangianDerivativesMatchFiniteDifferencesAndTheNlp) {
       {"double-integrator", {}, TerminalMode::kPenalty},    // penalty terminal form
       {"comm-path2d", {"channel=0"}, TerminalMode::kHard},  // a ball of controls
       {"goddard", {}, TerminalMode::kHard},
+      {"free-start", {}, TerminalMode::kPenalty},  // a free x_0 component, an initial cost
+      {"insurance", {}, TerminalMode::kHard},      // a static parameter, path constraints
   };
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0.0, 1.0);
@@ -599,6 +601,41 @@ TEST(RiccatiIpSolver, StateBoundsReachIpoptsOptimum) {
   }
 }
 
+// Free components of x_0 (a free initial state, static parameters) as stage-0 variables: on
+// four problems the optimum of the Euler NLP is Ipopt's, x_0 included, and the bound
+// multipliers of x_0's free components are Ipopt's (free-start's x1(0) ends on its bound).
+TEST(RiccatiIpSolver, FreeInitialStatesAndStaticParametersReachIpoptsOptimum) {
+  for (const std::string name :
+       {"free-start", "double-oscillator", "double-integrator-time-parameter", "insurance"}) {
+    SCOPED_TRACE(name);
+    const auto ocp = MakeProblem(name, {}, 1);
+    ASSERT_TRUE(ocp->HasFreeInitialState());
+    const auto nlp = EulerNlp(*ocp, 50, TerminalMode::kHard);
+    NlpSolution ip, rip;
+    ASSERT_NO_FATAL_FAILURE(BothConvergeToOneOptimum(*nlp, 1e-10, &ip, &rip));
+    const int x0 = dynamic_cast<const CollocationNlp&>(*nlp).layout().states[0].offset;
+    const VectorBounds initial = ocp->InitialNodeBounds();
+    double largest_z = 0.0;
+    for (int i = 0; i < ocp->nx(); ++i) {
+      if (initial.lower[i] == initial.upper[i]) {
+        EXPECT_EQ(rip.z[x0 + i], ocp->x0()[i]);  // fixed: the problem's value
+        continue;
+      }
+      EXPECT_NEAR(rip.z[x0 + i], ip.z[x0 + i], 1e-6 * (1.0 + std::abs(ip.z[x0 + i])));
+      largest_z = std::max({largest_z, ip.z_lower[x0 + i], ip.z_upper[x0 + i]});
+      EXPECT_NEAR(rip.z_lower[x0 + i], ip.z_lower[x0 + i], 1e-4 * (1.0 + ip.z_lower[x0 + i]));
+      EXPECT_NEAR(rip.z_upper[x0 + i], ip.z_upper[x0 + i], 1e-4 * (1.0 + ip.z_upper[x0 + i]));
+    }
+    if (name == "free-start") EXPECT_GT(largest_z, 0.1);  // the active bound on x1(0)
+    EXPECT_LT((rip.z - ip.z).lpNorm<Eigen::Infinity>(),
+              1e-6 * (1.0 + ip.z.lpNorm<Eigen::Infinity>()));
+    std::cout << "[ riccati-ip ] " << name << " N=50 (free x_0): iterations " << rip.iterations
+              << " (Ipopt " << ip.iterations << "), |df|/|f| "
+              << std::abs(rip.objective - ip.objective) / std::max(1.0, std::abs(ip.objective))
+              << ", largest x_0 bound multiplier " << largest_z << "\n";
+  }
+}
+
 // A state bound active at x_N on a problem with path constraints, whose terminal block is
 // (x_N, v) with v the copy of u_{N-1}: bryson-denham (its path row x1 <= 1/9) in the penalty
 // form with x2 >= -0.9, which the terminal penalty pushes x2(1) against (the hard form would be
@@ -763,6 +800,13 @@ TEST(RiccatiIpSolver, NotApplicableOutsideItsClass) {
   const SolveResult r = solver->Solve(*free_time, request);
   EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
   EXPECT_NE(r.message.find("free final time"), std::string::npos) << r.message;
+
+  // Boundary constraints b(x(t0), x(tf)) couple the two ends, which the recursion does not.
+  const auto coupled = MakeProblem("coupled-ends", {}, 1);
+  request.grid = TimeGrid::Uniform(coupled->t0(), coupled->tf(), 10);
+  const SolveResult rb = solver->Solve(*coupled, request);
+  EXPECT_EQ(rb.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(rb.message.find("boundary constraints"), std::string::npos) << rb.message;
 
   request.transcription = "no-such-scheme";
   EXPECT_THROW(solver->Solve(*lqr, request), std::invalid_argument);
