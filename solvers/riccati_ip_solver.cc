@@ -149,6 +149,9 @@ namespace {
 // components are no variables; its free ones (a free or partly free initial state, static
 // parameters: Ocp::InitialNodeBounds with lower < upper) are variables of stage 0 beside u_0,
 // within their initial-state bounds, with the initial cost phi0(x_0) when the problem has one.
+// A free final time T is the NLP's: its steps are r h_k with r = (T - t0) / (tf - t0) on the
+// nominal grid (f and L at the nominal times t_k), and its running cost r sum h_k L; the
+// interior-point method carries T through the recursion as an augmented state (below).
 class EulerStages {
  public:
   // nullptr with the reason when `nlp` is not an Euler NLP of the supported class.
@@ -172,6 +175,13 @@ class EulerStages {
   std::vector<int> free0;
   Vec x0lb, x0ub;
   bool initial_cost = false;
+  // A free final time: the NLP's variable T (index time_index), its bounds (1-vectors, +-inf
+  // where unbounded) and the nominal horizon [t0, t0 + duration] of t and h.
+  bool free_time = false;
+  int time_index = -1;
+  Vec Tlb, Tub;
+  double t0 = 0.0, duration = 1.0;
+  int nT() const { return free_time ? 1 : 0; }
   std::vector<ControlSet::Block> balls;
   std::vector<int> state_off, control_off;
   // Ipopt's bound_relax_factor: the inequality rows are c - relax_path <= 0 and
@@ -186,12 +196,12 @@ class EulerStages {
     for (int b = 0; b < nball; ++b) {
       relax_ball[b] = factor * std::max(1.0, balls[b].radius * balls[b].radius);
     }
-    for (Vec* lower : {&lb, &xlb, &x0lb}) {
+    for (Vec* lower : {&lb, &xlb, &x0lb, &Tlb}) {
       for (double& v : *lower) {
         if (RipFinite(v)) v -= factor * std::max(1.0, std::abs(v));
       }
     }
-    for (Vec* upper : {&ub, &xub, &x0ub}) {
+    for (Vec* upper : {&ub, &xub, &x0ub, &Tub}) {
       for (double& v : *upper) {
         if (RipFinite(v)) v += factor * std::max(1.0, std::abs(v));
       }
@@ -211,11 +221,13 @@ class EulerStages {
 
   struct Iterate {
     Mat X, U;  // nx x (N+1), nu x N
+    Mat T;     // 1 x 1: the final time (free_time), else 0 x 0
     Vec V;     // nu (copy) or empty
     std::vector<Vec> s, y, v;
     Mat zl, zu;    // nu x N (0 where no bound)
     Mat zxl, zxu;  // nx x (N+1): x_0's initial-state bounds' in column 0, then the state
                    // bounds' (0 where unbounded or fixed; empty without either)
+    Mat zTl, zTu;  // 1 x 1: T's bounds' (free_time; 0 where unbounded)
     Mat lam;       // nx x N, defect multipliers (NLP convention, scaled problem)
     Vec lamV, nu;
   };
@@ -227,6 +239,10 @@ class EulerStages {
     Vec c;       // ni rows: path, then balls (|u - c|^2 - r^2)
     Mat cx, cu;  // ni x nx, ni x nu
     Mat H;       // (nx + nu)^2 Hessian of the stage Lagrangian (filled by Hessians())
+    // free_time: d^2/dT d(x, u) of the stage Lagrangian (EvalHessians), and the stage's dJ/dT
+    // without sigma, h_k L / duration (EvalDerivatives).
+    Vec HT;
+    double gT = 0.0;
   };
   struct TerminalEval {  // the two ends: x_N's terms, and x_0's initial cost
     double Phi = 0.0;    // terminal objective (penalty included)
@@ -246,6 +262,11 @@ class EulerStages {
     bool ok = false;
   };
 
+  // The step of interval k at `it`: r h_k with a free final time, else h_k.
+  double Step(const Iterate& it, int k) const {
+    return free_time ? (it.T(0, 0) - t0) / duration * h[k] : h[k];
+  }
+
   // u at stage k, or v at stage N (for evaluations at t_N).
   Eigen::Ref<const Vec> StageControl(const Iterate& it, int k) const {
     return k < N ? Eigen::Ref<const Vec>(it.U.col(k)) : Eigen::Ref<const Vec>(it.V);
@@ -261,14 +282,16 @@ class EulerStages {
                     std::vector<StageEval>* st,
                     TerminalEval* te) const;
   // Gradient of sigma f + equality and inequality multiplier terms (no bound terms): per stage
-  // (rx_k, ru_k), rx of stage 0 being the x_0 part; plus the copy's rv.
+  // (rx_k, ru_k), rx of stage 0 being the x_0 part; the copy's rv; with a free final time its
+  // T entry rT (else 0).
   void LagrangianGradient(const Iterate& it,
                           double sigma,
                           const std::vector<StageEval>& st,
                           const TerminalEval& te,
                           Mat* rx,
                           Mat* ru,
-                          Vec* rv) const;
+                          Vec* rv,
+                          double* rT) const;
 
   void ToIterate(const Vec& z, Iterate* it) const;
   Vec ToNlp(const Iterate& it) const;
@@ -282,10 +305,6 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
   const auto* nlp = dynamic_cast<const CollocationNlp*>(&tnlp);
   if (nlp == nullptr) {
     *why_not = "riccati-ip takes the Euler transcription's NLP only (not a collocation NLP)";
-    return nullptr;
-  }
-  if (tnlp.HasFinalTimeVariable()) {
-    *why_not = "riccati-ip keeps the horizon fixed (the final time is a variable of this NLP)";
     return nullptr;
   }
   auto st = std::make_unique<EulerStages>(*nlp);
@@ -373,6 +392,19 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
     st->x0ub[i] = hi >= kRipInfBound ? kRipInf : hi;
   }
   st->initial_cost = !st->free0.empty() && ocp.HasInitialCost();
+  if (tnlp.HasFinalTimeVariable()) {
+    st->free_time = true;
+    st->time_index = nlp->num_variables() - 1;  // T follows the layout's variables
+    st->t0 = nlp->state_grid().t0();            // the nominal horizon (the Euler grid's ends)
+    st->duration = nlp->state_grid().tf() - nlp->state_grid().t0();
+    const double lo = ocp.free_final_time()->lower, hi = ocp.free_final_time()->upper;
+    st->Tlb = Vec::Constant(1, lo <= -kRipInfBound ? -kRipInf : lo);
+    st->Tub = Vec::Constant(1, hi >= kRipInfBound ? kRipInf : hi);
+    if (!(lo < hi)) {
+      *why_not = "riccati-ip needs lower < upper for a free final time";
+      return nullptr;
+    }
+  }
   st->nball = static_cast<int>(st->balls.size());
   st->relax_ball.assign(st->nball, 0.0);
   st->copy = st->nc > 0;
@@ -380,6 +412,8 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
 }
 
 void EulerStages::ToIterate(const Vec& z, Iterate* it) const {
+  it->T.resize(nT(), nT());
+  if (free_time) it->T(0, 0) = z[time_index];
   it->X.resize(nx, N + 1);
   it->U.resize(nu, N);
   for (int k = 0; k <= N; ++k) it->X.col(k) = z.segment(state_off[k], nx);
@@ -391,6 +425,7 @@ Vec EulerStages::ToNlp(const Iterate& it) const {
   Vec z = Vec::Zero(nlp.num_variables());
   for (int k = 0; k <= N; ++k) z.segment(state_off[k], nx) = it.X.col(k);
   for (int k = 0; k < N; ++k) z.segment(control_off[k], nu) = it.U.col(k);
+  if (free_time) z[time_index] = it.T(0, 0);
   return z;
 }
 
@@ -405,8 +440,9 @@ void EulerStages::EvalValues(const Iterate& it, Values* out) const {
     const auto x = it.X.col(k);
     const auto u = it.U.col(k);
     ocp.Dynamics(t[k], x, u, f);
-    J += h[k] * ocp.RunningCost(t[k], x, u);
-    v.defects.col(k) = it.X.col(k + 1) - x - h[k] * f;
+    const double hk = Step(it, k);
+    J += hk * ocp.RunningCost(t[k], x, u);
+    v.defects.col(k) = it.X.col(k + 1) - x - hk * f;
     Vec& c = v.c[k];
     c.resize(ni(k));
     if (nc > 0) {
@@ -476,6 +512,7 @@ bool EulerStages::EvalDerivatives(const Iterate& it,
       }
       ok = ok && RipAllFinite(s.f) && RipAllFinite(s.fx) && RipAllFinite(s.fu) && RipFinite(s.L) &&
            RipAllFinite(s.Lx) && RipAllFinite(s.Lu);
+      s.gT = free_time ? h[k] / duration * s.L : 0.0;
     } else if (copy) {
       ocp.PathConstraintsJacobian(t[k], x, u, s.c, s.cx, s.cu);
       s.c.array() -= relax_path;
@@ -520,8 +557,15 @@ bool EulerStages::EvalHessians(const Iterate& it,
     const auto u = StageControl(it, k);
     const auto mu_path = it.y[k].head(nc);
     if (k < N) {
-      lam_f = -h[k] * it.lam.col(k);
-      ocp.PointHessian(t[k], x, u, sigma * h[k], lam_f, mu_path, s.H);
+      const double hk = Step(it, k);
+      lam_f = -hk * it.lam.col(k);
+      ocp.PointHessian(t[k], x, u, sigma * hk, lam_f, mu_path, s.H);
+      if (free_time) {  // (h_k / duration) (sigma L - lam^T f) differentiated in (x, u)
+        const double a = h[k] / duration;
+        s.HT.resize(nx + nu);
+        s.HT.head(nx).noalias() = a * (sigma * s.Lx - s.fx.transpose() * it.lam.col(k));
+        s.HT.tail(nu).noalias() = a * (sigma * s.Lu - s.fu.transpose() * it.lam.col(k));
+      }
       for (int b = 0; b < nball; ++b) {
         const auto& B = balls[b];
         s.H.diagonal().segment(nx + B.offset, B.size).array() += 2.0 * it.y[k][nc + b];
@@ -557,9 +601,11 @@ void EulerStages::LagrangianGradient(const Iterate& it,
                                      const TerminalEval& te,
                                      Mat* rx,
                                      Mat* ru,
-                                     Vec* rv) const {
+                                     Vec* rv,
+                                     double* rT) const {
   rx->resize(nx, N + 1);
   ru->resize(nu, N);
+  *rT = 0.0;
   for (int k = 0; k < N; ++k) {
     const StageEval& s = st[k];
     const auto lam = it.lam.col(k);
@@ -568,14 +614,16 @@ void EulerStages::LagrangianGradient(const Iterate& it,
     double* gu = ru->col(k).data();
     const double* l = lam.data();
     const double* lp = k > 0 ? it.lam.col(k - 1).data() : nullptr;
-    const double sh = sigma * h[k];
+    const double hk = Step(it, k);
+    const double sh = sigma * hk;
     const int m = ni(k);
+    if (free_time) *rT += sigma * s.gT - h[k] / duration * s.f.dot(lam);
     const double* y = m > 0 ? it.y[k].data() : nullptr;
     for (int j = 0; j < nx; ++j) {
       const double* fj = s.fx.data() + static_cast<long>(j) * nx;
       double d = 0.0;
       for (int i = 0; i < nx; ++i) d += fj[i] * l[i];
-      double g = sh * s.Lx[j] - l[j] - h[k] * d;
+      double g = sh * s.Lx[j] - l[j] - hk * d;
       if (lp != nullptr) g += lp[j];
       const double* cj = s.cx.data() + static_cast<long>(j) * m;
       for (int i = 0; i < m; ++i) g += cj[i] * y[i];
@@ -585,7 +633,7 @@ void EulerStages::LagrangianGradient(const Iterate& it,
       const double* fj = s.fu.data() + static_cast<long>(j) * nx;
       double d = 0.0;
       for (int i = 0; i < nx; ++i) d += fj[i] * l[i];
-      double g = sh * s.Lu[j] - h[k] * d;
+      double g = sh * s.Lu[j] - hk * d;
       const double* cj = s.cu.data() + static_cast<long>(j) * m;
       for (int i = 0; i < m; ++i) g += cj[i] * y[i];
       gu[j] = g;
@@ -684,11 +732,13 @@ struct LineSearchReference {
 };
 
 struct Direction {
-  Mat dX, dU;  // dX col 0 = 0
+  Mat dX, dU;  // dX col 0: x_0's free components (0 elsewhere)
+  Mat dT;      // 1 x 1 (free final time) or empty
   Vec dV;
   std::vector<Vec> ds, dy, dv;
   Mat dzl, dzu;
   Mat dzxl, dzxu;  // the state bounds' multipliers
+  Mat dzTl, dzTu;  // T's
   Mat lam;         // new values
   Vec lamV, nu;
 };
@@ -703,25 +753,47 @@ class RiccatiInteriorPoint {
   // offset nx of stage k's (x_k, u_k)) and the states x_k (nodes 1..N, offset 0; x_N's block
   // is the terminal one), each entry with a lower and an upper multiplier in z (zl, zu or zxl,
   // zxu). Every barrier, step and multiplier rule below loops over them.
+  // The final time T (free_time) is a third kind: one entry at node 0, whose barrier terms
+  // enter stage 0's block where T is a variable (TimeBoundTerms), not through AddBoundTerms.
+  enum class BoxKind { kControl, kState, kTime };
   struct Box {
-    bool state = false;
+    BoxKind kind = BoxKind::kControl;
     const Vec* lb = nullptr;
     const Vec* ub = nullptr;
     int first = 0, last = 0;  // nodes [first, last)
     int offset = 0;           // in a stage's (x, u)
   };
   std::vector<Box> boxes_;
-  static Mat& Value(Iterate& it, const Box& b) { return b.state ? it.X : it.U; }
-  static const Mat& Value(const Iterate& it, const Box& b) { return b.state ? it.X : it.U; }
-  static Mat& Zl(Iterate& it, const Box& b) { return b.state ? it.zxl : it.zl; }
-  static Mat& Zu(Iterate& it, const Box& b) { return b.state ? it.zxu : it.zu; }
-  static const Mat& Zl(const Iterate& it, const Box& b) { return b.state ? it.zxl : it.zl; }
-  static const Mat& Zu(const Iterate& it, const Box& b) { return b.state ? it.zxu : it.zu; }
-  static const Mat& Step(const Direction& d, const Box& b) { return b.state ? d.dX : d.dU; }
-  static Mat& DZl(Direction& d, const Box& b) { return b.state ? d.dzxl : d.dzl; }
-  static Mat& DZu(Direction& d, const Box& b) { return b.state ? d.dzxu : d.dzu; }
-  static const Mat& DZl(const Direction& d, const Box& b) { return b.state ? d.dzxl : d.dzl; }
-  static const Mat& DZu(const Direction& d, const Box& b) { return b.state ? d.dzxu : d.dzu; }
+  // Mat& for an Iterate or Direction of either constness: the member of b's kind.
+  template <class It>
+  static auto& Pick(It& it, const Box& b, auto control, auto state, auto time) {
+    return b.kind == BoxKind::kControl ? it.*control
+           : b.kind == BoxKind::kState ? it.*state
+                                       : it.*time;
+  }
+  template <class It>
+  static auto& Value(It& it, const Box& b) {
+    return Pick(it, b, &Iterate::U, &Iterate::X, &Iterate::T);
+  }
+  template <class It>
+  static auto& Zl(It& it, const Box& b) {
+    return Pick(it, b, &Iterate::zl, &Iterate::zxl, &Iterate::zTl);
+  }
+  template <class It>
+  static auto& Zu(It& it, const Box& b) {
+    return Pick(it, b, &Iterate::zu, &Iterate::zxu, &Iterate::zTu);
+  }
+  static const Mat& Step(const Direction& d, const Box& b) {
+    return Pick(d, b, &Direction::dU, &Direction::dX, &Direction::dT);
+  }
+  template <class D>
+  static auto& DZl(D& d, const Box& b) {
+    return Pick(d, b, &Direction::dzl, &Direction::dzxl, &Direction::dzTl);
+  }
+  template <class D>
+  static auto& DZu(D& d, const Box& b) {
+    return Pick(d, b, &Direction::dzu, &Direction::dzxu, &Direction::dzTu);
+  }
   // Calls f(box, node k, component j, lower bound, upper bound) for every entry with a finite
   // bound on at least one side (the other side +-inf).
   template <class F>
@@ -799,6 +871,16 @@ class RiccatiInteriorPoint {
   // last stage with the copy of u_{N-1} its identity rows. True on that stage. The right-hand
   // side b is the caller's (the Newton step's defects, or zero for the multiplier start).
   bool StageBlocks(int k, const Mat& H, const Vec& g, RiccatiStage* q) const;
+  // With a free final time every stage's state is (x_k, T) (the terminal one (x_N, T, v)):
+  // H and g (in (x, u) order) with T's row and column inserted after x, its Hessian row HT
+  // (nullptr: zeros), diagonal hTT and gradient gT, into Ha, ga.
+  void WithTime(
+      const Mat& H, const Vec& g, const Vec* HT, double hTT, double gT, Mat* Ha, Vec* ga) const;
+  // Adds T's barrier terms (its Sigma and barrier gradient, kappa_d for a one-sided bound) to
+  // hTT and gT, as AddBoundTerms does for the other variables.
+  void TimeBoundTerms(double mu, double* hTT, double* gT) const;
+  // Swaps a trial's primal variables (x, u, T, v, slacks) into it_.
+  void TakePrimal(Iterate* trial);
   // Adds stage k's inequalities with their slacks and multipliers eliminated to the (x, u)
   // Hessian H and gradient g (n = nx + nu): J^T S^-1 V J and J^T (mu S^-1 e - kappa_d mu e +
   // S^-1 V rc), J = [c_x c_u], rc the rows' residuals (c + s at the iterate).
@@ -839,6 +921,7 @@ class RiccatiInteriorPoint {
   double E0_ = 0, Emu_ = 0;
   Mat rx_, ru_;
   Vec rv_;
+  double rT_ = 0.0;
   Residuals res_, soc_res_, trial_res_;
   RiccatiRhs rhs_, refine_rhs_;
   RiccatiSolution correction_;
@@ -857,6 +940,8 @@ class RiccatiInteriorPoint {
   // Workspace of BuildAndSolve (sized once).
   Mat H_;
   Vec g_, jd_, w_, r_;
+  mutable Mat Ha_;  // a stage's block with T's row and column (WithTime)
+  mutable Vec ga_;
   std::vector<int> nonzero_;
   mutable std::vector<int> stage0_;  // StageBlocks' stage-0 indices: x_0's free components, u_0
   double delta_last_ = 0.0;
@@ -893,7 +978,8 @@ double RiccatiInteriorPoint::BarrierObjective(const Values& v, const Iterate& it
 
 void RiccatiInteriorPoint::Measure(double mu) {
   const int N = S_.N;
-  S_.LagrangianGradient(it_, sigma_, st_, te_, &rx_, &ru_, &rv_);
+  S_.LagrangianGradient(it_, sigma_, st_, te_, &rx_, &ru_, &rv_, &rT_);
+  if (S_.free_time) rT_ += it_.zTu(0, 0) - it_.zTl(0, 0);
   ru_ -= it_.zl;
   ru_ += it_.zu;
   if (S_.has_state_multipliers()) {
@@ -902,6 +988,7 @@ void RiccatiInteriorPoint::Measure(double mu) {
   }
   double dual = rx_.rightCols(N).lpNorm<Eigen::Infinity>();
   for (int i : S_.free0) dual = std::max(dual, std::abs(rx_(i, 0)));
+  dual = std::max(dual, std::abs(rT_));
   dual = std::max(dual, ru_.lpNorm<Eigen::Infinity>());
   if (rv_.size() > 0) dual = std::max(dual, rv_.lpNorm<Eigen::Infinity>());
   double cv = std::max(vals_.defects.lpNorm<Eigen::Infinity>(),
@@ -941,8 +1028,8 @@ void RiccatiInteriorPoint::Measure(double mu) {
     if (RipFinite(lo)) bound(x - lo, Zl(it_, b)(j, k));
     if (RipFinite(hi)) bound(hi - x, Zu(it_, b)(j, k));
   });
-  const int n =
-      N * (S_.nx + S_.nu) + S_.nw() + static_cast<int>(it_.V.size()) + nb;  // slacks count too
+  const int n = N * (S_.nx + S_.nu) + S_.nw() + S_.nT() + static_cast<int>(it_.V.size()) +
+                nb;  // slacks count too
   s_d_ = std::max(kSMax, mult_sum / std::max(1, m + n)) / kSMax;
   s_c_ = std::max(kSMax, bound_sum / std::max(1, n)) / kSMax;
   dual_inf_ = dual;
@@ -984,8 +1071,9 @@ bool RiccatiInteriorPoint::BuildAndSolve(
     } else {
       H_ = e.H;
       g_.resize(nx + nu);
-      g_.head(nx) = sigma_ * S_.h[k] * e.Lx;
-      g_.tail(nu) = sigma_ * S_.h[k] * e.Lu;
+      const double hk = S_.Step(it_, k);
+      g_.head(nx) = sigma_ * hk * e.Lx;
+      g_.tail(nu) = sigma_ * hk * e.Lu;
       if (k == 0 && S_.initial_cost) {
         H_.topLeftCorner(nx, nx) += te_.H0;
         g_.head(nx) += sigma_ * te_.grad0;
@@ -993,8 +1081,16 @@ bool RiccatiInteriorPoint::BuildAndSolve(
     }
     if (it_.s[k].size() > 0) CondenseInequalities(k, mu, r.ineq[k], nx + nu, &H_, &g_);
     AddBoundTerms(k, mu, &H_, &g_);
-    const bool last_copy = StageBlocks(k, H_, g_, &q);
-    q.b.resize(q.B.rows());
+    if (S_.free_time) {
+      // T's entries: its Hessian row, the stage's dJ/dT, and at stage 0 (where T is a
+      // variable) its barrier terms; the restoration's minimum-norm step weighs T once, at 0.
+      const Vec* HT = feasibility ? nullptr : &e.HT;
+      double hTT = feasibility && k == 0 ? 1.0 : 0.0, gT = feasibility ? 0.0 : sigma_ * e.gT;
+      if (k == 0) TimeBoundTerms(mu, &hTT, &gT);
+      WithTime(H_, g_, HT, hTT, gT, &Ha_, &ga_);
+    }
+    const bool last_copy = StageBlocks(k, S_.free_time ? Ha_ : H_, S_.free_time ? ga_ : g_, &q);
+    q.b.setZero(q.B.rows());
     q.b.head(nx) = -r.defects.col(k);
     if (last_copy) q.b.tail(nu) = -r.copy_row;
   }
@@ -1012,7 +1108,12 @@ bool RiccatiInteriorPoint::BuildAndSolve(
     CondenseInequalities(N, mu, r.ineq[N], nxN, &qp_.QN, &qp_.qN);
   }
   AddBoundTerms(N, mu, &qp_.QN, &qp_.qN);
-  qp_.C.setZero(S_.npsi, nxN);
+  if (S_.free_time) {  // x_N's block does not depend on T: an empty row (x_N, T, v)
+    WithTime(qp_.QN, qp_.qN, nullptr, 0.0, 0.0, &Ha_, &ga_);
+    qp_.QN.swap(Ha_);
+    qp_.qN.swap(ga_);
+  }
+  qp_.C.setZero(S_.npsi, nxN + S_.nT());
   qp_.c.resize(S_.npsi);
   if (S_.npsi > 0) {
     qp_.C.leftCols(nx) = te_.psix;
@@ -1061,6 +1162,8 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   d->dX.resize(nx, N + 1);
   d->dX.col(0).setZero();
   for (int i = 0; i < S_.nw(); ++i) d->dX(S_.free0[i], 0) = sol_.u[0][i];
+  d->dT.resize(S_.nT(), S_.nT());
+  if (S_.free_time) d->dT(0, 0) = sol_.u[0][S_.nw()];
   d->dU.resize(nu, N);
   d->lam.resize(nx, N);
   for (int k = 0; k < N; ++k) {
@@ -1111,6 +1214,8 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   d->dzu.setZero(nu, N);
   d->dzxl.setZero(it_.zxl.rows(), it_.zxl.cols());
   d->dzxu.setZero(it_.zxu.rows(), it_.zxu.cols());
+  d->dzTl.setZero(S_.nT(), S_.nT());
+  d->dzTu.setZero(S_.nT(), S_.nT());
   ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
     const double x = Value(it_, b)(j, k), dx = Step(*d, b)(j, k);
     if (RipFinite(lo)) {
@@ -1149,7 +1254,7 @@ void RiccatiInteriorPoint::Refine(double dw, double dc) {
 
 void RiccatiInteriorPoint::AddBoundTerms(int k, double mu, Mat* H, Vec* g) const {
   for (const Box& b : boxes_) {
-    if (k < b.first || k >= b.last) continue;
+    if (k < b.first || k >= b.last || b.kind == BoxKind::kTime) continue;
     const int off = k < S_.N ? b.offset : 0;  // x_N leads the terminal block
     const Mat& x = Value(it_, b);
     for (int j = 0; j < b.lb->size(); ++j) {
@@ -1203,6 +1308,7 @@ void RiccatiInteriorPoint::StepToBoundary(const Direction& d,
 void RiccatiInteriorPoint::PrimalTrial(const Direction& d, double alpha, Iterate* trial) const {
   trial->X = it_.X + alpha * d.dX;
   trial->U = it_.U + alpha * d.dU;
+  trial->T = it_.T + alpha * d.dT;
   if (S_.copy) {
     trial->V = it_.V + alpha * d.dV;
   } else {
@@ -1363,10 +1469,7 @@ bool RiccatiInteriorPoint::Restore(const LineSearchReference& ref,
       *why = buf;
       return false;
     }
-    it_.X.swap(trial.X);
-    it_.U.swap(trial.U);
-    it_.V.swap(trial.V);
-    it_.s.swap(trial.s);
+    TakePrimal(&trial);
     std::swap(vals_, tv);
     ClampBoundMultipliers();
     theta = theta_t;
@@ -1458,37 +1561,91 @@ void RiccatiInteriorPoint::CondenseInequalities(
 // J_c^T v, no transition or terminal residuals. Discarded (zero) when its largest entry exceeds
 // 1000 (Ipopt's constr_mult_init_max) or the recursion fails.
 bool RiccatiInteriorPoint::StageBlocks(int k, const Mat& H, const Vec& g, RiccatiStage* q) const {
-  const int N = S_.N, nx = S_.nx, nu = S_.nu;
+  const int nx = S_.nx, nu = S_.nu, nT = S_.nT(), nxa = nx + nT;
   const StageEval& e = st_[k];
-  const bool last_copy = S_.copy && k == N - 1;
-  const int rows = nx + (last_copy ? nu : 0);
-  if (k == 0) {  // no x_0 but its free components, which lead the stage's "controls"
+  const bool last_copy = S_.copy && k == S_.N - 1;
+  const int rows = nxa + (last_copy ? nu : 0);  // x_{k+1}, T, and v = u_{N-1} on the last
+  const double hk = S_.Step(it_, k);
+  if (k == 0) {  // no x_0 but its free components (and T), which lead the stage's "controls"
     const int nw = S_.nw();
-    stage0_.resize(nw + nu);
+    stage0_.resize(nw + nT + nu);
     for (int i = 0; i < nw; ++i) stage0_[i] = S_.free0[i];
-    for (int j = 0; j < nu; ++j) stage0_[nw + j] = nx + j;
+    if (nT > 0) stage0_[nw] = nx;
+    for (int j = 0; j < nu; ++j) stage0_[nw + nT + j] = nxa + j;
     q->Q = H(stage0_, stage0_);
     q->q = g(stage0_);
     q->A.setZero(rows, 0);
-    q->B.setZero(rows, nw + nu);
+    q->B.setZero(rows, nw + nT + nu);
     for (int i = 0; i < nw; ++i) {
-      q->B.col(i).head(nx) = S_.h[0] * e.fx.col(S_.free0[i]);
+      q->B.col(i).head(nx) = hk * e.fx.col(S_.free0[i]);
       q->B(S_.free0[i], i) += 1.0;
     }
-    q->B.topRightCorner(nx, nu) = S_.h[0] * e.fu;
+    if (nT > 0) {
+      q->B.col(nw).head(nx) = S_.h[0] / S_.duration * e.f;
+      q->B(nx, nw) = 1.0;
+    }
+    q->B.block(0, nw + nT, nx, nu) = hk * e.fu;
     if (last_copy) q->B.bottomRightCorner(nu, nu).setIdentity();
     return last_copy;
-  } else {
-    q->Q = H;
-    q->q = g;
-    q->A.setZero(rows, nx);
-    q->A.topRows(nx) = S_.h[k] * e.fx;
-    q->A.topRows(nx).diagonal().array() += 1.0;
+  }
+  q->Q = H;
+  q->q = g;
+  q->A.setZero(rows, nxa);
+  q->A.topLeftCorner(nx, nx) = hk * e.fx;
+  q->A.topLeftCorner(nx, nx).diagonal().array() += 1.0;
+  if (nT > 0) {  // d x_{k+1} / dT = (h_k / duration) f; T_{k+1} = T_k
+    q->A.col(nx).head(nx) = S_.h[k] / S_.duration * e.f;
+    q->A(nx, nx) = 1.0;
   }
   q->B.setZero(rows, nu);
-  q->B.topRows(nx) = S_.h[k] * e.fu;
+  q->B.topRows(nx) = hk * e.fu;
   if (last_copy) q->B.bottomRows(nu).setIdentity();
   return last_copy;
+}
+
+void RiccatiInteriorPoint::WithTime(
+    const Mat& H, const Vec& g, const Vec* HT, double hTT, double gT, Mat* Ha, Vec* ga) const {
+  const int n = static_cast<int>(H.rows()), nx = S_.nx, rest = n - nx;
+  Ha->resize(n + 1, n + 1);
+  ga->resize(n + 1);
+  Ha->topLeftCorner(nx, nx) = H.topLeftCorner(nx, nx);
+  Ha->topRightCorner(nx, rest) = H.topRightCorner(nx, rest);
+  Ha->bottomLeftCorner(rest, nx) = H.bottomLeftCorner(rest, nx);
+  Ha->bottomRightCorner(rest, rest) = H.bottomRightCorner(rest, rest);
+  if (HT != nullptr) {
+    Ha->col(nx).head(nx) = HT->head(nx);
+    Ha->col(nx).tail(rest) = HT->tail(rest);
+  } else {
+    Ha->col(nx).setZero();
+  }
+  Ha->row(nx) = Ha->col(nx).transpose();
+  (*Ha)(nx, nx) = hTT;
+  ga->head(nx) = g.head(nx);
+  (*ga)[nx] = gT;
+  ga->tail(rest) = g.tail(rest);
+}
+
+void RiccatiInteriorPoint::TimeBoundTerms(double mu, double* hTT, double* gT) const {
+  if (!S_.free_time) return;
+  const double T = it_.T(0, 0), lo = S_.Tlb[0], hi = S_.Tub[0];
+  if (RipFinite(lo)) {
+    *hTT += it_.zTl(0, 0) / (T - lo);
+    *gT -= mu / (T - lo);
+    if (!RipFinite(hi)) *gT += kKappaD * mu;
+  }
+  if (RipFinite(hi)) {
+    *hTT += it_.zTu(0, 0) / (hi - T);
+    *gT += mu / (hi - T);
+    if (!RipFinite(lo)) *gT -= kKappaD * mu;
+  }
+}
+
+void RiccatiInteriorPoint::TakePrimal(Iterate* trial) {
+  it_.X.swap(trial->X);
+  it_.U.swap(trial->U);
+  it_.T.swap(trial->T);
+  it_.V.swap(trial->V);
+  it_.s.swap(trial->s);
 }
 
 void RiccatiInteriorPoint::LeastSquaresMultipliers() {
@@ -1500,8 +1657,9 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
     RiccatiStage& q = qp_.stages[k];
     Mat H = Mat::Identity(nx + nu, nx + nu);
     Vec g(nx + nu);
-    g.head(nx) = sigma_ * S_.h[k] * e.Lx;
-    g.tail(nu) = sigma_ * S_.h[k] * e.Lu - it_.zl.col(k) + it_.zu.col(k);
+    const double hk = S_.Step(it_, k);
+    g.head(nx) = sigma_ * hk * e.Lx;
+    g.tail(nu) = sigma_ * hk * e.Lu - it_.zl.col(k) + it_.zu.col(k);
     if (S_.has_state_multipliers()) g.head(nx) += it_.zxu.col(k) - it_.zxl.col(k);
     if (k == 0 && S_.initial_cost) g.head(nx) += sigma_ * te_.grad0;
     Mat J(S_.ni(k), nx + nu);
@@ -1509,6 +1667,13 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
       J << e.cx, e.cu;
       H.noalias() += J.transpose() * J;
       g.noalias() += J.transpose() * it_.v[k];
+    }
+    if (S_.free_time) {  // the identity on T once (the NLP's one variable), at stage 0
+      double gT = sigma_ * e.gT;
+      if (k == 0) gT += it_.zTu(0, 0) - it_.zTl(0, 0);
+      WithTime(H, g, nullptr, k == 0 ? 1.0 : 0.0, gT, &Ha_, &ga_);
+      H.swap(Ha_);
+      g.swap(ga_);
     }
     StageBlocks(k, H, g, &q);
     q.b.setZero(q.B.rows());
@@ -1527,7 +1692,12 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
     qp_.QN.noalias() += JN.transpose() * JN;
     qp_.qN.noalias() += JN.transpose() * it_.v[N];
   }
-  qp_.C.setZero(S_.npsi, nxN);
+  if (S_.free_time) {
+    WithTime(qp_.QN, qp_.qN, nullptr, 0.0, 0.0, &Ha_, &ga_);
+    qp_.QN.swap(Ha_);
+    qp_.qN.swap(ga_);
+  }
+  qp_.C.setZero(S_.npsi, nxN + S_.nT());
   if (S_.npsi > 0) qp_.C.leftCols(nx) = te_.psix;
   qp_.c.setZero(S_.npsi);
   qp_.x0.resize(0);
@@ -1569,9 +1739,10 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     it_.X.col(0) = x0;
   }
   boxes_.clear();
-  boxes_.push_back({false, &S_.lb, &S_.ub, 0, N, nx});
-  if (S_.has_initial_bounds()) boxes_.push_back({true, &S_.x0lb, &S_.x0ub, 0, 1, 0});
-  if (S_.has_state_bounds()) boxes_.push_back({true, &S_.xlb, &S_.xub, 1, N + 1, 0});
+  boxes_.push_back({BoxKind::kControl, &S_.lb, &S_.ub, 0, N, nx});
+  if (S_.has_initial_bounds()) boxes_.push_back({BoxKind::kState, &S_.x0lb, &S_.x0ub, 0, 1, 0});
+  if (S_.free_time) boxes_.push_back({BoxKind::kTime, &S_.Tlb, &S_.Tub, 0, 1, 0});
+  if (S_.has_state_bounds()) boxes_.push_back({BoxKind::kState, &S_.xlb, &S_.xub, 1, N + 1, 0});
   // Controls and states pushed into their bounds (Ipopt's bound_push, bound_frac).
   ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
     double& x = Value(it_, b)(j, k);
@@ -1606,6 +1777,8 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   it_.zu.setZero(nu, N);
   it_.zxl.setZero(S_.has_state_multipliers() ? nx : 0, S_.has_state_multipliers() ? N + 1 : 0);
   it_.zxu.setZero(it_.zxl.rows(), it_.zxl.cols());
+  it_.zTl.setZero(S_.nT(), S_.nT());
+  it_.zTu.setZero(S_.nT(), S_.nT());
   ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
     if (RipFinite(lo)) Zl(it_, b)(j, k) = 1.0;
     if (RipFinite(hi)) Zu(it_, b)(j, k) = 1.0;
@@ -1627,13 +1800,19 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   if (o_.nlp_scaling_method == "gradient-based") {
     double gmax = 0.0;
     for (int k = 0; k < N; ++k) {
-      if (k > 0) gmax = std::max(gmax, S_.h[k] * st_[k].Lx.lpNorm<Eigen::Infinity>());
+      const double hk = S_.Step(it_, k);
+      if (k > 0) gmax = std::max(gmax, hk * st_[k].Lx.lpNorm<Eigen::Infinity>());
       for (int i = 0; k == 0 && i < S_.nw(); ++i) {
         const int j = S_.free0[i];
-        const double g0 = S_.h[0] * st_[0].Lx[j] + (S_.initial_cost ? te_.grad0[j] : 0.0);
+        const double g0 = hk * st_[0].Lx[j] + (S_.initial_cost ? te_.grad0[j] : 0.0);
         gmax = std::max(gmax, std::abs(g0));
       }
-      gmax = std::max(gmax, S_.h[k] * st_[k].Lu.lpNorm<Eigen::Infinity>());
+      gmax = std::max(gmax, hk * st_[k].Lu.lpNorm<Eigen::Infinity>());
+    }
+    if (S_.free_time) {  // dJ/dT = sum_k h_k L_k / duration
+      double gT = 0.0;
+      for (int k = 0; k < N; ++k) gT += st_[k].gT;
+      gmax = std::max(gmax, std::abs(gT));
     }
     gmax = std::max(gmax, te_.grad.lpNorm<Eigen::Infinity>());
     if (gmax > o_.nlp_scaling_max_gradient) sigma_ = o_.nlp_scaling_max_gradient / gmax;
@@ -1723,8 +1902,10 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     double gphi = 0.0;
     for (int k = 0; k < N; ++k) {
       const StageEval& e = st_[k];
-      gphi += sigma_ * S_.h[k] * (e.Lx.dot(d.dX.col(k)) + e.Lu.dot(d.dU.col(k)));
+      gphi += sigma_ * S_.Step(it_, k) * (e.Lx.dot(d.dX.col(k)) + e.Lu.dot(d.dU.col(k)));
+      if (S_.free_time) gphi += sigma_ * e.gT * d.dT(0, 0);
     }
+    if (S_.initial_cost) gphi += sigma_ * te_.grad0.dot(d.dX.col(0));
     ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
       const double x = Value(it_, b)(j, k), dx = Step(d, b)(j, k);
       if (RipFinite(lo)) gphi -= mu_ * dx / (x - lo);
@@ -1746,7 +1927,8 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     ref.filter = &filter;
     const double theta = ref.theta, phi = ref.phi;
     // A tiny step (Ipopt's tiny_step_tol): taken in full, no line search.
-    double rel = 0.0;
+    double rel = (d.dX.col(0).array().abs() / (1.0 + it_.X.col(0).array().abs())).maxCoeff();
+    if (S_.free_time) rel = std::max(rel, std::abs(d.dT(0, 0)) / (1.0 + std::abs(it_.T(0, 0))));
     for (int k = 0; k < N; ++k) {
       rel = std::max(rel,
                      (d.dU.col(k).array().abs() / (1.0 + it_.U.col(k).array().abs())).maxCoeff());
@@ -1820,10 +2002,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     if (!f_type) filter.emplace_back((1.0 - kGammaTheta) * theta, phi - kGammaPhi * theta);
 
     // Accept: primal and equality multipliers with alpha, bound multipliers with alpha_z.
-    it_.X.swap(trial.X);
-    it_.U.swap(trial.U);
-    it_.V.swap(trial.V);
-    it_.s.swap(trial.s);
+    TakePrimal(&trial);
     it_.lam += alpha * (d.lam - it_.lam);
     if (S_.copy) it_.lamV += alpha * (d.lamV - it_.lamV);
     if (S_.npsi > 0) it_.nu += alpha * (d.nu - it_.nu);
@@ -1838,6 +2017,8 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
       it_.zxl += alpha_z * d.dzxl;
       it_.zxu += alpha_z * d.dzxu;
     }
+    it_.zTl += alpha_z * d.dzTl;
+    it_.zTu += alpha_z * d.dzTu;
     ClampBoundMultipliers();
     std::swap(vals_, tv);
     ++iterations_;
@@ -1896,6 +2077,10 @@ NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
       out.z_lower.segment(S_.state_off[0], nx) = r.cwiseMax(0.0);
       out.z_upper.segment(S_.state_off[0], nx) = (-r).cwiseMax(0.0);
     }
+    if (S_.free_time) {
+      out.z_lower[S_.time_index] = inv * it_.zTl(0, 0);
+      out.z_upper[S_.time_index] = inv * it_.zTu(0, 0);
+    }
     for (int i : S_.free0) {  // a free one's: its own
       out.z_lower[S_.state_off[0] + i] = S_.has_state_multipliers() ? inv * it_.zxl(i, 0) : 0.0;
       out.z_upper[S_.state_off[0] + i] = S_.has_state_multipliers() ? inv * it_.zxu(i, 0) : 0.0;
@@ -1951,14 +2136,10 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
     return "riccati-ip solves the euler transcription only in this version (not '" + info.name +
            "'); use ipopt for the others";
   }
-  if (ocp.free_final_time()) {
-    return "problem '" + ocp.name() +
-           "' has a free final time, which riccati-ip does not take (it keeps the horizon fixed); "
-           "ipopt on a collocation transcription solves it";
-  }
-  ProblemFeatures takes;  // x(t0)'s free components are stage-0 variables; states have bounds
-  takes.state_bounds = true;
+  ProblemFeatures takes;      // x(t0)'s free components and T are stage-0 variables (T carried as
+  takes.state_bounds = true;  // an augmented state); states have bounds
   takes.free_initial_state = true;
+  takes.free_final_time = true;
   if (std::string why = UnsupportedFeature(ocp, "riccati-ip", takes); !why.empty()) return why;
   const TranscriptionOptions options = TranscriptionOptionsFor(request);
   if (!options.scaling.IsIdentity()) {
@@ -2038,10 +2219,12 @@ bool EulerStageLagrangian(const TranscribedNlp& nlp,
   Mat rx, ru;
   Vec rv;
   if (S->copy) it.lamV = -st[N].cu.transpose() * it.y[N];
-  S->LagrangianGradient(it, 1.0, st, te, &rx, &ru, &rv);
+  double rT = 0.0;
+  S->LagrangianGradient(it, 1.0, st, te, &rx, &ru, &rv, &rT);
   Vec g = Vec::Zero(nlp.num_variables());
   for (int k = 0; k <= N; ++k) g.segment(S->state_off[k], nx) = rx.col(k);
   for (int k = 0; k < N; ++k) g.segment(S->control_off[k], nu) = ru.col(k);
+  if (S->free_time) g[S->time_index] = rT;
   *gradient = g;
   // Hessian: stage blocks, the terminal block, and the t_N path block on (x_N, u_{N-1}).
   Mat H = Mat::Zero(nlp.num_variables(), nlp.num_variables());
@@ -2052,6 +2235,15 @@ bool EulerStageLagrangian(const TranscribedNlp& nlp,
     H.block(xo, uo, nx, nu) += Hk.topRightCorner(nx, nu);
     H.block(uo, xo, nu, nx) += Hk.bottomLeftCorner(nu, nx);
     H.block(uo, uo, nu, nu) += Hk.bottomRightCorner(nu, nu);
+    if (S->free_time) {  // T's row and column (L is linear in T: no T-T entry)
+      const int T = S->time_index;
+      for (int j = 0; j < nx; ++j) H(T, xo + j) += st[k].HT[j];
+      for (int j = 0; j < nu; ++j) H(T, uo + j) += st[k].HT[nx + j];
+    }
+  }
+  if (S->free_time) {
+    const int T = S->time_index;
+    H.col(T) = H.row(T).transpose();
   }
   const int xN = S->state_off[N];
   H.block(xN, xN, nx, nx) += te.H;

@@ -7,9 +7,10 @@ namespace {
 std::string FreeFinalTimeReason(const Ocp& ocp, const std::string& solver) {
   return "problem '" + ocp.name() + "' has a free final time, which " + solver +
          " does not take (it keeps the horizon fixed): indirect-newton (H(tf) = 0) and the "
-         "NLP solvers on a collocation transcription (T a variable) solve it; the "
-         "time-scaled problems (brachistochrone, zermelo, steering, goddard, robot-arm) pose "
-         "free time on a fixed horizon for every method";
+         "NLP solvers on a collocation transcription (T a variable) solve it" +
+         std::string(ocp.num_boundary() == 0 ? ", and so does riccati-ip on euler" : "") +
+         "; the time-scaled problems (brachistochrone, zermelo, steering, goddard, robot-arm) "
+         "pose free time on a fixed horizon for every method";
 }
 
 // Who takes the features beyond free final time, for the refusal's text.
@@ -20,8 +21,7 @@ constexpr const char* kCollocationSolvers =
 // kCollocationSolvers, and riccati-ip where it takes every feature the problem uses.
 std::string WhoSolvesIt(const ProblemFeatures& uses) {
   std::string who = kCollocationSolvers;
-  if (!uses.free_final_time && !uses.boundary_constraints)
-    who += ", and so does riccati-ip on euler";
+  if (!uses.boundary_constraints) who += ", and so does riccati-ip on euler";
   return who;
 }
 

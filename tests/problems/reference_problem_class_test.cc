@@ -459,10 +459,11 @@ TEST(ProblemClass, MethodsThatDoNotTakeAFeatureAreNotApplicableWithTheReason) {
                              Refusal{"riccati-ip", "euler", feature},
                              Refusal{"ipopt", "single-shooting", feature},
                              Refusal{"nlopt", "single-shooting", feature}}) {
-      // riccati-ip takes state bounds (as bounds of x_1..x_N; its optimum is checked by
-      // solvers_test's RiccatiIpSolver.StateBoundsReachIpoptsOptimum): through the registry it
+      // riccati-ip takes state bounds (as bounds of x_1..x_N) and a free initial state (stage-0
+      // variables; its optima are checked by solvers_test's RiccatiIpSolver.StateBoundsReach-
+      // and FreeInitialStatesAndStaticParametersReachIpoptsOptimum): through the registry it
       // must solve, not refuse.
-      if (c.solver == "riccati-ip" && problem == "bryson-denham-bounds") {
+      if (c.solver == "riccati-ip") {
         const SolveResult r =
             SolveWith(c.solver, *ocp, Request(*ocp, 10, TerminalMode::kPenalty, c.transcription));
         EXPECT_EQ(r.status, SolveStatus::kConverged) << r.message;
@@ -483,6 +484,10 @@ TEST(ProblemClass, MethodsThatDoNotTakeAFeatureAreNotApplicableWithTheReason) {
     EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << solver;
     EXPECT_NE(r.message.find("boundary constraints"), std::string::npos) << r.message;
   }
+  const SolveResult riccati =
+      SolveWith("riccati-ip", coupled, Request(coupled, 10, TerminalMode::kHard, "euler"));
+  EXPECT_EQ(riccati.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(riccati.message.find("boundary constraints"), std::string::npos) << riccati.message;
   const SolveResult shooting =
       SolveWith("ipopt", coupled, Request(coupled, 10, TerminalMode::kHard, "single-shooting"));
   EXPECT_EQ(shooting.status, SolveStatus::kNotApplicable);
