@@ -109,6 +109,10 @@ const OptionBinding<RiccatiIpOptions>& RiccatiIpBinding() {
 constexpr double kRipInfBound = 1e19;
 constexpr double kRipInf = std::numeric_limits<double>::infinity();
 constexpr double kRipEps = std::numeric_limits<double>::epsilon();
+// The restoration's damping sequence (RiccatiInteriorPoint::Restore): Gauss-Newton, then
+// Levenberg-Marquardt steps with the relaxed rows' residuals weighted rho (cheaper as it falls,
+// so the step shortens towards a scaled steepest descent on the violation).
+constexpr double kRestorationRho[] = {kRipInf, 1e4, 1e2, 1.0, 1e-2, 1e-4, 1e-6};
 
 bool RipFinite(double v) { return std::isfinite(v); }
 
@@ -881,6 +885,9 @@ class RiccatiInteriorPoint {
   void TimeBoundTerms(double mu, double* hTT, double* gT) const;
   // Swaps a trial's primal variables (x, u, T, v, slacks) into it_.
   void TakePrimal(Iterate* trial);
+  // The restoration's Levenberg-Marquardt form of stage q: x_{k+1} = A x + B u + b + e with e
+  // a new leading block of the stage's controls, weighted restoration_rho_ |e|^2 / 2.
+  void RelaxDefects(RiccatiStage* q) const;
   // Adds stage k's inequalities with their slacks and multipliers eliminated to the (x, u)
   // Hessian H and gradient g (n = nx + nu): J^T S^-1 V J and J^T (mu S^-1 e - kappa_d mu e +
   // S^-1 V rc), J = [c_x c_u], rc the rows' residuals (c + s at the iterate).
@@ -922,6 +929,10 @@ class RiccatiInteriorPoint {
   Mat rx_, ru_;
   Vec rv_;
   double rT_ = 0.0;
+  // The restoration's damping (inf: Gauss-Newton steps; else RelaxDefects' weight rho), and
+  // how often a step was damped further.
+  double restoration_rho_ = std::numeric_limits<double>::infinity();
+  int restoration_damped_ = 0;
   Residuals res_, soc_res_, trial_res_;
   RiccatiRhs rhs_, refine_rhs_;
   RiccatiSolution correction_;
@@ -1057,6 +1068,11 @@ bool RiccatiInteriorPoint::BuildAndSolve(
     double mu, const Residuals& r, StepKind kind, Direction* d, std::string* failure) {
   const bool same_regularization = kind == StepKind::kSecondOrderCorrection;
   const bool feasibility = kind == StepKind::kFeasibility;
+  // The restoration's Levenberg-Marquardt step: defect relaxations e_k lead each stage's
+  // controls (RelaxDefects), the terminal rows relaxed by the dual regularization 1 / rho:
+  // both residuals weighted rho / 2 |.|^2 beside the step's own |d|^2 / 2.
+  const bool relaxed = feasibility && RipFinite(restoration_rho_);
+  const int ne = relaxed ? S_.nx : 0;
   const int N = S_.N, nx = S_.nx, nu = S_.nu;
   const double cpu0 = CpuSeconds();
   qp_.stages.resize(N);
@@ -1093,6 +1109,7 @@ bool RiccatiInteriorPoint::BuildAndSolve(
     q.b.setZero(q.B.rows());
     q.b.head(nx) = -r.defects.col(k);
     if (last_copy) q.b.tail(nu) = -r.copy_row;
+    if (relaxed) RelaxDefects(&q);
   }
   const int nxN = nx + (S_.copy ? nu : 0);
   qp_.QN.setZero(nxN, nxN);
@@ -1126,7 +1143,7 @@ bool RiccatiInteriorPoint::BuildAndSolve(
     riccati_.SolveFactored(qp_, rhs_, &sol_);
   }
   // Inertia correction (Ipopt's rule, Wächter & Biegler Sec. 3.1, on the Riccati recursion).
-  double dw = 0.0, dc = 0.0;
+  double dw = 0.0, dc = relaxed && S_.npsi > 0 ? 1.0 / restoration_rho_ : 0.0;
   bool regularized = false;
   for (; !same_regularization;) {
     ++factorizations_;
@@ -1161,9 +1178,9 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   // The full direction.
   d->dX.resize(nx, N + 1);
   d->dX.col(0).setZero();
-  for (int i = 0; i < S_.nw(); ++i) d->dX(S_.free0[i], 0) = sol_.u[0][i];
+  for (int i = 0; i < S_.nw(); ++i) d->dX(S_.free0[i], 0) = sol_.u[0][ne + i];
   d->dT.resize(S_.nT(), S_.nT());
-  if (S_.free_time) d->dT(0, 0) = sol_.u[0][S_.nw()];
+  if (S_.free_time) d->dT(0, 0) = sol_.u[0][ne + S_.nw()];
   d->dU.resize(nu, N);
   d->lam.resize(nx, N);
   for (int k = 0; k < N; ++k) {
@@ -1434,30 +1451,40 @@ bool RiccatiInteriorPoint::Restore(const LineSearchReference& ref,
   double theta = ref.theta;
   for (;;) {
     ResidualsAt(vals_, it_.s, &res_);
-    std::string failure;
-    if (!BuildAndSolve(mu_, res_, StepKind::kFeasibility, &soc_d_, &failure)) {
-      *why = "restoration phase: " + failure;
-      *solver_status = "Error_In_Step_Computation";
-      return false;
-    }
-    double alpha = 1.0, unused = 1.0;
-    StepToBoundary(soc_d_, tau, &alpha, &unused);
     bool decreased = false;
     double theta_t = theta;
-    for (; alpha >= 1e-10; alpha *= 0.5) {
-      ++trials_;
-      PrimalTrial(soc_d_, alpha, &trial);
-      const double cpu0 = CpuSeconds();
-      S_.EvalValues(trial, &tv);
-      callback_cpu_ += CpuSeconds() - cpu0;
-      if (!tv.ok) continue;
-      theta_t = Theta(tv, trial.s);
-      // Strictly lower, by the sufficient-decrease factor up to rounding.
-      if (theta_t < theta && LeqUpToRounding(theta_t, (1.0 - kGammaTheta) * theta, theta)) {
-        decreased = true;
-        break;
+    // The Gauss-Newton step first (rho = inf); where its line search fails (typically the
+    // fraction to the boundary cuts a long step to nothing), Levenberg-Marquardt steps with
+    // the dynamics and terminal rows relaxed, shorter as rho falls.
+    for (const double rho : kRestorationRho) {
+      restoration_rho_ = rho;
+      std::string failure;
+      if (!BuildAndSolve(mu_, res_, StepKind::kFeasibility, &soc_d_, &failure)) {
+        restoration_rho_ = kRipInf;
+        *why = "restoration phase: " + failure;
+        *solver_status = "Error_In_Step_Computation";
+        return false;
       }
+      double alpha = 1.0, unused = 1.0;
+      StepToBoundary(soc_d_, tau, &alpha, &unused);
+      for (; alpha >= 1e-10; alpha *= 0.5) {
+        ++trials_;
+        PrimalTrial(soc_d_, alpha, &trial);
+        const double cpu0 = CpuSeconds();
+        S_.EvalValues(trial, &tv);
+        callback_cpu_ += CpuSeconds() - cpu0;
+        if (!tv.ok) continue;
+        theta_t = Theta(tv, trial.s);
+        // Strictly lower, by the sufficient-decrease factor up to rounding.
+        if (theta_t < theta && LeqUpToRounding(theta_t, (1.0 - kGammaTheta) * theta, theta)) {
+          decreased = true;
+          break;
+        }
+      }
+      if (decreased) break;
+      ++restoration_damped_;
     }
+    restoration_rho_ = kRipInf;
     if (!decreased) {
       char buf[160];
       std::snprintf(buf,
@@ -1638,6 +1665,26 @@ void RiccatiInteriorPoint::TimeBoundTerms(double mu, double* hTT, double* gT) co
     *gT += mu / (hi - T);
     if (!RipFinite(lo)) *gT -= kKappaD * mu;
   }
+}
+
+void RiccatiInteriorPoint::RelaxDefects(RiccatiStage* q) const {
+  const int nx = S_.nx, ns = static_cast<int>(q->A.cols()), nv = static_cast<int>(q->B.cols());
+  const int n = ns + nv, rows = static_cast<int>(q->B.rows());
+  Mat Q = Mat::Zero(n + nx, n + nx);
+  Q.topLeftCorner(ns, ns) = q->Q.topLeftCorner(ns, ns);
+  Q.topRightCorner(ns, nv) = q->Q.topRightCorner(ns, nv);
+  Q.bottomLeftCorner(nv, ns) = q->Q.bottomLeftCorner(nv, ns);
+  Q.bottomRightCorner(nv, nv) = q->Q.bottomRightCorner(nv, nv);
+  Q.block(ns, ns, nx, nx).diagonal().setConstant(restoration_rho_);
+  Vec g = Vec::Zero(n + nx);
+  g.head(ns) = q->q.head(ns);
+  g.tail(nv) = q->q.tail(nv);
+  Mat B = Mat::Zero(rows, nx + nv);
+  B.topLeftCorner(nx, nx).setIdentity();
+  B.rightCols(nv) = q->B;
+  q->Q.swap(Q);
+  q->q.swap(g);
+  q->B.swap(B);
 }
 
 void RiccatiInteriorPoint::TakePrimal(Iterate* trial) {
@@ -2095,6 +2142,7 @@ NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
   out.stats["riccati_ip_soc_accepted"] = soc_accepted_;
   out.stats["riccati_ip_restoration_phases"] = restoration_phases_;
   out.stats["riccati_ip_restoration_iterations"] = restoration_iterations_;
+  out.stats["riccati_ip_restoration_damped_steps"] = restoration_damped_;
   out.stats["riccati_ip_kkt_cpu_seconds"] = kkt_cpu_;
   out.stats["riccati_ip_callback_cpu_seconds"] = callback_cpu_;
   out.stats["riccati_ip_cpu_seconds"] = watch_.cpu();

@@ -792,6 +792,19 @@ TEST(RiccatiIpSolver, RestorationPhaseLowersTheViolationAndTheMethodGoesOn) {
 // Ipopt's acceptable level: with a tol no iterate can reach, the solve stops after
 // acceptable_iter consecutive acceptable iterates and says so; with acceptable_iter = 0 it never
 // stops there.
+// The restoration's Levenberg-Marquardt steps: on quadrotor's Euler NLP (free final time,
+// N = 100) both solvers reach the restoration phase at iteration 6 with the same iterate; the
+// Gauss-Newton step's line search fails there (the fraction to the boundary cuts it to 1e-3 and
+// below: Restoration_Failed before the damping), the damped steps go on to Ipopt's optimum.
+TEST(RiccatiIpSolver, DampedRestorationStepsGoOnWhereGaussNewtonStalls) {
+  const auto ocp = MakeProblem("quadrotor", {}, 1);
+  const auto nlp = EulerNlp(*ocp, 100, TerminalMode::kHard);
+  NlpSolution ip, rip;
+  ASSERT_NO_FATAL_FAILURE(BothConvergeToOneOptimum(*nlp, 1e-8, &ip, &rip));
+  EXPECT_GE(rip.stats.at("riccati_ip_restoration_phases"), 1.0);
+  EXPECT_GE(rip.stats.at("riccati_ip_restoration_damped_steps"), 1.0);
+}
+
 TEST(RiccatiIpSolver, AcceptableLevelStopsWhereTolIsOutOfReach) {
   const auto ocp = MakeProblem("vanderpol", {}, 1);
   const auto nlp = EulerNlp(*ocp, 20, TerminalMode::kHard);
