@@ -193,6 +193,13 @@ class EulerStages {
   double relax_path = 0.0;
   std::vector<double> relax_ball;
 
+  // The variable bounds as the problem states them (From sets them; Relax widens lb .. Tub):
+  // the final point is projected onto them, as Ipopt projects its own (honor_original_bounds,
+  // its default).
+  struct {
+    Vec lb, ub, xlb, xub, x0lb, x0ub, Tlb, Tub;
+  } original;
+
   // Relaxes every inequality by factor * max(1, |bound|), as Ipopt does.
   void Relax(double factor) {
     relax_path = factor;
@@ -411,6 +418,7 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
   }
   st->nball = static_cast<int>(st->balls.size());
   st->relax_ball.assign(st->nball, 0.0);
+  st->original = {st->lb, st->ub, st->xlb, st->xub, st->x0lb, st->x0ub, st->Tlb, st->Tub};
   st->copy = st->nc > 0;
   return st;
 }
@@ -762,10 +770,12 @@ class RiccatiInteriorPoint {
   enum class BoxKind { kControl, kState, kTime };
   struct Box {
     BoxKind kind = BoxKind::kControl;
-    const Vec* lb = nullptr;
+    const Vec* lb = nullptr;  // relaxed by bound_relax_factor
     const Vec* ub = nullptr;
-    int first = 0, last = 0;  // nodes [first, last)
-    int offset = 0;           // in a stage's (x, u)
+    int first = 0, last = 0;           // nodes [first, last)
+    int offset = 0;                    // in a stage's (x, u)
+    const Vec* original_lb = nullptr;  // as the problem states them
+    const Vec* original_ub = nullptr;
   };
   std::vector<Box> boxes_;
   // Mat& for an Iterate or Direction of either constness: the member of b's kind.
@@ -897,7 +907,9 @@ class RiccatiInteriorPoint {
   // README): the iterate where it begins enters the filter; then minimum-norm Gauss-Newton
   // steps on the constraints (StepKind::kFeasibility, whose barrier terms keep slacks and
   // controls inside their bounds), each backtracked until theta falls by the factor
-  // 1 - gamma_theta, until a point is acceptable to the filter and decreases theta or phi
+  // 1 - gamma_theta (where no step of the backtracking does, the step is recomputed with
+  // Levenberg-Marquardt damping, RelaxDefects, at falling rho: kRestorationRho), until a point
+  // is acceptable to the filter and decreases theta or phi
   // against the iterate where the phase began; the equality multipliers are then reset to their
   // least-squares estimates (the bound multipliers are only kept within their kappa_sigma
   // window). Leaves it_, vals_ and the first derivatives consistent; true when the method can
@@ -1786,10 +1798,15 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     it_.X.col(0) = x0;
   }
   boxes_.clear();
-  boxes_.push_back({BoxKind::kControl, &S_.lb, &S_.ub, 0, N, nx});
-  if (S_.has_initial_bounds()) boxes_.push_back({BoxKind::kState, &S_.x0lb, &S_.x0ub, 0, 1, 0});
-  if (S_.free_time) boxes_.push_back({BoxKind::kTime, &S_.Tlb, &S_.Tub, 0, 1, 0});
-  if (S_.has_state_bounds()) boxes_.push_back({BoxKind::kState, &S_.xlb, &S_.xub, 1, N + 1, 0});
+  const auto& o = S_.original;
+  boxes_.push_back({BoxKind::kControl, &S_.lb, &S_.ub, 0, N, nx, &o.lb, &o.ub});
+  if (S_.has_initial_bounds()) {
+    boxes_.push_back({BoxKind::kState, &S_.x0lb, &S_.x0ub, 0, 1, 0, &o.x0lb, &o.x0ub});
+  }
+  if (S_.free_time) boxes_.push_back({BoxKind::kTime, &S_.Tlb, &S_.Tub, 0, 1, 0, &o.Tlb, &o.Tub});
+  if (S_.has_state_bounds()) {
+    boxes_.push_back({BoxKind::kState, &S_.xlb, &S_.xub, 1, N + 1, 0, &o.xlb, &o.xub});
+  }
   // Controls and states pushed into their bounds (Ipopt's bound_push, bound_frac).
   ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
     double& x = Value(it_, b)(j, k);
@@ -2091,7 +2108,21 @@ NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
   out.iterations = iterations_;
   out.history = std::move(history_);
   if (it_.X.size() == 0) return out;
-  out.z = S_.ToNlp(it_);
+  {  // the last iterate projected onto the problem's own bounds (Ipopt's honor_original_bounds)
+    Iterate projected;
+    projected.X = it_.X;
+    projected.U = it_.U;
+    projected.T = it_.T;
+    for (const Box& b : boxes_) {
+      for (int k = b.first; k < b.last; ++k) {
+        for (int j = 0; j < b.lb->size(); ++j) {
+          double& x = Value(projected, b)(j, k);
+          x = std::clamp(x, (*b.original_lb)[j], (*b.original_ub)[j]);
+        }
+      }
+    }
+    out.z = S_.ToNlp(projected);
+  }
   out.has_iterate = true;
   out.objective = vals_.f;
   const double inv = 1.0 / sigma_;
