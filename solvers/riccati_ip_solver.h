@@ -76,13 +76,14 @@ struct RiccatiIpOptions {
 };
 
 /// Why riccati-ip cannot solve `request` on `ocp` (empty when it can): a transcription other
-/// than "euler", a free final time, a transcription scaling other than the identity, mesh
-/// refinement, or a box bound with lower == upper. An empty or unknown transcription name is not
-/// a reason: Solve throws std::invalid_argument for it, as every NLP solver does.
+/// than "euler", boundary constraints, a transcription scaling other than the identity, mesh
+/// refinement, or a box bound with lower == upper. A free or partly free initial state, static
+/// parameters and a free final time are in its class. An empty or unknown transcription name is
+/// not a reason: Solve throws std::invalid_argument for it, as every NLP solver does.
 std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request);
 
 /// Runs the interior-point method on a TranscribedNlp made by the Euler transcription (with the
-/// identity scaling and a fixed horizon), from its StartingPoint. The NLP's own callbacks are
+/// identity scaling; a free final time is its last variable), from its StartingPoint. The NLP's own callbacks are
 /// not used for the iterations: the stage structure is read off its layout and every value and
 /// derivative comes from its Ocp, one pass per node. The solution is in the NLP's variables and
 /// multiplier convention (core/nlp.h), so SolveTranscribed fills a SolveResult from it as it does
@@ -103,7 +104,8 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request);
 /// riccati_ip_line_search_trials, riccati_ip_refinement_steps (iterative refinement
 /// corrections), riccati_ip_soc_trials (second-order corrections computed),
 /// riccati_ip_soc_accepted, riccati_ip_restoration_phases (times the restoration phase was
-/// entered), riccati_ip_restoration_iterations, riccati_ip_kkt_cpu_seconds (building and solving
+/// entered), riccati_ip_restoration_iterations, riccati_ip_restoration_damped_steps (restoration
+/// steps recomputed with Levenberg-Marquardt damping), riccati_ip_kkt_cpu_seconds (building and solving
 /// the stagewise KKT system), riccati_ip_callback_cpu_seconds (Ocp evaluations),
 /// riccati_ip_cpu_seconds (the whole method), riccati_ip_kkt_error (scaled E_0 at the end),
 /// riccati_ip_dual_inf, riccati_ip_constr_viol, riccati_ip_complementarity (unscaled),
