@@ -110,8 +110,9 @@ constexpr double kRipInfBound = 1e19;
 constexpr double kRipInf = std::numeric_limits<double>::infinity();
 constexpr double kRipEps = std::numeric_limits<double>::epsilon();
 // The restoration's damping sequence (RiccatiInteriorPoint::Restore): Gauss-Newton, then
-// Levenberg-Marquardt steps with the relaxed rows' residuals weighted rho (cheaper as it falls,
-// so the step shortens towards a scaled steepest descent on the violation).
+// Levenberg-Marquardt steps with the relaxed rows' residuals weighted rho: as it falls the step
+// shortens, and the barrier terms (not scaled by rho) weigh more in it, towards a centring step
+// that keeps the iterate off its bounds.
 constexpr double kRestorationRho[] = {kRipInf, 1e4, 1e2, 1.0, 1e-2, 1e-4, 1e-6};
 
 bool RipFinite(double v) { return std::isfinite(v); }
@@ -145,6 +146,13 @@ RiccatiIpOptions RiccatiIpOptions::Apply(const OptionMap& options, RiccatiIpOpti
 // ---- the Euler NLP, stage by stage ------------------------------------------------------------
 
 namespace {
+
+// The refusal of a boundary inequality (row i of b(x(t0), x(tf)) with lower < upper).
+std::string RiccatiIpBoundaryInequality(const Ocp& ocp, int i) {
+  return "problem '" + ocp.name() + "' has a boundary inequality (row " + std::to_string(i) +
+         " of b(x(t0), x(tf)) with lower < upper), which riccati-ip does not take (it takes "
+         "boundary equalities): ipopt and nlopt on a collocation transcription solve it";
+}
 
 // The Euler NLP of one CollocationNlp read as stages: x_{k+1} = x_k + h_k f(t_k, x_k, u_k),
 // stage k < N with variables (x_k, u_k), stage N with x_N and, when there are path
@@ -186,6 +194,15 @@ class EulerStages {
   Vec Tlb, Tub;
   double t0 = 0.0, duration = 1.0;
   int nT() const { return free_time ? 1 : 0; }
+  // Boundary constraints b(x_0, x_N) = b_lo (equalities; inequalities are refused): rows after
+  // psi's among the terminal rows (Values::psi, Iterate::nu). They need x_0's free components
+  // at x_N, so with boundary constraints the recursion carries them (ncw) beside T.
+  int nb = 0;
+  Vec blo;
+  int ncw() const { return nb > 0 ? nw() : 0; }
+  // The entries every stage's state carries after x: T (free_time), then x_0's free components.
+  int np() const { return nT() + ncw(); }
+  int nterm() const { return npsi + nb; }  // terminal rows: psi (hard form), then b
   std::vector<ControlSet::Block> balls;
   std::vector<int> state_off, control_off;
   // Ipopt's bound_relax_factor: the inequality rows are c - relax_path <= 0 and
@@ -264,12 +281,15 @@ class EulerStages {
     double Phi0 = 0.0;  // phi0(x_0), its gradient and sigma times its Hessian (initial_cost)
     Vec grad0;
     Mat H0;
+    Vec b;         // b(x_0, x_N) (nb), its Jacobians, and the Hessian of nu_b^T b in (x_0, x_N)
+    Mat bx0, bxN;  // nb x nx
+    Mat Hb;        // 2nx x 2nx
   };
   struct Values {  // what a line-search trial needs
     double f = 0.0;
     std::vector<Vec> c;
-    Mat defects;  // nx x N: x_{k+1} - x_k - h f
-    Vec psi, copy_row;
+    Mat defects;        // nx x N: x_{k+1} - x_k - h f
+    Vec psi, copy_row;  // psi: the terminal rows, psi(x_N) (hard form) then b(x_0, x_N) - b_lo
     bool ok = false;
   };
 
@@ -403,6 +423,16 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
     st->x0ub[i] = hi >= kRipInfBound ? kRipInf : hi;
   }
   st->initial_cost = !st->free0.empty() && ocp.HasInitialCost();
+  st->nb = ocp.num_boundary();
+  if (st->nb > 0) {
+    st->blo = ocp.boundary_bounds().lower;
+    for (int i = 0; i < st->nb; ++i) {
+      if (!(ocp.boundary_bounds().lower[i] == ocp.boundary_bounds().upper[i])) {
+        *why_not = RiccatiIpBoundaryInequality(ocp, i);
+        return nullptr;
+      }
+    }
+  }
   if (tnlp.HasFinalTimeVariable()) {
     st->free_time = true;
     st->time_index = nlp->num_variables() - 1;  // T follows the layout's variables
@@ -475,11 +505,12 @@ void EulerStages::EvalValues(const Iterate& it, Values* out) const {
   }
   J += ocp.TerminalObjective(it.X.col(N), hard ? TerminalMode::kHard : TerminalMode::kPenalty);
   if (initial_cost) J += ocp.InitialCost(it.X.col(0));
-  if (hard) {
-    v.psi.resize(npsi);
-    ocp.TerminalConstraints(it.X.col(N), v.psi);
+  v.psi.resize(nterm());
+  if (hard) ocp.TerminalConstraints(it.X.col(N), v.psi.head(npsi));
+  if (nb > 0) {
+    ocp.BoundaryConstraints(it.X.col(0), it.X.col(N), v.psi.tail(nb));
+    v.psi.tail(nb) -= blo;
   }
-  if (!hard) v.psi.resize(0);
   if (!copy) v.copy_row.resize(0);
   v.f = J;
   v.ok = RipFinite(J) && RipAllFinite(v.defects) && RipAllFinite(v.psi) && RipAllFinite(v.copy_row);
@@ -551,6 +582,13 @@ bool EulerStages::EvalDerivatives(const Iterate& it,
     ocp.InitialCostGradient(it.X.col(0), &te->Phi0, te->grad0);
     ok = ok && RipFinite(te->Phi0) && RipAllFinite(te->grad0);
   }
+  if (nb > 0) {
+    te->b.resize(nb);
+    te->bx0.resize(nb, nx);
+    te->bxN.resize(nb, nx);
+    ocp.BoundaryConstraintsJacobian(it.X.col(0), xN, te->b, te->bx0, te->bxN);
+    ok = ok && RipAllFinite(te->b) && RipAllFinite(te->bx0) && RipAllFinite(te->bxN);
+  }
   return ok;
 }
 
@@ -591,7 +629,7 @@ bool EulerStages::EvalHessians(const Iterate& it,
   te->H.resize(nx, nx);
   const auto xN = it.X.col(N);
   Vec nu_terms = Vec::Zero(ocp.num_terminal());
-  if (hard) nu_terms = it.nu;
+  if (hard) nu_terms = it.nu.head(npsi);
   if (!hard && ocp.num_terminal() > 0) {
     nu_terms = sigma * 2.0 * ocp.terminal_weights().cwiseProduct(te->psi);
   }
@@ -603,6 +641,11 @@ bool EulerStages::EvalHessians(const Iterate& it,
     te->H0.resize(nx, nx);
     ocp.InitialCostHessian(it.X.col(0), sigma, te->H0);
     ok = ok && RipAllFinite(te->H0);
+  }
+  if (nb > 0) {
+    te->Hb.resize(2 * nx, 2 * nx);
+    ocp.BoundaryHessian(it.X.col(0), xN, it.nu.tail(nb), te->Hb);
+    ok = ok && RipAllFinite(te->Hb);
   }
   return ok && RipAllFinite(te->H);
 }
@@ -654,7 +697,11 @@ void EulerStages::LagrangianGradient(const Iterate& it,
   if (initial_cost) rx->col(0) += sigma * te.grad0;
   auto gN = rx->col(N);
   gN = sigma * te.grad + it.lam.col(N - 1);
-  if (hard && npsi > 0) gN.noalias() += te.psix.transpose() * it.nu;
+  if (hard && npsi > 0) gN.noalias() += te.psix.transpose() * it.nu.head(npsi);
+  if (nb > 0) {
+    rx->col(0).noalias() += te.bx0.transpose() * it.nu.tail(nb);
+    gN.noalias() += te.bxN.transpose() * it.nu.tail(nb);
+  }
   if (copy) {
     gN.noalias() += st[N].cx.transpose() * it.y[N];
     *rv = it.lamV;
@@ -762,8 +809,9 @@ class RiccatiInteriorPoint {
 
  private:
   // The simple bounds, one Box per kind of bounded variable: the controls u_k (nodes 0..N-1, at
-  // offset nx of stage k's (x_k, u_k)) and the states x_k (nodes 1..N, offset 0; x_N's block
-  // is the terminal one), each entry with a lower and an upper multiplier in z (zl, zu or zxl,
+  // offset nx of stage k's (x_k, u_k)), x_0's free components (node 0: the initial-state
+  // bounds) and the states x_k (nodes 1..N, offset 0; x_N's block is the terminal one), each
+  // entry with a lower and an upper multiplier in z (zl, zu or zxl,
   // zxu). Every barrier, step and multiplier rule below loops over them.
   // The final time T (free_time) is a third kind: one entry at node 0, whose barrier terms
   // enter stage 0's block where T is a variable (TimeBoundTerms), not through AddBoundTerms.
@@ -880,16 +928,24 @@ class RiccatiInteriorPoint {
                              Values* tv,
                              bool* f_type);
   void LeastSquaresMultipliers();
-  // Stage k's Q, q (from the Hessian H and gradient g of its (x_k, u_k); stage 0 keeps the u
-  // block, x_0 being fixed), A and B of the linearized Euler step x_{k+1} = x_k + h f, and on the
-  // last stage with the copy of u_{N-1} its identity rows. True on that stage. The right-hand
-  // side b is the caller's (the Newton step's defects, or zero for the multiplier start).
+  // Stage k's Q, q (from the Hessian H and gradient g of its (x_k, u_k), with the carried rows
+  // when S_.np() > 0 (WithCarried); stage 0 keeps x_0's free components, T and u_0), A and B of
+  // the linearized Euler step x_{k+1} = x_k + h f (with T's column and the carried identity),
+  // and on the last stage with the copy of u_{N-1} its identity rows. True on that stage. The
+  // right-hand side b is the caller's (the Newton step's defects, or zero for the multiplier
+  // start).
   bool StageBlocks(int k, const Mat& H, const Vec& g, RiccatiStage* q) const;
-  // With a free final time every stage's state is (x_k, T) (the terminal one (x_N, T, v)):
-  // H and g (in (x, u) order) with T's row and column inserted after x, its Hessian row HT
-  // (nullptr: zeros), diagonal hTT and gradient gT, into Ha, ga.
-  void WithTime(
+  // With carried entries (S_.np(): a free final time T, and with boundary constraints x_0's
+  // free components w) every stage's state is (x_k, T, w) (the terminal one (x_N, T, w, v)):
+  // H and g (in (x, u) order) with those rows and columns inserted after x, T's Hessian row HT
+  // (nullptr: zeros), diagonal hTT and gradient gT; w's rows empty; into Ha, ga.
+  void WithCarried(
       const Mat& H, const Vec& g, const Vec* HT, double hTT, double gT, Mat* Ha, Vec* ga) const;
+  // The terminal rows' Jacobian in the terminal block (x_N, T, w, v): psi_x on x_N; b's on x_N
+  // and on the carried w.
+  void TerminalRows(Mat* C) const;
+  // Adds the Hessian of nu_b^T b(x_0, x_N) to the terminal block, x_0's part on the carried w.
+  void AddBoundaryHessian(Mat* QN) const;
   // Adds T's barrier terms (its Sigma and barrier gradient, kappa_d for a one-sided bound) to
   // hTT and gT, as AddBoundTerms does for the other variables.
   void TimeBoundTerms(double mu, double* hTT, double* gT) const;
@@ -963,7 +1019,7 @@ class RiccatiInteriorPoint {
   // Workspace of BuildAndSolve (sized once).
   Mat H_;
   Vec g_, jd_, w_, r_;
-  mutable Mat Ha_;  // a stage's block with T's row and column (WithTime)
+  mutable Mat Ha_;  // a stage's block with the carried rows and columns (WithCarried)
   mutable Vec ga_;
   std::vector<int> nonzero_;
   mutable std::vector<int> stage0_;  // StageBlocks' stage-0 indices: x_0's free components, u_0
@@ -1109,15 +1165,16 @@ bool RiccatiInteriorPoint::BuildAndSolve(
     }
     if (it_.s[k].size() > 0) CondenseInequalities(k, mu, r.ineq[k], nx + nu, &H_, &g_);
     AddBoundTerms(k, mu, &H_, &g_);
-    if (S_.free_time) {
+    if (S_.np() > 0) {
       // T's entries: its Hessian row, the stage's dJ/dT, and at stage 0 (where T is a
       // variable) its barrier terms; the restoration's minimum-norm step weighs T once, at 0.
-      const Vec* HT = feasibility ? nullptr : &e.HT;
+      // The carried copies of x_0's free components have none.
+      const Vec* HT = feasibility || !S_.free_time ? nullptr : &e.HT;
       double hTT = feasibility && k == 0 ? 1.0 : 0.0, gT = feasibility ? 0.0 : sigma_ * e.gT;
       if (k == 0) TimeBoundTerms(mu, &hTT, &gT);
-      WithTime(H_, g_, HT, hTT, gT, &Ha_, &ga_);
+      WithCarried(H_, g_, HT, hTT, gT, &Ha_, &ga_);
     }
-    const bool last_copy = StageBlocks(k, S_.free_time ? Ha_ : H_, S_.free_time ? ga_ : g_, &q);
+    const bool last_copy = StageBlocks(k, S_.np() > 0 ? Ha_ : H_, S_.np() > 0 ? ga_ : g_, &q);
     q.b.setZero(q.B.rows());
     q.b.head(nx) = -r.defects.col(k);
     if (last_copy) q.b.tail(nu) = -r.copy_row;
@@ -1137,28 +1194,40 @@ bool RiccatiInteriorPoint::BuildAndSolve(
     CondenseInequalities(N, mu, r.ineq[N], nxN, &qp_.QN, &qp_.qN);
   }
   AddBoundTerms(N, mu, &qp_.QN, &qp_.qN);
-  if (S_.free_time) {  // x_N's block does not depend on T: an empty row (x_N, T, v)
-    WithTime(qp_.QN, qp_.qN, nullptr, 0.0, 0.0, &Ha_, &ga_);
+  if (S_.np() > 0) {  // the terminal block (x_N, T, w, v): T's row empty (x_N's terms do not
+    WithCarried(qp_.QN, qp_.qN, nullptr, 0.0, 0.0, &Ha_, &ga_);  // depend on it)
     qp_.QN.swap(Ha_);
     qp_.qN.swap(ga_);
   }
-  qp_.C.setZero(S_.npsi, nxN + S_.nT());
-  qp_.c.resize(S_.npsi);
-  if (S_.npsi > 0) {
-    qp_.C.leftCols(nx) = te_.psix;
-    qp_.c = r.psi;
-  }
+  if (!feasibility) AddBoundaryHessian(&qp_.QN);
+  TerminalRows(&qp_.C);
+  qp_.c = r.psi;
   qp_.x0.resize(0);
 
+  // delta_w regularizes the NLP's variables, as Ipopt's: the recursion adds it to every diagonal
+  // entry, so the carried copies T_k, w_k (k >= 1 and the terminal block; stage 0 holds the
+  // variables) get -dw first; without that T would be regularized N + 1 times (dynamic-soaring's
+  // iterate 15, Ipopt's first regularized one, was 3e-3 from Ipopt's in J, 8.5e-6 with it). The
+  // copy v of u_{N-1} keeps its delta_w (README: known differences).
+  double unregularized = 0.0;  // the offset on their diagonal so far
+  const auto regularize_variables_only = [&](double dw) {
+    if (S_.np() == 0 || dw == -unregularized) return;
+    const double shift = -dw - unregularized;
+    for (int k = 1; k < N; ++k) qp_.stages[k].Q.diagonal().segment(nx, S_.np()).array() += shift;
+    qp_.QN.diagonal().segment(nx, S_.np()).array() += shift;
+    unregularized = -dw;
+  };
   if (same_regularization) {  // the matrix is the last Newton step's: solve with its factors
+    regularize_variables_only(dw_);
     RhsOf(qp_, &rhs_);
     riccati_.SolveFactored(qp_, rhs_, &sol_);
   }
   // Inertia correction (Ipopt's rule, Wächter & Biegler Sec. 3.1, on the Riccati recursion).
-  double dw = 0.0, dc = relaxed && S_.npsi > 0 ? 1.0 / restoration_rho_ : 0.0;
+  double dw = 0.0, dc = relaxed && S_.nterm() > 0 ? 1.0 / restoration_rho_ : 0.0;
   bool regularized = false;
   for (; !same_regularization;) {
     ++factorizations_;
+    regularize_variables_only(dw);
     const RiccatiOutcome out = riccati_.Solve(qp_, dw, dc, &sol_);
     if (out == RiccatiOutcome::kSolved) break;
     if (out == RiccatiOutcome::kTerminalRowsDegenerate && dc == 0.0) {
@@ -1469,6 +1538,7 @@ bool RiccatiInteriorPoint::Restore(const LineSearchReference& ref,
     // fraction to the boundary cuts a long step to nothing), Levenberg-Marquardt steps with
     // the dynamics and terminal rows relaxed, shorter as rho falls.
     for (const double rho : kRestorationRho) {
+      if (RipFinite(rho)) ++restoration_damped_;  // a step recomputed with damping
       restoration_rho_ = rho;
       std::string failure;
       if (!BuildAndSolve(mu_, res_, StepKind::kFeasibility, &soc_d_, &failure)) {
@@ -1494,7 +1564,6 @@ bool RiccatiInteriorPoint::Restore(const LineSearchReference& ref,
         }
       }
       if (decreased) break;
-      ++restoration_damped_;
     }
     restoration_rho_ = kRipInf;
     if (!decreased) {
@@ -1600,7 +1669,7 @@ void RiccatiInteriorPoint::CondenseInequalities(
 // J_c^T v, no transition or terminal residuals. Discarded (zero) when its largest entry exceeds
 // 1000 (Ipopt's constr_mult_init_max) or the recursion fails.
 bool RiccatiInteriorPoint::StageBlocks(int k, const Mat& H, const Vec& g, RiccatiStage* q) const {
-  const int nx = S_.nx, nu = S_.nu, nT = S_.nT(), nxa = nx + nT;
+  const int nx = S_.nx, nu = S_.nu, nT = S_.nT(), nxa = nx + S_.np();
   const StageEval& e = st_[k];
   const bool last_copy = S_.copy && k == S_.N - 1;
   const int rows = nxa + (last_copy ? nu : 0);  // x_{k+1}, T, and v = u_{N-1} on the last
@@ -1623,6 +1692,7 @@ bool RiccatiInteriorPoint::StageBlocks(int k, const Mat& H, const Vec& g, Riccat
       q->B.col(nw).head(nx) = S_.h[0] / S_.duration * e.f;
       q->B(nx, nw) = 1.0;
     }
+    for (int i = 0; i < S_.ncw(); ++i) q->B(nx + nT + i, i) = 1.0;  // w carried from here on
     q->B.block(0, nw + nT, nx, nu) = hk * e.fu;
     if (last_copy) q->B.bottomRightCorner(nu, nu).setIdentity();
     return last_copy;
@@ -1632,36 +1702,60 @@ bool RiccatiInteriorPoint::StageBlocks(int k, const Mat& H, const Vec& g, Riccat
   q->A.setZero(rows, nxa);
   q->A.topLeftCorner(nx, nx) = hk * e.fx;
   q->A.topLeftCorner(nx, nx).diagonal().array() += 1.0;
-  if (nT > 0) {  // d x_{k+1} / dT = (h_k / duration) f; T_{k+1} = T_k
-    q->A.col(nx).head(nx) = S_.h[k] / S_.duration * e.f;
-    q->A(nx, nx) = 1.0;
-  }
+  for (int j = nx; j < nxa; ++j) q->A(j, j) = 1.0;                  // T_{k+1} = T_k, w_{k+1} = w_k
+  if (nT > 0) q->A.col(nx).head(nx) = S_.h[k] / S_.duration * e.f;  // d x_{k+1} / dT
   q->B.setZero(rows, nu);
   q->B.topRows(nx) = hk * e.fu;
   if (last_copy) q->B.bottomRows(nu).setIdentity();
   return last_copy;
 }
 
-void RiccatiInteriorPoint::WithTime(
+void RiccatiInteriorPoint::WithCarried(
     const Mat& H, const Vec& g, const Vec* HT, double hTT, double gT, Mat* Ha, Vec* ga) const {
-  const int n = static_cast<int>(H.rows()), nx = S_.nx, rest = n - nx;
-  Ha->resize(n + 1, n + 1);
-  ga->resize(n + 1);
+  const int n = static_cast<int>(H.rows()), nx = S_.nx, rest = n - nx, np = S_.np();
+  Ha->setZero(n + np, n + np);
+  ga->setZero(n + np);
   Ha->topLeftCorner(nx, nx) = H.topLeftCorner(nx, nx);
   Ha->topRightCorner(nx, rest) = H.topRightCorner(nx, rest);
   Ha->bottomLeftCorner(rest, nx) = H.bottomLeftCorner(rest, nx);
   Ha->bottomRightCorner(rest, rest) = H.bottomRightCorner(rest, rest);
+  ga->head(nx) = g.head(nx);
+  ga->tail(rest) = g.tail(rest);
+  if (!S_.free_time) return;  // the carried copies of x_0's components: empty rows
   if (HT != nullptr) {
     Ha->col(nx).head(nx) = HT->head(nx);
     Ha->col(nx).tail(rest) = HT->tail(rest);
-  } else {
-    Ha->col(nx).setZero();
+    Ha->row(nx) = Ha->col(nx).transpose();
   }
-  Ha->row(nx) = Ha->col(nx).transpose();
   (*Ha)(nx, nx) = hTT;
-  ga->head(nx) = g.head(nx);
   (*ga)[nx] = gT;
-  ga->tail(rest) = g.tail(rest);
+}
+
+void RiccatiInteriorPoint::TerminalRows(Mat* C) const {
+  const int nx = S_.nx, nT = S_.nT();
+  const int cols = nx + S_.np() + (S_.copy ? S_.nu : 0);  // (x_N, T, w, v)
+  C->setZero(S_.nterm(), cols);
+  if (S_.npsi > 0) C->topLeftCorner(S_.npsi, nx) = te_.psix;
+  if (S_.nb == 0) return;
+  C->block(S_.npsi, 0, S_.nb, nx) = te_.bxN;
+  for (int i = 0; i < S_.ncw(); ++i) {
+    C->col(nx + nT + i).tail(S_.nb) = te_.bx0.col(S_.free0[i]);
+  }
+}
+
+void RiccatiInteriorPoint::AddBoundaryHessian(Mat* QN) const {
+  if (S_.nb == 0) return;
+  const int nx = S_.nx, w0 = nx + S_.nT();
+  const Mat& Hb = te_.Hb;  // order (x_0, x_N)
+  QN->topLeftCorner(nx, nx) += Hb.bottomRightCorner(nx, nx);
+  for (int i = 0; i < S_.ncw(); ++i) {
+    const int a = S_.free0[i];
+    for (int r = 0; r < nx; ++r) {
+      (*QN)(r, w0 + i) += Hb(nx + r, a);
+      (*QN)(w0 + i, r) += Hb(a, nx + r);
+    }
+    for (int j = 0; j < S_.ncw(); ++j) (*QN)(w0 + i, w0 + j) += Hb(a, S_.free0[j]);
+  }
 }
 
 void RiccatiInteriorPoint::TimeBoundTerms(double mu, double* hTT, double* gT) const {
@@ -1727,10 +1821,10 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
       H.noalias() += J.transpose() * J;
       g.noalias() += J.transpose() * it_.v[k];
     }
-    if (S_.free_time) {  // the identity on T once (the NLP's one variable), at stage 0
+    if (S_.np() > 0) {  // the identity on T once (the NLP's one variable), at stage 0
       double gT = sigma_ * e.gT;
-      if (k == 0) gT += it_.zTu(0, 0) - it_.zTl(0, 0);
-      WithTime(H, g, nullptr, k == 0 ? 1.0 : 0.0, gT, &Ha_, &ga_);
+      if (k == 0 && S_.free_time) gT += it_.zTu(0, 0) - it_.zTl(0, 0);
+      WithCarried(H, g, nullptr, k == 0 && S_.free_time ? 1.0 : 0.0, gT, &Ha_, &ga_);
       H.swap(Ha_);
       g.swap(ga_);
     }
@@ -1751,14 +1845,13 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
     qp_.QN.noalias() += JN.transpose() * JN;
     qp_.qN.noalias() += JN.transpose() * it_.v[N];
   }
-  if (S_.free_time) {
-    WithTime(qp_.QN, qp_.qN, nullptr, 0.0, 0.0, &Ha_, &ga_);
+  if (S_.np() > 0) {
+    WithCarried(qp_.QN, qp_.qN, nullptr, 0.0, 0.0, &Ha_, &ga_);
     qp_.QN.swap(Ha_);
     qp_.qN.swap(ga_);
   }
-  qp_.C.setZero(S_.npsi, nxN + S_.nT());
-  if (S_.npsi > 0) qp_.C.leftCols(nx) = te_.psix;
-  qp_.c.setZero(S_.npsi);
+  TerminalRows(&qp_.C);
+  qp_.c.setZero(S_.nterm());
   qp_.x0.resize(0);
   ++factorizations_;
   if (riccati_.Solve(qp_, 0.0, 0.0, &sol_) == RiccatiOutcome::kSolved) {
@@ -1770,7 +1863,7 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
     }
     if (S_.copy) trial.lamV = sol_.lambda[N - 1].tail(nu);
     trial.nu = sol_.nu;
-    if (S_.npsi > 0) largest = std::max(largest, trial.nu.lpNorm<Eigen::Infinity>());
+    if (S_.nterm() > 0) largest = std::max(largest, trial.nu.lpNorm<Eigen::Infinity>());
     for (int k = 0; k <= N; ++k) {
       if (S_.ni(k) == 0) continue;
       const StageEval& e = st_[k];
@@ -1849,7 +1942,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   });
   it_.lam.setZero(nx, N);
   it_.lamV.setZero(S_.copy ? nu : 0);
-  it_.nu.setZero(S_.npsi);
+  it_.nu.setZero(S_.nterm());
 
   cpu0 = CpuSeconds();
   bool ok = S_.EvalDerivatives(it_, &st_, &te_);
@@ -2069,7 +2162,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     TakePrimal(&trial);
     it_.lam += alpha * (d.lam - it_.lam);
     if (S_.copy) it_.lamV += alpha * (d.lamV - it_.lamV);
-    if (S_.npsi > 0) it_.nu += alpha * (d.nu - it_.nu);
+    if (S_.nterm() > 0) it_.nu += alpha * (d.nu - it_.nu);
     for (int k = 0; k <= N; ++k) {
       if (it_.s[k].size() == 0) continue;
       it_.y[k] += alpha * d.dy[k];
@@ -2123,6 +2216,8 @@ NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
     }
     out.z = S_.ToNlp(projected);
   }
+  // objective: the last iterate's, as Ipopt reports it (SolveTranscribed evaluates the NLP's
+  // objective at the projected z for the records, for both solvers).
   out.has_iterate = true;
   out.objective = vals_.f;
   const double inv = 1.0 / sigma_;
@@ -2137,7 +2232,9 @@ NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
         lambda[S_.nlp.ball_row_begin() + k * S_.nball + b] = inv * it_.y[k][nc + b];
       }
     }
-    if (S_.npsi > 0) lambda.segment(S_.nlp.terminal_row_begin(), S_.npsi) = inv * it_.nu;
+    if (S_.npsi > 0)
+      lambda.segment(S_.nlp.terminal_row_begin(), S_.npsi) = inv * it_.nu.head(S_.npsi);
+    if (S_.nb > 0) lambda.segment(S_.nlp.boundary_row_begin(), S_.nb) = inv * it_.nu.tail(S_.nb);
     out.lambda = lambda;
     const int n = S_.nlp.num_variables();
     out.z_lower = Vec::Zero(n);
@@ -2219,6 +2316,7 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
   takes.state_bounds = true;  // an augmented state); states have bounds
   takes.free_initial_state = true;
   takes.free_final_time = true;
+  takes.boundary_constraints = true;  // equalities: below
   if (std::string why = UnsupportedFeature(ocp, "riccati-ip", takes); !why.empty()) return why;
   const TranscriptionOptions options = TranscriptionOptionsFor(request);
   if (!options.scaling.IsIdentity()) {
@@ -2226,6 +2324,11 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
            "state_scale and control_scale must be left at 1";
   }
   if (options.mesh.enabled()) return "riccati-ip does not run mesh refinement";
+  for (int i = 0; i < ocp.num_boundary(); ++i) {
+    if (!(ocp.boundary_bounds().lower[i] == ocp.boundary_bounds().upper[i])) {
+      return RiccatiIpBoundaryInequality(ocp, i);
+    }
+  }
   for (const auto& b : ocp.control_set().blocks()) {
     if (b.kind != ControlSet::Kind::kBox) continue;
     for (int i = 0; i < b.size; ++i) {
@@ -2273,7 +2376,9 @@ bool EulerStageLagrangian(const TranscribedNlp& nlp,
       it.y[k][nc + b] = lambda[S->nlp.ball_row_begin() + k * S->nball + b];
     }
   }
-  it.nu = S->npsi > 0 ? Vec(lambda.segment(S->nlp.terminal_row_begin(), S->npsi)) : Vec();
+  it.nu.resize(S->nterm());
+  if (S->npsi > 0) it.nu.head(S->npsi) = lambda.segment(S->nlp.terminal_row_begin(), S->npsi);
+  if (S->nb > 0) it.nu.tail(S->nb) = lambda.segment(S->nlp.boundary_row_begin(), S->nb);
   it.lamV = Vec::Zero(S->copy ? nu : 0);
   Values v;
   S->EvalValues(it, &v);
@@ -2291,7 +2396,8 @@ bool EulerStageLagrangian(const TranscribedNlp& nlp,
       L += it.y[k][nc + b] * S->balls[b].radius * S->balls[b].radius;
     }
   }
-  if (S->npsi > 0) L += it.nu.dot(v.psi);
+  if (S->nterm() > 0) L += it.nu.dot(v.psi);
+  if (S->nb > 0) L += it.nu.tail(S->nb).dot(S->blo);  // the NLP's rows are b, not b - b_lo
   *value = L;
   // Gradient; with the copy v = u_{N-1} at a point where it holds, its multiplier drops out:
   // the copy's stationarity gives lamV = -cu_N^T y_N, so u_{N-1} gains cu_N^T y_N.
@@ -2327,6 +2433,13 @@ bool EulerStageLagrangian(const TranscribedNlp& nlp,
   const int xN = S->state_off[N];
   H.block(xN, xN, nx, nx) += te.H;
   if (S->initial_cost) H.block(S->state_off[0], S->state_off[0], nx, nx) += te.H0;
+  if (S->nb > 0) {  // b's Hessian in (x_0, x_N)
+    const int x0 = S->state_off[0];
+    H.block(x0, x0, nx, nx) += te.Hb.topLeftCorner(nx, nx);
+    H.block(x0, xN, nx, nx) += te.Hb.topRightCorner(nx, nx);
+    H.block(xN, x0, nx, nx) += te.Hb.bottomLeftCorner(nx, nx);
+    H.block(xN, xN, nx, nx) += te.Hb.bottomRightCorner(nx, nx);
+  }
   if (S->copy) {
     const int uo = S->control_off[N - 1];
     const Mat& Hk = st[N].H;

@@ -8,7 +8,9 @@ std::string FreeFinalTimeReason(const Ocp& ocp, const std::string& solver) {
   return "problem '" + ocp.name() + "' has a free final time, which " + solver +
          " does not take (it keeps the horizon fixed): indirect-newton (H(tf) = 0) and the "
          "NLP solvers on a collocation transcription (T a variable) solve it" +
-         std::string(ocp.num_boundary() == 0 ? ", and so does riccati-ip on euler" : "") +
+         std::string(!ProblemFeatures::Of(ocp).boundary_inequalities
+                         ? ", and so does riccati-ip on euler"
+                         : "") +
          "; the time-scaled problems (brachistochrone, zermelo, steering, goddard, robot-arm) "
          "pose free time on a fixed horizon for every method";
 }
@@ -18,10 +20,11 @@ constexpr const char* kCollocationSolvers =
     "ipopt and nlopt on a collocation transcription (euler, trapezoid, hermite-simpson, lgr) "
     "solve it";
 
-// kCollocationSolvers, and riccati-ip where it takes every feature the problem uses.
+// kCollocationSolvers, and riccati-ip where it takes every feature the problem uses (all but
+// boundary inequalities).
 std::string WhoSolvesIt(const ProblemFeatures& uses) {
   std::string who = kCollocationSolvers;
-  if (!uses.boundary_constraints) who += ", and so does riccati-ip on euler";
+  if (!uses.boundary_inequalities) who += ", and so does riccati-ip on euler";
   return who;
 }
 
@@ -50,6 +53,8 @@ ProblemFeatures ProblemFeatures::Of(const Ocp& ocp) {
   f.free_initial_state = ocp.HasFreeInitialState();
   f.state_bounds = ocp.state_bounds().has_value();
   f.boundary_constraints = ocp.num_boundary() > 0;
+  const VectorBounds& b = ocp.boundary_bounds();
+  f.boundary_inequalities = (b.lower.array() < b.upper.array()).any();
   return f;
 }
 
@@ -76,7 +81,7 @@ std::string UnsupportedFeature(const Ocp& ocp,
   }
   if (uses.boundary_constraints && !takes.boundary_constraints) {
     return "problem '" + ocp.name() + "' has boundary constraints b(x(t0), x(tf)), which " +
-           solver + " does not take: " + kCollocationSolvers;
+           solver + " does not take: " + WhoSolvesIt(uses);
   }
   return "";
 }

@@ -90,7 +90,7 @@ void DescribeProblem(const std::string& name) {
             << (features.empty()
                     ? "none (fixed horizon, fixed x(t0), no state bounds or boundary constraints)"
                     : features + " (ipopt and nlopt on a collocation transcription take them" +
-                          std::string(!f.boundary_constraints ? ", and riccati-ip on euler" : "") +
+                          std::string(!f.boundary_inequalities ? ", and riccati-ip on euler" : "") +
                           "; methods that do not say not_applicable)")
             << "\n";
   std::cout << "parameters (--set key=value, suite \"set\"):\n" << parameters.Describe();
