@@ -194,6 +194,13 @@ class EulerStages {
   Vec Tlb, Tub;
   double t0 = 0.0, duration = 1.0;
   int nT() const { return free_time ? 1 : 0; }
+  // Controls: the components that are variables (ascending); a fixed one (lower == upper, e.g.
+  // a phase without that control) keeps its value and is no variable, as Ipopt's
+  // fixed_variable_treatment = make_parameter removes it (its lb, ub are +-inf here).
+  std::vector<int> ufree;
+  Vec ufixed;  // per control component: the fixed value, NaN for the free ones
+  int nuf() const { return static_cast<int>(ufree.size()); }
+  bool has_fixed_controls() const { return nuf() < nu; }
   // Boundary constraints b(x_0, x_N) = b_lo (equalities; inequalities are refused): rows after
   // psi's among the terminal rows (Values::psi, Iterate::nu). They need x_0's free components
   // at x_N, so with boundary constraints the recursion carries them (ncw) beside T.
@@ -382,6 +389,7 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
   for (const auto& c : lay.controls) st->control_off.push_back(c.offset);
   st->lb = Vec::Constant(st->nu, -kRipInf);
   st->ub = Vec::Constant(st->nu, kRipInf);
+  st->ufixed = Vec::Constant(st->nu, std::numeric_limits<double>::quiet_NaN());
   for (const auto& b : ocp.control_set().blocks()) {
     if (b.kind == ControlSet::Kind::kBall) {
       st->balls.push_back(b);
@@ -391,10 +399,10 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
       const double lo = b.lower[i], hi = b.upper[i];
       st->lb[b.offset + i] = lo <= -kRipInfBound ? -kRipInf : lo;
       st->ub[b.offset + i] = hi >= kRipInfBound ? kRipInf : hi;
-      if (RipFinite(lo) && RipFinite(hi) && !(lo < hi)) {
-        *why_not = "riccati-ip needs lower < upper for every bounded control (component " +
-                   std::to_string(b.offset + i) + " is fixed)";
-        return nullptr;
+      if (lo == hi) {  // fixed
+        st->ufixed[b.offset + i] = lo;
+        st->lb[b.offset + i] = -kRipInf;
+        st->ub[b.offset + i] = kRipInf;
       }
     }
   }
@@ -446,6 +454,9 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
       return nullptr;
     }
   }
+  for (int j = 0; j < st->nu; ++j) {
+    if (std::isnan(st->ufixed[j])) st->ufree.push_back(j);
+  }
   st->nball = static_cast<int>(st->balls.size());
   st->relax_ball.assign(st->nball, 0.0);
   st->original = {st->lb, st->ub, st->xlb, st->xub, st->x0lb, st->x0ub, st->Tlb, st->Tub};
@@ -460,6 +471,9 @@ void EulerStages::ToIterate(const Vec& z, Iterate* it) const {
   it->U.resize(nu, N);
   for (int k = 0; k <= N; ++k) it->X.col(k) = z.segment(state_off[k], nx);
   for (int k = 0; k < N; ++k) it->U.col(k) = z.segment(control_off[k], nu);
+  for (int j = 0; j < nu; ++j) {
+    if (!std::isnan(ufixed[j])) it->U.row(j).setConstant(ufixed[j]);
+  }
   it->V = copy ? Vec(it->U.col(N - 1)) : Vec();
 }
 
@@ -935,6 +949,9 @@ class RiccatiInteriorPoint {
   // right-hand side b is the caller's (the Newton step's defects, or zero for the multiplier
   // start).
   bool StageBlocks(int k, const Mat& H, const Vec& g, RiccatiStage* q) const;
+  // u_k's step from a stage's solved "controls" (their last nuf entries are the free control
+  // components): scattered into du, 0 for the fixed components.
+  void ScatterControls(const Vec& stage_controls, Eigen::Ref<Vec> du) const;
   // With carried entries (S_.np(): a free final time T, and with boundary constraints x_0's
   // free components w) every stage's state is (x_k, T, w) (the terminal one (x_N, T, w, v)):
   // H and g (in (x, u) order) with those rows and columns inserted after x, T's Hessian row HT
@@ -1022,7 +1039,8 @@ class RiccatiInteriorPoint {
   mutable Mat Ha_;  // a stage's block with the carried rows and columns (WithCarried)
   mutable Vec ga_;
   std::vector<int> nonzero_;
-  mutable std::vector<int> stage0_;  // StageBlocks' stage-0 indices: x_0's free components, u_0
+  mutable std::vector<int> stage0_, stagek_;  // StageBlocks' index selections  // StageBlocks'
+                                              // stage-0 indices: x_0's free components, u_0
   double delta_last_ = 0.0;
   int iterations_ = 0, regularizations_ = 0, factorizations_ = 0, trials_ = 0;
   double kkt_cpu_ = 0.0, callback_cpu_ = 0.0, mu_ = 0.1;
@@ -1068,7 +1086,7 @@ void RiccatiInteriorPoint::Measure(double mu) {
   double dual = rx_.rightCols(N).lpNorm<Eigen::Infinity>();
   for (int i : S_.free0) dual = std::max(dual, std::abs(rx_(i, 0)));
   dual = std::max(dual, std::abs(rT_));
-  dual = std::max(dual, ru_.lpNorm<Eigen::Infinity>());
+  for (int j : S_.ufree) dual = std::max(dual, ru_.row(j).lpNorm<Eigen::Infinity>());
   if (rv_.size() > 0) dual = std::max(dual, rv_.lpNorm<Eigen::Infinity>());
   double cv = std::max(vals_.defects.lpNorm<Eigen::Infinity>(),
                        vals_.psi.size() > 0 ? vals_.psi.lpNorm<Eigen::Infinity>() : 0.0);
@@ -1107,7 +1125,7 @@ void RiccatiInteriorPoint::Measure(double mu) {
     if (RipFinite(lo)) bound(x - lo, Zl(it_, b)(j, k));
     if (RipFinite(hi)) bound(hi - x, Zu(it_, b)(j, k));
   });
-  const int n = N * (S_.nx + S_.nu) + S_.nw() + S_.nT() + static_cast<int>(it_.V.size()) +
+  const int n = N * (S_.nx + S_.nuf()) + S_.nw() + S_.nT() + static_cast<int>(it_.V.size()) +
                 nb;  // slacks count too
   s_d_ = std::max(kSMax, mult_sum / std::max(1, m + n)) / kSMax;
   s_c_ = std::max(kSMax, bound_sum / std::max(1, n)) / kSMax;
@@ -1265,7 +1283,7 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   d->dU.resize(nu, N);
   d->lam.resize(nx, N);
   for (int k = 0; k < N; ++k) {
-    d->dU.col(k) = sol_.u[k].tail(nu);
+    ScatterControls(sol_.u[k], d->dU.col(k));
     d->dX.col(k + 1) = sol_.x[k + 1].head(nx);
     d->lam.col(k) = sol_.lambda[k].head(nx);
   }
@@ -1676,14 +1694,14 @@ bool RiccatiInteriorPoint::StageBlocks(int k, const Mat& H, const Vec& g, Riccat
   const double hk = S_.Step(it_, k);
   if (k == 0) {  // no x_0 but its free components (and T), which lead the stage's "controls"
     const int nw = S_.nw();
-    stage0_.resize(nw + nT + nu);
+    stage0_.resize(nw + nT + S_.nuf());
     for (int i = 0; i < nw; ++i) stage0_[i] = S_.free0[i];
     if (nT > 0) stage0_[nw] = nx;
-    for (int j = 0; j < nu; ++j) stage0_[nw + nT + j] = nxa + j;
+    for (int j = 0; j < S_.nuf(); ++j) stage0_[nw + nT + j] = nxa + S_.ufree[j];
     q->Q = H(stage0_, stage0_);
     q->q = g(stage0_);
     q->A.setZero(rows, 0);
-    q->B.setZero(rows, nw + nT + nu);
+    q->B.setZero(rows, nw + nT + S_.nuf());
     for (int i = 0; i < nw; ++i) {
       q->B.col(i).head(nx) = hk * e.fx.col(S_.free0[i]);
       q->B(S_.free0[i], i) += 1.0;
@@ -1693,21 +1711,39 @@ bool RiccatiInteriorPoint::StageBlocks(int k, const Mat& H, const Vec& g, Riccat
       q->B(nx, nw) = 1.0;
     }
     for (int i = 0; i < S_.ncw(); ++i) q->B(nx + nT + i, i) = 1.0;  // w carried from here on
-    q->B.block(0, nw + nT, nx, nu) = hk * e.fu;
-    if (last_copy) q->B.bottomRightCorner(nu, nu).setIdentity();
+    for (int j = 0; j < S_.nuf(); ++j) {
+      q->B.col(nw + nT + j).head(nx) = hk * e.fu.col(S_.ufree[j]);
+      if (last_copy) q->B(nxa + S_.ufree[j], nw + nT + j) = 1.0;  // v = u_{N-1}
+    }
     return last_copy;
   }
-  q->Q = H;
-  q->q = g;
+  if (S_.has_fixed_controls()) {  // (x, carried, free u)
+    stagek_.resize(nxa + S_.nuf());
+    for (int i = 0; i < nxa; ++i) stagek_[i] = i;
+    for (int j = 0; j < S_.nuf(); ++j) stagek_[nxa + j] = nxa + S_.ufree[j];
+    q->Q = H(stagek_, stagek_);
+    q->q = g(stagek_);
+  } else {
+    q->Q = H;
+    q->q = g;
+  }
   q->A.setZero(rows, nxa);
   q->A.topLeftCorner(nx, nx) = hk * e.fx;
   q->A.topLeftCorner(nx, nx).diagonal().array() += 1.0;
   for (int j = nx; j < nxa; ++j) q->A(j, j) = 1.0;                  // T_{k+1} = T_k, w_{k+1} = w_k
   if (nT > 0) q->A.col(nx).head(nx) = S_.h[k] / S_.duration * e.f;  // d x_{k+1} / dT
-  q->B.setZero(rows, nu);
-  q->B.topRows(nx) = hk * e.fu;
-  if (last_copy) q->B.bottomRows(nu).setIdentity();
+  q->B.setZero(rows, S_.nuf());
+  for (int j = 0; j < S_.nuf(); ++j) {
+    q->B.col(j).head(nx) = hk * e.fu.col(S_.ufree[j]);
+    if (last_copy) q->B(nxa + S_.ufree[j], j) = 1.0;  // v = u_{N-1}
+  }
   return last_copy;
+}
+
+void RiccatiInteriorPoint::ScatterControls(const Vec& stage_controls, Eigen::Ref<Vec> du) const {
+  du.setZero();
+  const auto free = stage_controls.tail(S_.nuf());
+  for (int j = 0; j < S_.nuf(); ++j) du[S_.ufree[j]] = free[j];
 }
 
 void RiccatiInteriorPoint::WithCarried(
@@ -1867,7 +1903,9 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
     for (int k = 0; k <= N; ++k) {
       if (S_.ni(k) == 0) continue;
       const StageEval& e = st_[k];
-      const Vec du = k < N ? Vec(sol_.u[k].tail(nu)) : Vec(sol_.x[N].tail(nu));
+      Vec du(nu);
+      if (k < N) ScatterControls(sol_.u[k], du);
+      if (k == N) du = sol_.x[N].tail(nu);
       Vec dx = Vec::Zero(nx);
       if (k > 0) dx = sol_.x[k].head(nx);
       for (int i = 0; k == 0 && i < S_.nw(); ++i) dx[S_.free0[i]] = sol_.u[0][i];
@@ -1964,7 +2002,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
         const double g0 = hk * st_[0].Lx[j] + (S_.initial_cost ? te_.grad0[j] : 0.0);
         gmax = std::max(gmax, std::abs(g0));
       }
-      gmax = std::max(gmax, hk * st_[k].Lu.lpNorm<Eigen::Infinity>());
+      for (int j : S_.ufree) gmax = std::max(gmax, hk * std::abs(st_[k].Lu[j]));
     }
     if (S_.free_time) {  // dJ/dT = sum_k h_k L_k / duration
       double gT = 0.0;
@@ -2242,6 +2280,11 @@ NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
     for (int k = 0; k < N; ++k) {
       out.z_lower.segment(S_.control_off[k], nu) = inv * it_.zl.col(k);
       out.z_upper.segment(S_.control_off[k], nu) = inv * it_.zu.col(k);
+      for (int j = 0; j < nu && S_.has_fixed_controls() && ru_.cols() == N; ++j) {
+        if (std::isnan(S_.ufixed[j])) continue;  // a fixed one's: its stationarity
+        out.z_lower[S_.control_off[k] + j] = std::max(0.0, inv * ru_(j, k));
+        out.z_upper[S_.control_off[k] + j] = std::max(0.0, -inv * ru_(j, k));
+      }
       if (S_.has_state_multipliers()) {
         out.z_lower.segment(S_.state_off[k + 1], nx) = inv * it_.zxl.col(k + 1);
         out.z_upper.segment(S_.state_off[k + 1], nx) = inv * it_.zxu.col(k + 1);
@@ -2329,15 +2372,7 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
       return RiccatiIpBoundaryInequality(ocp, i);
     }
   }
-  for (const auto& b : ocp.control_set().blocks()) {
-    if (b.kind != ControlSet::Kind::kBox) continue;
-    for (int i = 0; i < b.size; ++i) {
-      if (!(b.lower[i] < b.upper[i])) {
-        return "riccati-ip needs lower < upper for every bounded control (component " +
-               std::to_string(b.offset + i) + " is fixed)";
-      }
-    }
-  }
+
   return "";
 }
 
