@@ -1222,21 +1222,13 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   qp_.c = r.psi;
   qp_.x0.resize(0);
 
-  // delta_w regularizes the NLP's variables, as Ipopt's: the recursion adds it to every diagonal
-  // entry, so the carried copies T_k, w_k (k >= 1 and the terminal block; stage 0 holds the
-  // variables) get -dw first; without that T would be regularized N + 1 times (dynamic-soaring's
-  // iterate 15, Ipopt's first regularized one, was 3e-3 from Ipopt's in J, 8.5e-6 with it). The
-  // copy v of u_{N-1} keeps its delta_w (README: known differences).
-  double unregularized = 0.0;  // the offset on their diagonal so far
-  const auto regularize_variables_only = [&](double dw) {
-    if (S_.np() == 0 || dw == -unregularized) return;
-    const double shift = -dw - unregularized;
-    for (int k = 1; k < N; ++k) qp_.stages[k].Q.diagonal().segment(nx, S_.np()).array() += shift;
-    qp_.QN.diagonal().segment(nx, S_.np()).array() += shift;
-    unregularized = -dw;
-  };
+  // delta_w goes to every diagonal entry of the recursion, the carried copies T_k, w_k
+  // included, so T and w are regularized N + 1 times where Ipopt regularizes them once. Making
+  // it exact (-delta_w on the copies first) was measured on the library (2026-12-07): closer to
+  // Ipopt's iterates (tumor, balanced-field, f8-aircraft, cart-pendulum at Ipopt's point), but
+  // space-shuttle and dielectrophoretic-particle then ended Restoration_Failed where they
+  // converge with this, so the stronger regularization of the copies stays.
   if (same_regularization) {  // the matrix is the last Newton step's: solve with its factors
-    regularize_variables_only(dw_);
     RhsOf(qp_, &rhs_);
     riccati_.SolveFactored(qp_, rhs_, &sol_);
   }
@@ -1245,7 +1237,6 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   bool regularized = false;
   for (; !same_regularization;) {
     ++factorizations_;
-    regularize_variables_only(dw);
     const RiccatiOutcome out = riccati_.Solve(qp_, dw, dc, &sol_);
     if (out == RiccatiOutcome::kSolved) break;
     if (out == RiccatiOutcome::kTerminalRowsDegenerate && dc == 0.0) {
