@@ -475,13 +475,17 @@ TEST(ProblemClass, MethodsThatDoNotTakeAFeatureAreNotApplicableWithTheReason) {
       EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
       EXPECT_EQ(r.solver_status, "not_applicable");
       EXPECT_NE(r.message.find(c.feature), std::string::npos) << r.message;
+      // ...while it is for these (a free initial state, state bounds), which it takes.
+      EXPECT_NE(r.message.find("riccati-ip on euler"), std::string::npos) << r.message;
       EXPECT_EQ(r.iterations, 0);
     }
   }
-  const Coupled coupled;  // boundary constraints alone (x0 fixed)
+  const Coupled coupled;  // boundary constraints alone (x0 fixed), one of them an inequality
   for (const std::string solver : {"hamiltonian", "indirect-newton"}) {
     const SolveResult r = SolveWith(solver, coupled, Request(coupled, 10, TerminalMode::kHard));
     EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << solver;
+    // Who solves it: riccati-ip takes boundary equalities only, so it is not named here...
+    EXPECT_EQ(r.message.find("riccati-ip"), std::string::npos) << r.message;
     EXPECT_NE(r.message.find("boundary constraints"), std::string::npos) << r.message;
   }
   const SolveResult riccati =
