@@ -84,11 +84,11 @@ struct RiccatiIpOptions {
 std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request);
 
 /// Runs the interior-point method on a TranscribedNlp made by the Euler transcription (with the
-/// identity scaling; a free final time is its last variable), from its StartingPoint. The NLP's own callbacks are
-/// not used for the iterations: the stage structure is read off its layout and every value and
-/// derivative comes from its Ocp, one pass per node. The solution is in the NLP's variables and
-/// multiplier convention (core/nlp.h), so SolveTranscribed fills a SolveResult from it as it does
-/// for Ipopt. A NLP of another shape gives status kNotApplicable.
+/// identity scaling; a free final time is its last variable), from its StartingPoint. The NLP's own
+/// callbacks are not used for the iterations: the stage structure is read off its layout and every
+/// value and derivative comes from its Ocp, one pass per node. The solution is in the NLP's
+/// variables and multiplier convention (core/nlp.h), so SolveTranscribed fills a SolveResult from
+/// it as it does for Ipopt. A NLP of another shape gives status kNotApplicable.
 ///
 /// Statuses (solver_status verbatim): Solve_Succeeded (kConverged), Solved_To_Acceptable_Level
 /// (kAcceptable: RiccatiIpOptions' acceptable level), Maximum_Iterations_Exceeded
@@ -106,8 +106,8 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request);
 /// corrections), riccati_ip_soc_trials (second-order corrections computed),
 /// riccati_ip_soc_accepted, riccati_ip_restoration_phases (times the restoration phase was
 /// entered), riccati_ip_restoration_iterations, riccati_ip_restoration_damped_steps (restoration
-/// steps recomputed with Levenberg-Marquardt damping), riccati_ip_kkt_cpu_seconds (building and solving
-/// the stagewise KKT system), riccati_ip_callback_cpu_seconds (Ocp evaluations),
+/// steps recomputed with Levenberg-Marquardt damping), riccati_ip_kkt_cpu_seconds (building and
+/// solving the stagewise KKT system), riccati_ip_callback_cpu_seconds (Ocp evaluations),
 /// riccati_ip_cpu_seconds (the whole method), riccati_ip_kkt_error (scaled E_0 at the end),
 /// riccati_ip_dual_inf, riccati_ip_constr_viol, riccati_ip_complementarity (unscaled),
 /// riccati_ip_mu (final), riccati_ip_objective_scale.
