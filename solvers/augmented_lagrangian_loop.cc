@@ -1,5 +1,6 @@
 #include "solvers/augmented_lagrangian_loop.h"
 #include "core/invalid.h"
+#include "solvers/descent_rate.h"
 #include "solvers/message_number.h"
 #include "solvers/stage_descent_passes.h"
 
@@ -65,8 +66,14 @@ AugmentedLagrangianOutcome RunAugmentedLagrangian(const AugmentedLagrangianRule&
     loop.relative_theta_tolerance = omega;
     loop.max_iterations =
         std::min(rule.max_inner_iterations, inner.max_iterations - out.descent_iterations);
+    const std::size_t inner_begin = history->size();
     const DescentLoopOutcome step =
         RunDescentLoop(loop, clock, passes, history, out.descent_iterations, -1);
+    // Why a limit stopped the loop here: the inner solve's rate towards its tolerance.
+    const auto rate_note = [&] {
+      const double target = omega * (1.0 + std::abs(passes->J()));
+      return DescentRateNote(MeasureDescentRate(*history, inner_begin, target), target);
+    };
     ++out.outer_iterations;
     out.descent_iterations += step.iterations;
     out.theta = step.theta;
@@ -102,7 +109,8 @@ AugmentedLagrangianOutcome RunAugmentedLagrangian(const AugmentedLagrangianRule&
     if (!inner_converged && step.stop.status != SolveStatus::kMaxIterations) {
       out.stop = {step.stop.status,
                   step.stop.code,
-                  "inner solve " + std::to_string(out.outer_iterations) + ": " + step.stop.why};
+                  "inner solve " + std::to_string(out.outer_iterations) + ": " + step.stop.why +
+                      (step.stop.code == "max_cpu_seconds" ? rate_note() : std::string())};
       stopped = true;
       break;
     }
@@ -112,12 +120,15 @@ AugmentedLagrangianOutcome RunAugmentedLagrangian(const AugmentedLagrangianRule&
                   "reached max_iterations = " + std::to_string(inner.max_iterations) +
                       " descent steps over " + std::to_string(out.outer_iterations) +
                       " outer iterations (terminal residual " +
-                      MessageNumber(out.terminal_residual, 3) + ")"};
+                      MessageNumber(out.terminal_residual, 3) + ")" + rate_note()};
       stopped = true;
       break;
     }
     if (clock.cpu() >= inner.max_cpu_seconds) {
-      out.stop = {SolveStatus::kMaxTime, "max_cpu_seconds", "reached max_cpu_seconds"};
+      out.stop = {SolveStatus::kMaxTime,
+                  "max_cpu_seconds",
+                  "reached max_cpu_seconds (terminal residual " +
+                      MessageNumber(out.terminal_residual, 3) + ")" + rate_note()};
       stopped = true;
       break;
     }

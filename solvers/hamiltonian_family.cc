@@ -14,6 +14,7 @@
 #include "core/rk_tableau.h"
 #include "core/stage_rk_ocp.h"
 #include "solvers/constant_costate_start.h"
+#include "solvers/descent_rate.h"
 #include "solvers/euler_costate_fit.h"
 #include "solvers/grid_sequence.h"
 #include "solvers/hamiltonian_target.h"
@@ -354,6 +355,19 @@ bool Polish(const FamilyRun& run,
   }
 }
 
+// A descent stopped by its iteration or CPU limit: the rate it was converging at and the steps
+// that rate still needed to the loop's tolerance (DescentRateNote); "" for any other stop.
+std::string LimitRateNote(const DescentLoopOptions& loop,
+                          const DescentStop& stop,
+                          double J,
+                          const std::vector<IterationRecord>& history,
+                          std::size_t begin = 0) {
+  if (stop.code != "max_iterations" && stop.code != "max_cpu_seconds") return "";
+  const double target =
+      std::max(loop.theta_tolerance, loop.relative_theta_tolerance * (1.0 + std::abs(J)));
+  return DescentRateNote(MeasureDescentRate(history, begin, target), target);
+}
+
 // The family's descent on a Runge-Kutta scheme with one control per stage (scheme rk2, rk4;
 // ResolveFamilyTarget left no polish, free time or path constraints for the outer loop): the
 // penalty form, or the hard terminal form by the outer loop on the terminal multipliers.
@@ -407,6 +421,7 @@ GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
     RecordAugmentedLagrangianOutcome(al_outcome, *al, &stats);
   } else {
     outcome = RunDescentLoop(loop, clock, &passes, &r.history);
+    outcome.stop.why += LimitRateNote(loop, outcome.stop, passes.J(), r.history);
   }
   stats["descent_iterations"] = outcome.iterations;
   stats["descent_cpu_seconds"] = clock.cpu() - cpu_start;
@@ -498,8 +513,11 @@ GridSolve SolveOnGrid(const FamilyRun& run, const SolveRequest& request) {
     have_costates = outcome.have_costates;
     RecordAugmentedLagrangianOutcome(outcome, *al, &stats);
   } else {
+    const std::size_t begin = r.history.size();
     const DescentLoopOutcome outcome = RunDescentLoop(loop, clock, &passes, &r.history);
     stop = outcome.stop;
+    // With the polish on, Newton takes over from a limited descent: no rate to report.
+    if (!o.polish) stop.why += LimitRateNote(loop, stop, passes.J(), r.history, begin);
     descent_iterations = outcome.iterations;
     theta = outcome.theta;
     have_costates = outcome.have_costates;
