@@ -21,6 +21,7 @@
 #include "solvers/indirect_newton.h"
 #include "solvers/message_number.h"
 #include "solvers/stage_descent_passes.h"
+#include "solvers/stage_newton.h"
 
 namespace ocpb {
 namespace {
@@ -149,10 +150,15 @@ HamiltonianTarget ResolveFamilyTarget(const std::string& name,
       return refuse(scheme + " replaces the request's integrator (" + ToString(request.integrator) +
                     "): request integrator euler");
     }
-    if (o.polish) {
+    if (o.polish && t.ocp->free_final_time()) {
       return refuse(scheme +
-                    ": the polish (Newton on the Euler maximum principle) needs "
-                    "scheme=euler");
+                    ": the polish (projected Newton on the stage controls) keeps the horizon "
+                    "fixed; a free final time needs scheme=euler");
+    }
+    if (o.polish && !t.ocp->control_set().IsBox()) {
+      return refuse(scheme +
+                    ": the polish (projected Newton on the stage controls) needs a box control "
+                    "set (this problem's has a ball); scheme=euler polishes it");
     }
     if (path_al) {
       return refuse(scheme +
@@ -368,6 +374,108 @@ std::string LimitRateNote(const DescentLoopOptions& loop,
   return DescentRateNote(MeasureDescentRate(history, begin, target), target);
 }
 
+// The polish on a Runge-Kutta scheme's stage controls (solvers/stage_newton.h): projected
+// truncated Newton on the discrete problem from the descent's controls U, in the hard form inside
+// a multiplier loop. Its iterate becomes the result's whether it converged or not (Newton's
+// iterates only decrease J, or J_A); the status and message say which. True when converged.
+bool StagePolish(const FamilyRun& run,
+                 const SolveRequest& request,
+                 const TimeGrid& grid,
+                 const RkTableau& tableau,
+                 Mat U,
+                 int descent_iterations,
+                 SolveResult* r) {
+  const HamiltonianFamilyOptions& o = run.o;
+  const Ocp& problem = *run.target.ocp;
+  auto& stats = r->solver_stats;
+  StageNewtonOptions no;
+  no.max_iterations = o.newton_max_iterations;
+  no.tolerance = o.newton_tolerance;
+  no.backtrack = o.newton_backtrack;
+  no.sufficient_decrease = o.newton_sufficient_decrease;
+  const CpuLimit limit{&run.clock, o.max_cpu_seconds};
+  const double cpu0 = run.clock.cpu();
+  const bool hard = request.terminal == TerminalMode::kHard && problem.num_terminal() > 0;
+  StageNewtonOutcome last;
+  std::string code, why;
+  bool converged = false;
+  int newton_iterations = 0, hessian_products = 0, cg_iterations = 0;
+  Mat X, Lambda, Y, P, G;
+  if (hard) {
+    AugmentedLagrangianOcp al(problem, grid);
+    const StageRkOcp srk(al, grid, tableau, TerminalMode::kHard);
+    const AugmentedLagrangianRule& rule = o.augmented_lagrangian;
+    const StageAugmentedLagrangianOutcome a =
+        StageNewtonAugmentedLagrangian(srk,
+                                       &al,
+                                       problem.control_set(),
+                                       no,
+                                       rule.initial_penalty,
+                                       rule.penalty_growth,
+                                       rule.max_penalty,
+                                       rule.feasibility_tolerance,
+                                       rule.max_outer_iterations,
+                                       limit,
+                                       &U);
+    last = a.last;
+    code = a.code;
+    why = a.why;
+    converged = a.converged;
+    newton_iterations = a.newton_iterations;
+    hessian_products = a.hessian_products;
+    cg_iterations = a.cg_iterations;
+    stats["outer_iterations"] = a.outer_iterations;
+    stats["terminal_residual"] = a.terminal_residual;
+    stats["penalty"] = al.rho();
+    for (int i = 0; i < al.terminal_multipliers().size(); ++i) {
+      stats["nu_" + std::to_string(i)] = al.terminal_multipliers()[i];
+    }
+    // Costates of the hard form: lambda_N = grad phi + psi_x^T nu at the updated multipliers.
+    if (std::isfinite(srk.Simulate(U, &X))) srk.Adjoint(U, X, &Lambda, &Y, &P, &G);
+  } else {
+    const StageRkOcp srk(problem, grid, tableau, request.terminal);
+    last = StageNewton(srk, problem.control_set(), no, limit, &U);
+    code = last.code;
+    why = last.why;
+    converged = last.converged;
+    newton_iterations = last.iterations;
+    hessian_products = last.hessian_products;
+    cg_iterations = last.cg_iterations;
+    if (std::isfinite(srk.Simulate(U, &X))) srk.Adjoint(U, X, &Lambda, &Y, &P, &G);
+  }
+  stats["newton_iterations"] = newton_iterations;
+  stats["newton_hessian_products"] = hessian_products;
+  stats["newton_cg_iterations"] = cg_iterations;
+  stats["newton_residual_inf"] = last.residual;
+  stats["newton_cpu_seconds"] = run.clock.cpu() - cpu0;
+  r->status = converged                   ? SolveStatus::kConverged
+              : code == "max_cpu_seconds" ? SolveStatus::kMaxTime
+              : code == "line_search"     ? SolveStatus::kStepTooSmall
+              : code == "not_finite"      ? SolveStatus::kNumericalFailure
+                                          : SolveStatus::kMaxIterations;
+  r->solver_status = "stage_newton_" + code;
+  r->iterations = descent_iterations + newton_iterations;
+  r->message += "; Newton (projected, truncated, on the " + std::string(SchemeName(o.scheme)) +
+                " stage controls" + (hard ? ", in a multiplier loop" : "") + ", after " +
+                std::to_string(descent_iterations) + " descent steps): " + why;
+  if (X.allFinite() && X.cols() == grid.size()) {
+    r->controls = StageControls(grid, tableau, U, problem.control_set());
+    r->states = X;
+    r->costates = Lambda;
+    r->objective = StageRkOcp(problem, grid, tableau, request.terminal).Simulate(U, nullptr);
+    r->history.push_back({static_cast<int>(r->history.size()),
+                          r->objective,
+                          NAN,
+                          -1,
+                          hard ? stats["terminal_residual"] : NAN,
+                          last.residual,
+                          run.clock.cpu()});
+  } else {
+    r->message += " (the controls are the descent's)";
+  }
+  return converged;
+}
+
 // The family's descent on a Runge-Kutta scheme with one control per stage (scheme rk2, rk4;
 // ResolveFamilyTarget left no polish, free time or path constraints for the outer loop): the
 // penalty form, or the hard terminal form by the outer loop on the terminal multipliers.
@@ -376,7 +484,9 @@ GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
   const Stopwatch& clock = run.clock;
   const double cpu_start = clock.cpu();
   const Ocp& problem = *run.target.ocp;
-  const bool use_al = request.terminal == TerminalMode::kHard;
+  // The hard form by the outer loop, unless Newton finishes: then, as on Euler, the descent runs
+  // on the penalty form and the polish solves the hard form.
+  const bool use_al = request.terminal == TerminalMode::kHard && !o.polish;
   std::unique_ptr<AugmentedLagrangianOcp> al;
   if (use_al) al = std::make_unique<AugmentedLagrangianOcp>(problem, request.grid);
   const Ocp& descended = use_al ? static_cast<const Ocp&>(*al) : problem;
@@ -404,7 +514,8 @@ GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
   }
   passes.Start(U);
 
-  const DescentLoopOptions loop = FamilyLoopOptions(o, o.relative_theta_tolerance);
+  const DescentLoopOptions loop =
+      FamilyLoopOptions(o, o.polish ? o.polish_switch : o.relative_theta_tolerance);
 
   GridSolve out;
   SolveResult& r = out.result;
@@ -421,7 +532,7 @@ GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
     RecordAugmentedLagrangianOutcome(al_outcome, *al, &stats);
   } else {
     outcome = RunDescentLoop(loop, clock, &passes, &r.history);
-    outcome.stop.why += LimitRateNote(loop, outcome.stop, passes.J(), r.history);
+    if (!o.polish) outcome.stop.why += LimitRateNote(loop, outcome.stop, passes.J(), r.history);
   }
   stats["descent_iterations"] = outcome.iterations;
   stats["descent_cpu_seconds"] = clock.cpu() - cpu_start;
@@ -447,9 +558,15 @@ GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
   if (outcome.have_costates) r.costates = passes.Lambda();
   // J of the problem in the request's terminal form (hard: no penalty, no multiplier terms).
   r.objective =
-      use_al
+      use_al || o.polish
           ? StageRkOcp(problem, grid, srk.tableau(), request.terminal).Simulate(passes.U(), nullptr)
           : passes.J();
+  // No Newton once the CPU limit is reached (the descent's stop says so), nor from a start
+  // whose J is not finite.
+  if (o.polish && clock.cpu() < o.max_cpu_seconds && std::isfinite(passes.J())) {
+    out.polished =
+        StagePolish(run, request, grid, srk.tableau(), passes.U(), outcome.iterations, &r);
+  }
   return out;
 }
 
@@ -728,9 +845,10 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
   const FamilyRun run{name, o, original, target, clock};
   SolveResult r;
   if (o.polish) {
-    // Without Newton steps (newton_max_iterations = 0) there is nothing to refine.
+    // Without Newton steps (newton_max_iterations = 0) there is nothing to refine; the stage
+    // schemes' polish is not grid-sequenced.
     const int levels =
-        o.newton_max_iterations == 0
+        o.newton_max_iterations == 0 || o.scheme != HamiltonianFamilyOptions::Scheme::kEuler
             ? 0
             : GridSequenceLevels(
                   request.grid, o.polish_coarse_levels, o.polish_coarse_min_intervals);

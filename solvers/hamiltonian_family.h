@@ -27,9 +27,10 @@ struct HamiltonianFamilyOptions {
   /// kRk2 Heun (c = (0, 1), b = (1/2, 1/2)), kRk4 the classical one (b = (1/6, 1/3, 1/3, 1/6)),
   /// of order 2 and 4 for the control problem (RkTableau, HagerOrderConditions). With kRk2 and
   /// kRk4 the descent (either direction) in the penalty form, the hard terminal form by the
-  /// augmented-Lagrangian loop, and a free final time (dJ/dT through the stages); the polish and
-  /// path constraints in the loop are Euler's and report kNotApplicable naming the option, as
-  /// does a request integrator other than euler (the scheme replaces it).
+  /// augmented-Lagrangian loop, a free final time (dJ/dT through the stages), and the polish as
+  /// projected truncated Newton on the stage controls (StageNewton; a fixed horizon and a box
+  /// control set); path constraints in the loop are Euler's and report kNotApplicable naming
+  /// the option, as does a request integrator other than euler (the scheme replaces it).
   enum class Scheme { kEuler, kRk2, kRk4 };
   enum class PathConstraints {
     kReformulation,        ///< Ocp::HamiltonianReformulation's penalty (the paper's method's)
@@ -68,7 +69,10 @@ struct HamiltonianFamilyOptions {
   /// the Armijo outcome (DescentPasses::EnableFreeFinalTime).
   double free_time_initial_fraction = 0.1;
 
-  // ---- polish: Newton on the Euler maximum principle (PmpResidual::Scheme::kEuler) ----
+  // ---- polish: Newton on the Euler maximum principle (PmpResidual::Scheme::kEuler); with
+  // scheme rk2/rk4 projected truncated Newton on the stage controls (StageNewton: newton_max_
+  // iterations, newton_tolerance on its projected residual, newton_backtrack and newton_
+  // sufficient_decrease on J; one attempt, no grid sequencing, no Riccati sweep) ----
   bool polish = false;
   /// The descent hands over when |theta| <= polish_switch (1 + |J|) or at max_iterations (> 0).
   double polish_switch = 1e-3;
@@ -203,13 +207,24 @@ struct HamiltonianFamilyOptions {
 /// c_i (stages with equal c averaged: Heun linear, RK4 quadratic through 0, 1/2, 1), projected
 /// onto U; states and costates are the scheme's nodes x_k and lambda_k; objective the scheme's
 /// discrete J (hard form: without penalty or multiplier terms); solver_stats add
-/// "scheme_stages" (s) and "stage_controls" (s N).
+/// "scheme_stages" (s) and "stage_controls" (s N). With polish (a fixed horizon, a box control
+/// set) the descent runs on the penalty form up to polish_switch or max_iterations and
+/// StageNewton minimizes the scheme's J from its controls: in the hard form inside a multiplier
+/// loop of Newton solves (StageNewtonAugmentedLagrangian: "outer_iterations",
+/// "terminal_residual", "penalty", "nu_<i>"); one attempt, not grid-sequenced. Its iterate is the
+/// result's (Newton only decreases J, or J_A), its status the polish's (solver_status
+/// "stage_newton_<code>": converged, max_iterations, line_search -> step_too_small, not_finite
+/// -> numerical_failure, max_cpu_seconds, max_outer_iterations); stats "newton_iterations",
+/// "newton_hessian_products", "newton_cg_iterations", "newton_residual_inf" (the projected
+/// residual), "newton_cpu_seconds"; one history row for the polished iterate (dual_inf: the
+/// projected residual; primal_inf: the terminal residual in the hard form).
 ///
 /// Not applicable (kNotApplicable, reason in `message`): no Hamiltonian minimizer; path
 /// constraints left after the choice of `path`; a free final time with the request integrator RK4
 /// (scheme euler); a polish with path constraints handled by the outer loop (Newton takes none);
-/// with scheme rk2 or rk4 a polish, path constraints in the outer loop or a request integrator
-/// other than euler (each message names the scheme).
+/// with scheme rk2 or rk4 path constraints in the outer loop, a request integrator other than
+/// euler, or a polish with a free final time or a control set that is not a box (each message
+/// names the scheme).
 class HamiltonianFamily final : public Solver {
  public:
   using Options = HamiltonianFamilyOptions;

@@ -74,7 +74,8 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
        {"rk2", Options::Scheme::kRk2},
        {"rk4", Options::Scheme::kRk4}},
       "the descent's discretization: forward Euler, or Heun / classical RK4 with one control per "
-      "stage and the exact transformed adjoint (no polish with rk2, rk4)");
+      "stage and the exact transformed adjoint (the polish there: projected Newton on the stage "
+      "controls)");
   t.NestedMember("proximal_eps",
                  &Options::proximal,
                  &ProximalSchedule::initial_eps,
@@ -151,7 +152,10 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
            &O::free_time_initial_fraction,
            "free final time: the first T step moves T by at most this fraction of T - t0",
            OptionBounds::Above(0));
-  t.Bool("polish", &O::polish, "Newton on the Euler maximum principle after the descent");
+  t.Bool("polish",
+         &O::polish,
+         "Newton after the descent: on the Euler maximum principle (scheme euler), projected "
+         "truncated Newton on the stage controls (rk2, rk4)");
   t.Number("polish_switch",
            &O::polish_switch,
            "polish: the descent hands over at |theta| <= this (1 + |J|) or max_iterations",

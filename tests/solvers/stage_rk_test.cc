@@ -18,6 +18,7 @@
 #include "problems/registry.h"
 #include "solvers/hamiltonian_family.h"
 #include "solvers/stage_descent_passes.h"
+#include "solvers/stage_newton.h"
 
 namespace ocpb {
 namespace {
@@ -207,35 +208,16 @@ TEST(StageRkOcp, OneStageTableauIsForwardEuler) {
   EXPECT_LT((P - L1.rightCols(16)).cwiseAbs().maxCoeff(), 1e-13);
 }
 
-// Newton on dJ/dU = 0 by conjugate gradients with Hessian-vector products from central
-// differences of the exact gradient: the discrete optimum to rounding (the descent stops where
+// The family's polish on the stage controls (StageNewton: Newton on dJ/dU = 0 by conjugate
+// gradients with Hessian-vector products from central differences of the exact gradient): the
+// discrete optimum to rounding (the descent stops where
 // Armijo can no longer see a decrease of J, controls to ~1e-8), to separate the scheme's order
 // from the descent's floor.
 Mat RefineToStationary(const StageRkOcp& srk, Mat U) {
-  Mat X, Lambda, Y, P, G, Gp, Gm;
-  auto gradient = [&](const Mat& V, Mat* out) {
-    srk.Simulate(V, &X);
-    srk.Adjoint(V, X, &Lambda, &Y, &P, out);
-  };
-  for (int newton = 0; newton < 4; ++newton) {
-    gradient(U, &G);
-    Mat x = Mat::Zero(U.rows(), U.cols()), r = -G, p = r;
-    double rr = r.squaredNorm();
-    const double stop = 1e-30 * std::max(1.0, G.squaredNorm());
-    for (int it = 0; it < 400 && rr > stop; ++it) {
-      const double t = 1e-4 / std::max(p.cwiseAbs().maxCoeff(), 1e-300);
-      gradient(U + t * p, &Gp);
-      gradient(U - t * p, &Gm);
-      const Mat Hp = (Gp - Gm) / (2.0 * t);
-      const double alpha = rr / (p.cwiseProduct(Hp)).sum();
-      x += alpha * p;
-      r -= alpha * Hp;
-      const double rr_next = r.squaredNorm();
-      p = r + (rr_next / rr) * p;
-      rr = rr_next;
-    }
-    U += x;
-  }
+  StageNewtonOptions options;
+  options.tolerance = 1e-14;
+  options.max_iterations = 20;
+  StageNewton(srk, srk.ocp().control_set(), options, {}, &U);
   return U;
 }
 
@@ -294,11 +276,8 @@ TEST(HamiltonianFamilyScheme, NotApplicableCasesNameTheOption) {
   SolveRequest r;
   r.grid = TimeGrid::Uniform(di->t0(), di->tf(), 20);
   r.options = {{"scheme", "rk2"}};
-  SolveResult s = HamiltonianFamily(HamiltonianFamily::Preset::kPolish).Solve(*di, r);
-  EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
-  EXPECT_NE(s.message.find("scheme=rk2"), std::string::npos) << s.message;
   r.integrator = Integrator::kRk4;
-  s = HamiltonianFamily(HamiltonianFamily::Preset::kProximal).Solve(*di, r);
+  SolveResult s = HamiltonianFamily(HamiltonianFamily::Preset::kProximal).Solve(*di, r);
   EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
   EXPECT_NE(s.message.find("scheme=rk2"), std::string::npos) << s.message;
   // Path constraints by the outer loop (hamiltonian-al's default path option).
@@ -309,6 +288,19 @@ TEST(HamiltonianFamilyScheme, NotApplicableCasesNameTheOption) {
   s = HamiltonianFamily(HamiltonianFamily::Preset::kAugmentedLagrangian).Solve(*bd, r);
   EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
   EXPECT_NE(s.message.find("scheme=rk4"), std::string::npos) << s.message;
+  // The polish on the stage controls: a fixed horizon and a box control set.
+  const std::unique_ptr<Ocp> free_time = MakeProblem("double-integrator-free-time", {}, 1);
+  r = SolveRequest();
+  r.grid = TimeGrid::Uniform(free_time->t0(), free_time->tf(), 20);
+  r.options = {{"scheme", "rk4"}};
+  s = HamiltonianFamily(HamiltonianFamily::Preset::kPolish).Solve(*free_time, r);
+  EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(s.message.find("free final time needs scheme=euler"), std::string::npos) << s.message;
+  const std::unique_ptr<Ocp> paper = MakeProblem("comm-path2d", {"channel=0"}, 1);
+  r.grid = TimeGrid::Uniform(paper->t0(), paper->tf(), 20);
+  s = HamiltonianFamily(HamiltonianFamily::Preset::kPolish).Solve(*paper, r);
+  EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(s.message.find("needs a box control set"), std::string::npos) << s.message;
 }
 
 // The hard terminal form by the outer loop on the stage controls: the double integrator's

@@ -1,0 +1,250 @@
+#include "solvers/stage_newton.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "solvers/augmented_lagrangian_ocp.h"
+#include "solvers/message_number.h"
+
+namespace ocpb {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The reduced problem J(U) of a StageRkOcp with its stage weights and box, and the sweeps.
+class Reduced {
+ public:
+  Reduced(const StageRkOcp& srk, const ControlSet& controls) : srk_(srk) {
+    if (!controls.IsBox()) {
+      throw std::invalid_argument("StageNewton: the control set must be a box");
+    }
+    controls.BoundingBox(&lower_, &upper_);
+    const int s = srk.stages(), N = srk.intervals();
+    weight_.resize(s * N);
+    for (int k = 0; k < N; ++k) {
+      for (int i = 0; i < s; ++i) weight_[k * s + i] = srk.StageWeight(k, i);
+    }
+  }
+
+  double Value(const Mat& U) const { return srk_.Simulate(U, nullptr); }
+  // J and dJ/dU; NaN when J is not finite (G is then unset).
+  double Gradient(const Mat& U, Mat* G) {
+    const double J = srk_.Simulate(U, &X_);
+    if (!std::isfinite(J)) return kNaN;
+    srk_.Adjoint(U, X_, &Lambda_, &Y_, &P_, G);
+    return G->allFinite() ? J : kNaN;
+  }
+  // dJ/dU divided by the stage weights: H_u at every stage.
+  Mat Scaled(const Mat& G) const { return G.array().rowwise() / weight_.transpose().array(); }
+  void Project(Mat* U) const {
+    for (int c = 0; c < U->cols(); ++c) {
+      U->col(c) = U->col(c).cwiseMax(lower_).cwiseMin(upper_);
+    }
+  }
+  double Residual(const Mat& U, const Mat& G) const {
+    Mat step = U - Scaled(G);
+    Project(&step);
+    return (U - step).lpNorm<Eigen::Infinity>();
+  }
+  bool AtLower(const Mat& U, int r, int c, double eps) const { return U(r, c) - lower_[r] <= eps; }
+  bool AtUpper(const Mat& U, int r, int c, double eps) const { return upper_[r] - U(r, c) <= eps; }
+  const Vec& weight() const { return weight_; }
+
+ private:
+  const StageRkOcp& srk_;
+  Vec lower_, upper_, weight_;
+  Mat X_, Lambda_, Y_, P_;
+};
+
+double Dot(const Mat& a, const Mat& b) { return a.cwiseProduct(b).sum(); }
+
+}  // namespace
+
+double StageProjectedResidual(const StageRkOcp& srk, const ControlSet& controls, const Mat& U) {
+  Reduced reduced(srk, controls);
+  Mat G;
+  if (!std::isfinite(reduced.Gradient(U, &G))) return kNaN;
+  return reduced.Residual(U, G);
+}
+
+StageNewtonOutcome StageNewton(const StageRkOcp& srk,
+                               const ControlSet& controls,
+                               const StageNewtonOptions& options,
+                               const CpuLimit& limit,
+                               Mat* U) {
+  Reduced reduced(srk, controls);
+  StageNewtonOutcome out;
+  reduced.Project(U);
+  Mat G, Gp, Gm, Hp, Ut;
+  const Vec& w = reduced.weight();
+  auto stop = [&](const char* code, std::string why) {
+    out.code = code;
+    out.why = std::move(why);
+    return out;
+  };
+  for (;;) {
+    out.J = reduced.Gradient(*U, &G);
+    if (!std::isfinite(out.J)) return stop("not_finite", "J or its gradient is not finite");
+    out.residual = reduced.Residual(*U, G);
+    if (out.residual <= options.tolerance) {
+      out.converged = true;
+      return stop("converged",
+                  "projected residual " + MessageNumber(out.residual, 3) +
+                      " <= " + MessageNumber(options.tolerance, 3) + " after " +
+                      std::to_string(out.iterations) + " Newton steps");
+    }
+    if (out.iterations >= options.max_iterations) {
+      return stop("max_iterations",
+                  "reached max_iterations = " + std::to_string(options.max_iterations) +
+                      " Newton steps (projected residual " + MessageNumber(out.residual, 3) + ")");
+    }
+    if (limit.Reached()) {
+      return stop(
+          "max_cpu_seconds",
+          "reached max_cpu_seconds (projected residual " + MessageNumber(out.residual, 3) + ")");
+    }
+    // The two-metric split: components held at a bound by their gradient take the scaled
+    // gradient step, the free ones Newton's.
+    const Mat S = reduced.Scaled(G);
+    const double eps = std::min(1e-2, out.residual);
+    Mat free_mask = Mat::Ones(U->rows(), U->cols());
+    for (int c = 0; c < U->cols(); ++c) {
+      for (int r = 0; r < U->rows(); ++r) {
+        if ((reduced.AtLower(*U, r, c, eps) && S(r, c) > 0.0) ||
+            (reduced.AtUpper(*U, r, c, eps) && S(r, c) < 0.0)) {
+          free_mask(r, c) = 0.0;
+        }
+      }
+    }
+    const Mat active_step = -S.cwiseProduct(Mat::Ones(U->rows(), U->cols()) - free_mask);
+    // Preconditioned CG on H_FF d = -G_F, M = diag(w).
+    auto precondition = [&](const Mat& r) {
+      return Mat((r.array().rowwise() / w.transpose().array()) * free_mask.array());
+    };
+    auto hessian_times = [&](const Mat& p) -> bool {
+      const double t = 1e-5 * std::max(1.0, U->lpNorm<Eigen::Infinity>()) /
+                       std::max(p.lpNorm<Eigen::Infinity>(), std::numeric_limits<double>::min());
+      ++out.hessian_products;
+      if (!std::isfinite(reduced.Gradient(*U + t * p, &Gp)) ||
+          !std::isfinite(reduced.Gradient(*U - t * p, &Gm))) {
+        return false;
+      }
+      Hp = ((Gp - Gm) / (2.0 * t)).cwiseProduct(free_mask);
+      return Hp.allFinite();
+    };
+    Mat d = Mat::Zero(U->rows(), U->cols());
+    Mat res = -G.cwiseProduct(free_mask);
+    Mat z = precondition(res);
+    Mat p = z;
+    double rz = Dot(res, z);
+    const double forcing = std::min(0.1, std::sqrt(out.residual));
+    const double cg_stop = forcing * forcing * rz;
+    for (int it = 0; it < options.max_cg_iterations && rz > 0.0; ++it) {
+      ++out.cg_iterations;
+      if (!hessian_times(p)) break;
+      const double pHp = Dot(p, Hp);
+      if (!(pHp > 0.0)) break;  // negative curvature: keep the iterate so far
+      const double alpha = rz / pHp;
+      d += alpha * p;
+      res -= alpha * Hp;
+      z = precondition(res);
+      const double rz_next = Dot(res, z);
+      if (rz_next <= cg_stop) break;
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+    }
+    const Mat scaled_gradient_step = -S.cwiseProduct(free_mask);
+    if (d.isZero(0.0)) d = scaled_gradient_step;
+    // The projected Armijo search, first along Newton's direction, then (if that finds no
+    // decrease) along the scaled gradient. The test allows J's rounding: close to the solution
+    // Newton's decrease, quadratic in the residual, is below it.
+    const double rounding = 16.0 * std::numeric_limits<double>::epsilon() * (1.0 + std::abs(out.J));
+    bool accepted = false;
+    for (const Mat* direction : {static_cast<const Mat*>(&d), &scaled_gradient_step}) {
+      for (double step = 1.0; step >= options.min_step && !accepted; step *= options.backtrack) {
+        Ut = *U + step * (*direction + active_step);
+        reduced.Project(&Ut);
+        const double decrease = Dot(G, Ut - *U);
+        const double Jt = reduced.Value(Ut);
+        if (std::isfinite(Jt) && Jt <= out.J + options.sufficient_decrease * decrease + rounding) {
+          accepted = true;
+        }
+        if (limit.Reached()) break;
+      }
+      if (accepted) break;
+    }
+    if (!accepted) {
+      return stop("line_search",
+                  "no step >= " + MessageNumber(options.min_step, 3) +
+                      " decreased J enough at Newton step " + std::to_string(out.iterations) +
+                      " (projected residual " + MessageNumber(out.residual, 3) + ")");
+    }
+    *U = Ut;
+    ++out.iterations;
+  }
+}
+
+StageAugmentedLagrangianOutcome StageNewtonAugmentedLagrangian(const StageRkOcp& srk,
+                                                               AugmentedLagrangianOcp* al,
+                                                               const ControlSet& controls,
+                                                               const StageNewtonOptions& options,
+                                                               double initial_penalty,
+                                                               double penalty_growth,
+                                                               double max_penalty,
+                                                               double feasibility_tolerance,
+                                                               int max_outer_iterations,
+                                                               const CpuLimit& limit,
+                                                               Mat* U) {
+  StageAugmentedLagrangianOutcome out;
+  const Ocp& problem = al->inner();
+  const int N = srk.intervals();
+  Vec nu = Vec::Zero(problem.num_terminal());
+  double rho = initial_penalty;
+  double previous = std::numeric_limits<double>::infinity();
+  Mat X;
+  Vec psi(problem.num_terminal());
+  for (; out.outer_iterations < max_outer_iterations;) {
+    al->SetTerminal(nu, rho);
+    out.last = StageNewton(srk, controls, options, limit, U);
+    ++out.outer_iterations;
+    out.newton_iterations += out.last.iterations;
+    out.hessian_products += out.last.hessian_products;
+    out.cg_iterations += out.last.cg_iterations;
+    srk.Simulate(*U, &X);
+    if (problem.num_terminal() > 0 && X.allFinite()) {
+      problem.TerminalConstraints(X.col(N), psi);
+      out.terminal_residual = psi.lpNorm<Eigen::Infinity>();
+    } else {
+      out.terminal_residual = problem.num_terminal() > 0 ? kNaN : 0.0;
+    }
+    const std::string after = " after " + std::to_string(out.outer_iterations) +
+                              " outer iterations (" + std::to_string(out.newton_iterations) +
+                              " Newton steps)";
+    if (!out.last.converged) {
+      out.code = out.last.code;
+      out.why = "inner solve " + std::to_string(out.outer_iterations) + ": " + out.last.why +
+                "; terminal residual " + MessageNumber(out.terminal_residual, 3);
+      return out;
+    }
+    nu = al->TerminalUpdate(X.col(N));
+    if (out.terminal_residual <= feasibility_tolerance) {
+      al->SetTerminal(nu, rho);  // the multipliers of the solution: the update at it
+      out.converged = true;
+      out.code = "converged";
+      out.why = "terminal residual " + MessageNumber(out.terminal_residual, 3) +
+                " <= " + MessageNumber(feasibility_tolerance, 3) + ", projected residual " +
+                MessageNumber(out.last.residual, 3) + after;
+      return out;
+    }
+    if (out.terminal_residual > 0.25 * previous) rho = std::min(rho * penalty_growth, max_penalty);
+    previous = out.terminal_residual;
+  }
+  out.code = "max_outer_iterations";
+  out.why = "reached max_outer_iterations = " + std::to_string(max_outer_iterations) +
+            " (terminal residual " + MessageNumber(out.terminal_residual, 3) + ")";
+  return out;
+}
+
+}  // namespace ocpb
