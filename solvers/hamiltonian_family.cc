@@ -405,6 +405,8 @@ bool StagePolish(const FamilyRun& run,
     AugmentedLagrangianOcp al(problem, grid);
     const StageRkOcp srk(al, grid, tableau, TerminalMode::kHard);
     const AugmentedLagrangianRule& rule = o.augmented_lagrangian;
+    // Newton's tolerance is the polish's on psi too (as the Euler polish's ||F||_inf, which
+    // holds psi): with the loop's 1e-8 the J of the double integrator stayed 1.3e-8 off.
     const StageAugmentedLagrangianOutcome a =
         StageNewtonAugmentedLagrangian(srk,
                                        &al,
@@ -413,7 +415,7 @@ bool StagePolish(const FamilyRun& run,
                                        rule.initial_penalty,
                                        rule.penalty_growth,
                                        rule.max_penalty,
-                                       rule.feasibility_tolerance,
+                                       o.newton_tolerance,
                                        rule.max_outer_iterations,
                                        limit,
                                        &U);

@@ -210,10 +210,12 @@ struct HamiltonianFamilyOptions {
 /// "scheme_stages" (s) and "stage_controls" (s N). With polish (a fixed horizon, a box control
 /// set) the descent runs on the penalty form up to polish_switch or max_iterations and
 /// StageNewton minimizes the scheme's J from its controls: in the hard form inside a multiplier
-/// loop of Newton solves (StageNewtonAugmentedLagrangian: "outer_iterations",
-/// "terminal_residual", "penalty", "nu_<i>"); one attempt, not grid-sequenced. Its iterate is the
-/// result's (Newton only decreases J, or J_A), its status the polish's (solver_status
-/// "stage_newton_<code>": converged, max_iterations, line_search -> step_too_small, not_finite
+/// loop of Newton solves to max |psi| <= newton_tolerance (StageNewtonAugmentedLagrangian;
+/// the AL rule's initial_penalty, penalty_growth, max_penalty, max_outer_iterations;
+/// "outer_iterations", "terminal_residual", "penalty", "nu_<i>"); one attempt, not grid-sequenced.
+/// Its iterate is the result's (Newton only decreases J, or J_A), its status the polish's
+/// (solver_status "stage_newton_<code>": converged, max_iterations, line_search -> step_too_small,
+/// not_finite
 /// -> numerical_failure, max_cpu_seconds, max_outer_iterations); stats "newton_iterations",
 /// "newton_hessian_products", "newton_cg_iterations", "newton_residual_inf" (the projected
 /// residual), "newton_cpu_seconds"; one history row for the polished iterate (dual_inf: the

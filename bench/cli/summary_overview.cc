@@ -60,6 +60,10 @@ std::string MethodFamily(const Record& r) {
   std::string label = r.solver;
   if (!r.transcription.empty()) label += " + " + r.transcription;
   if (!r.algorithm.empty()) label += " (" + r.algorithm + ")";
+  // The Hamiltonian family's discretization is an option, not a transcription: its rk2/rk4
+  // cases are another family than its Euler ones (orders 2 and 4 against 1).
+  const auto scheme = r.options.find("scheme");
+  if (scheme != r.options.end() && scheme->second != "euler") label += " (" + scheme->second + ")";
   return label;
 }
 

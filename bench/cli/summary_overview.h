@@ -11,7 +11,9 @@
 namespace ocpb {
 
 /// A method family: solver, transcription and algorithm (grids, terminal forms and options of
-/// one family share its column). "ipopt + lgr", "nlopt + hermite-simpson (LD_SLSQP)", "riccati-ip".
+/// one family share its column). "ipopt + lgr", "nlopt + hermite-simpson (LD_SLSQP)", "riccati-ip";
+/// a `scheme` option other than euler (the Hamiltonian family's) is part of the family:
+/// "hamiltonian-al (rk4)".
 std::string MethodFamily(const Record& r);
 
 /// How one family did on one problem: its best case (see OverviewMarkdown). NaN: none.

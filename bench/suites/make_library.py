@@ -11,8 +11,9 @@ library.json (the main job's): per problem, one group in the hard terminal form:
   - riccati-ip (Euler NLP, the stage-structured interior point) at the same N;
   - NLopt SLSQP on Hermite-Simpson at N = 20 where the problem has at most 6 states (SLSQP's
     dense quasi-Newton matrix grows with the square of the NLP's size);
-  - hamiltonian-polish and indirect-newton at the default N: they say not_applicable where the
-    problem has no closed-form Hamiltonian minimizer or uses a feature they do not take;
+  - hamiltonian-polish (on forward Euler, and on classical RK4: `scheme=rk4`) and
+    indirect-newton at the same N: they say not_applicable where the problem has no closed-form Hamiltonian
+    minimizer or uses a feature they do not take;
   - every discrete reference a peer published (trapezoid at its N, ...) in a scheme OCPBench
     has, as its own case, so
     the summary's "NLP vs peer" column checks OCPBench's transcription against it.
@@ -90,6 +91,10 @@ def family_methods(n, nx):
         methods.append({"solver": "nlopt", "transcription": "hermite-simpson",
                         "algorithm": "LD_SLSQP", "N": 20})
     methods.append({"solver": "hamiltonian-polish", "N": n})
+    # The family on classical RK4 with stage controls (order 4: on a smooth problem its J at
+    # N = 100 is within 1e-8 of the optimum where Euler's is 1e-3 off), the descent then
+    # projected Newton on the stage controls (results/notes/2026-12-07-family-rk4-polish.md).
+    methods.append({"solver": "hamiltonian-polish", "N": n, "options": {"scheme": "rk4"}})
     methods.append({"solver": "indirect-newton", "N": n})
     return methods
 
@@ -149,7 +154,7 @@ def main():
                 "paper's, in the hard terminal form, with Ipopt on the four collocation schemes "
                 "and riccati-ip at N = min(the problem's default N, 100), NLopt SLSQP "
                 "(Hermite-Simpson, N = 20) on problems of at most 6 states, hamiltonian-polish "
-                "and indirect-newton (not_applicable where they do not take the problem), and "
+                "(on Euler and on classical RK4: scheme=rk4) and indirect-newton (not_applicable where they do not take the problem), and "
                 "Ipopt on each peer's published NLP up to N = 200 for the 'NLP vs peer' column "
                 "(the larger ones: library-peers.json). Every case stops at 600 s (its solver's time limit). Written by "
                 "bench/suites/make_library.py."),

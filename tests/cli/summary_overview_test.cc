@@ -31,6 +31,22 @@ Record Case(const std::string& problem,
   return r;
 }
 
+TEST(SummaryOverview, FamilyNamesSolverTranscriptionAlgorithmAndScheme) {
+  Record r = Case("a", "ipopt", "lgr", "converged", 1.0, 1.0);
+  EXPECT_EQ(MethodFamily(r), "ipopt + lgr");
+  r.algorithm = "LD_SLSQP";
+  r.transcription = "hermite-simpson";
+  r.solver = "nlopt";
+  EXPECT_EQ(MethodFamily(r), "nlopt + hermite-simpson (LD_SLSQP)");
+  // The Hamiltonian family's scheme option: rk4 is another family, euler (its default) is not.
+  Record h = Case("a", "hamiltonian-al", "", "converged", 1.0, 1.0);
+  EXPECT_EQ(MethodFamily(h), "hamiltonian-al");
+  h.options["scheme"] = "euler";
+  EXPECT_EQ(MethodFamily(h), "hamiltonian-al");
+  h.options["scheme"] = "rk4";
+  EXPECT_EQ(MethodFamily(h), "hamiltonian-al (rk4)");
+}
+
 TEST(SummaryOverview, BestCaseSolvedStatusAndProfile) {
   const std::vector<Record> records = {
       // a: hermite-simpson converged to 1e-9 at 2 s, and a faster non-converged case that
