@@ -70,7 +70,8 @@ AugmentedLagrangianOutcome RunAugmentedLagrangian(const AugmentedLagrangianRule&
     const DescentLoopOutcome step =
         RunDescentLoop(loop, clock, passes, history, out.descent_iterations, -1);
     // Why a limit stopped the loop here: the inner solve's rate towards its tolerance.
-    const auto rate_note = [&] {
+    const auto rate_note = [&]() -> std::string {
+      if (step.stop.status == SolveStatus::kConverged) return "";  // not why the loop stopped
       const double target = omega * (1.0 + std::abs(passes->J()));
       return DescentRateNote(MeasureDescentRate(*history, inner_begin, target), target);
     };

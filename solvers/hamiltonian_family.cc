@@ -155,11 +155,6 @@ HamiltonianTarget ResolveFamilyTarget(const std::string& name,
                     ": the polish (projected Newton on the stage controls) keeps the horizon "
                     "fixed; a free final time needs scheme=euler");
     }
-    if (o.polish && !t.ocp->control_set().IsBox()) {
-      return refuse(scheme +
-                    ": the polish (projected Newton on the stage controls) needs a box control "
-                    "set (this problem's has a ball); scheme=euler polishes it");
-    }
     if (path_al) {
       return refuse(scheme +
                     ": path constraints by the augmented-Lagrangian loop need "
@@ -429,10 +424,11 @@ bool StagePolish(const FamilyRun& run,
     stats["outer_iterations"] = a.outer_iterations;
     stats["terminal_residual"] = a.terminal_residual;
     stats["penalty"] = al.rho();
-    for (int i = 0; i < al.terminal_multipliers().size(); ++i) {
-      stats["nu_" + std::to_string(i)] = al.terminal_multipliers()[i];
+    for (int i = 0; i < a.multipliers.size(); ++i) {
+      stats["nu_" + std::to_string(i)] = a.multipliers[i];
     }
-    // Costates of the hard form: lambda_N = grad phi + psi_x^T nu at the updated multipliers.
+    // Costates of the hard form: al holds the last solve's (nu, rho), so lambda_N = grad phi +
+    // psi_x^T (nu + rho psi) = grad phi + psi_x^T multipliers.
     if (std::isfinite(srk.Simulate(U, &X))) srk.Adjoint(U, X, &Lambda, &Y, &P, &G);
   } else {
     const StageRkOcp srk(problem, grid, tableau, request.terminal);
@@ -479,8 +475,9 @@ bool StagePolish(const FamilyRun& run,
 }
 
 // The family's descent on a Runge-Kutta scheme with one control per stage (scheme rk2, rk4;
-// ResolveFamilyTarget left no polish, free time or path constraints for the outer loop): the
-// penalty form, or the hard terminal form by the outer loop on the terminal multipliers.
+// ResolveFamilyTarget left no path constraints for the outer loop and no polish with a free
+// final time): the penalty form, or the hard terminal form by the outer loop on the terminal
+// multipliers; then the polish when it is on (StagePolish).
 GridSolve SolveOnStageGrid(const FamilyRun& run, const SolveRequest& request) {
   const HamiltonianFamilyOptions& o = run.o;
   const Stopwatch& clock = run.clock;

@@ -28,9 +28,9 @@ struct HamiltonianFamilyOptions {
   /// of order 2 and 4 for the control problem (RkTableau, HagerOrderConditions). With kRk2 and
   /// kRk4 the descent (either direction) in the penalty form, the hard terminal form by the
   /// augmented-Lagrangian loop, a free final time (dJ/dT through the stages), and the polish as
-  /// projected truncated Newton on the stage controls (StageNewton; a fixed horizon and a box
-  /// control set); path constraints in the loop are Euler's and report kNotApplicable naming
-  /// the option, as does a request integrator other than euler (the scheme replaces it).
+  /// projected truncated Newton on the stage controls (StageNewton; a fixed horizon); path
+  /// constraints in the loop are Euler's and report kNotApplicable naming the option, as does a
+  /// request integrator other than euler (the scheme replaces it).
   enum class Scheme { kEuler, kRk2, kRk4 };
   enum class PathConstraints {
     kReformulation,        ///< Ocp::HamiltonianReformulation's penalty (the paper's method's)
@@ -207,15 +207,15 @@ struct HamiltonianFamilyOptions {
 /// c_i (stages with equal c averaged: Heun linear, RK4 quadratic through 0, 1/2, 1), projected
 /// onto U; states and costates are the scheme's nodes x_k and lambda_k; objective the scheme's
 /// discrete J (hard form: without penalty or multiplier terms); solver_stats add
-/// "scheme_stages" (s) and "stage_controls" (s N). With polish (a fixed horizon, a box control
-/// set) the descent runs on the penalty form up to polish_switch or max_iterations and
-/// StageNewton minimizes the scheme's J from its controls: in the hard form inside a multiplier
-/// loop of Newton solves to max |psi| <= newton_tolerance (StageNewtonAugmentedLagrangian;
-/// the AL rule's initial_penalty, penalty_growth, max_penalty, max_outer_iterations;
-/// "outer_iterations", "terminal_residual", "penalty", "nu_<i>"); one attempt, not grid-sequenced.
-/// Its iterate is the result's (Newton only decreases J, or J_A), its status the polish's
-/// (solver_status "stage_newton_<code>": converged, max_iterations, line_search -> step_too_small,
-/// not_finite
+/// "scheme_stages" (s) and "stage_controls" (s N). With polish (a fixed horizon) the descent runs
+/// on the penalty form up to polish_switch or max_iterations and StageNewton minimizes the scheme's
+/// J from its controls: in the hard form inside a multiplier loop of Newton solves to max |psi| <=
+/// newton_tolerance (StageNewtonAugmentedLagrangian; from nu = 0 with the AL rule's
+/// initial_penalty, penalty_growth, max_penalty, max_outer_iterations; the costates from the
+/// adjoint at the last solve's (nu, rho); "outer_iterations", "terminal_residual", "penalty",
+/// "nu_<i>"); one attempt, not grid-sequenced. Its iterate is the result's (its line search accepts
+/// only decreases of J, or J_A, to J's rounding), its status the polish's (solver_status
+/// "stage_newton_<code>": converged, max_iterations, line_search -> step_too_small, not_finite
 /// -> numerical_failure, max_cpu_seconds, max_outer_iterations); stats "newton_iterations",
 /// "newton_hessian_products", "newton_cg_iterations", "newton_residual_inf" (the projected
 /// residual), "newton_cpu_seconds"; one history row for the polished iterate (dual_inf: the
@@ -225,7 +225,7 @@ struct HamiltonianFamilyOptions {
 /// constraints left after the choice of `path`; a free final time with the request integrator RK4
 /// (scheme euler); a polish with path constraints handled by the outer loop (Newton takes none);
 /// with scheme rk2 or rk4 path constraints in the outer loop, a request integrator other than
-/// euler, or a polish with a free final time or a control set that is not a box (each message
+/// euler, or a polish with a free final time (each message
 /// names the scheme).
 class HamiltonianFamily final : public Solver {
  public:

@@ -162,11 +162,12 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
            OptionBounds::Above(0));
   t.Integer("newton_max_iterations",
             &O::newton_max_iterations,
-            "polish: Newton steps per attempt at most",
+            "polish: Newton steps per attempt at most (rk2/rk4: per Newton solve)",
             OptionBounds::AtLeast(0));
   t.Number("newton_tolerance",
            &O::newton_tolerance,
-           "polish: Newton converged at ||F||_inf <= this",
+           "polish: Newton converged at ||F||_inf <= this (rk2/rk4: the projected residual, and "
+           "max |psi| in the hard form)",
            OptionBounds::Above(0));
   t.Integer("newton_stall_steps",
             &O::newton_stall_steps,

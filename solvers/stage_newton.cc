@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
+#include <vector>
 
 #include "solvers/augmented_lagrangian_ocp.h"
 #include "solvers/message_number.h"
@@ -13,14 +13,10 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The reduced problem J(U) of a StageRkOcp with its stage weights and box, and the sweeps.
+// The reduced problem J(U) of a StageRkOcp with its stage weights and control set, and the sweeps.
 class Reduced {
  public:
-  Reduced(const StageRkOcp& srk, const ControlSet& controls) : srk_(srk) {
-    if (!controls.IsBox()) {
-      throw std::invalid_argument("StageNewton: the control set must be a box");
-    }
-    controls.BoundingBox(&lower_, &upper_);
+  Reduced(const StageRkOcp& srk, const ControlSet& controls) : srk_(srk), set_(controls) {
     const int s = srk.stages(), N = srk.intervals();
     weight_.resize(s * N);
     for (int k = 0; k < N; ++k) {
@@ -39,23 +35,72 @@ class Reduced {
   // dJ/dU divided by the stage weights: H_u at every stage.
   Mat Scaled(const Mat& G) const { return G.array().rowwise() / weight_.transpose().array(); }
   void Project(Mat* U) const {
-    for (int c = 0; c < U->cols(); ++c) {
-      U->col(c) = U->col(c).cwiseMax(lower_).cwiseMin(upper_);
-    }
+    for (int c = 0; c < U->cols(); ++c) set_.Project(U->col(c));
   }
   double Residual(const Mat& U, const Mat& G) const {
     Mat step = U - Scaled(G);
     Project(&step);
     return (U - step).lpNorm<Eigen::Infinity>();
   }
-  bool AtLower(const Mat& U, int r, int c, double eps) const { return U(r, c) - lower_[r] <= eps; }
-  bool AtUpper(const Mat& U, int r, int c, double eps) const { return upper_[r] - U(r, c) <= eps; }
   const Vec& weight() const { return weight_; }
+  const ControlSet& set() const { return set_; }
 
  private:
   const StageRkOcp& srk_;
-  Vec lower_, upper_, weight_;
+  const ControlSet& set_;
+  Vec weight_;
   Mat X_, Lambda_, Y_, P_;
+};
+
+// The directions the two-metric step holds at U (within eps of U's boundary): a box component
+// at a bound that the scaled gradient S pushes through, and the radial direction of a ball block
+// on its sphere that S pushes outwards. ProjectToFree removes them from a matrix of the controls'
+// shape (per column an orthogonal projection, so it commutes with the per-column weights).
+class HeldDirections {
+ public:
+  HeldDirections(const ControlSet& set, const Mat& U, const Mat& S, double eps)
+      : free_(Mat::Ones(U.rows(), U.cols())) {
+    for (int c = 0; c < U.cols(); ++c) {
+      for (const ControlSet::Block& b : set.blocks()) {
+        if (b.kind == ControlSet::Kind::kBox) {
+          for (int i = 0; i < b.size; ++i) {
+            const int r = b.offset + i;
+            if ((U(r, c) - b.lower[i] <= eps && S(r, c) > 0.0) ||
+                (b.upper[i] - U(r, c) <= eps && S(r, c) < 0.0)) {
+              free_(r, c) = 0.0;
+            }
+          }
+          continue;
+        }
+        Vec normal = U.col(c).segment(b.offset, b.size) - b.center;
+        const double norm = normal.norm();
+        if (norm > 0.0 && norm >= b.radius - eps) {
+          normal /= norm;
+          if (normal.dot(S.col(c).segment(b.offset, b.size)) < 0.0) {
+            radial_.push_back({c, b.offset, normal});
+          }
+        }
+      }
+    }
+  }
+
+  Mat ProjectToFree(Mat V) const {
+    V.array() *= free_.array();
+    for (const Radial& r : radial_) {
+      auto v = V.col(r.col).segment(r.offset, r.normal.size());
+      const double along = r.normal.dot(v);
+      v -= along * r.normal;
+    }
+    return V;
+  }
+
+ private:
+  struct Radial {
+    int col, offset;
+    Vec normal;
+  };
+  Mat free_;
+  std::vector<Radial> radial_;
 };
 
 double Dot(const Mat& a, const Mat& b) { return a.cwiseProduct(b).sum(); }
@@ -105,23 +150,14 @@ StageNewtonOutcome StageNewton(const StageRkOcp& srk,
           "max_cpu_seconds",
           "reached max_cpu_seconds (projected residual " + MessageNumber(out.residual, 3) + ")");
     }
-    // The two-metric split: components held at a bound by their gradient take the scaled
-    // gradient step, the free ones Newton's.
+    // The two-metric split: the held directions take the scaled gradient step, the free ones
+    // Newton's.
     const Mat S = reduced.Scaled(G);
-    const double eps = std::min(1e-2, out.residual);
-    Mat free_mask = Mat::Ones(U->rows(), U->cols());
-    for (int c = 0; c < U->cols(); ++c) {
-      for (int r = 0; r < U->rows(); ++r) {
-        if ((reduced.AtLower(*U, r, c, eps) && S(r, c) > 0.0) ||
-            (reduced.AtUpper(*U, r, c, eps) && S(r, c) < 0.0)) {
-          free_mask(r, c) = 0.0;
-        }
-      }
-    }
-    const Mat active_step = -S.cwiseProduct(Mat::Ones(U->rows(), U->cols()) - free_mask);
+    const HeldDirections held(reduced.set(), *U, S, std::min(1e-2, out.residual));
+    const Mat active_step = held.ProjectToFree(S) - S;
     // Preconditioned CG on H_FF d = -G_F, M = diag(w).
     auto precondition = [&](const Mat& r) {
-      return Mat((r.array().rowwise() / w.transpose().array()) * free_mask.array());
+      return held.ProjectToFree(Mat(r.array().rowwise() / w.transpose().array()));
     };
     auto hessian_times = [&](const Mat& p) -> bool {
       const double t = 1e-5 * std::max(1.0, U->lpNorm<Eigen::Infinity>()) /
@@ -131,17 +167,18 @@ StageNewtonOutcome StageNewton(const StageRkOcp& srk,
           !std::isfinite(reduced.Gradient(*U - t * p, &Gm))) {
         return false;
       }
-      Hp = ((Gp - Gm) / (2.0 * t)).cwiseProduct(free_mask);
+      Hp = held.ProjectToFree((Gp - Gm) / (2.0 * t));
       return Hp.allFinite();
     };
     Mat d = Mat::Zero(U->rows(), U->cols());
-    Mat res = -G.cwiseProduct(free_mask);
+    Mat res = -held.ProjectToFree(G);
     Mat z = precondition(res);
     Mat p = z;
     double rz = Dot(res, z);
     const double forcing = std::min(0.1, std::sqrt(out.residual));
     const double cg_stop = forcing * forcing * rz;
     for (int it = 0; it < options.max_cg_iterations && rz > 0.0; ++it) {
+      if (limit.Reached()) break;  // reported below, before the line search
       ++out.cg_iterations;
       if (!hessian_times(p)) break;
       const double pHp = Dot(p, Hp);
@@ -155,27 +192,42 @@ StageNewtonOutcome StageNewton(const StageRkOcp& srk,
       p = z + (rz_next / rz) * p;
       rz = rz_next;
     }
-    const Mat scaled_gradient_step = -S.cwiseProduct(free_mask);
-    if (d.isZero(0.0)) d = scaled_gradient_step;
+    const Mat scaled_gradient_step = -held.ProjectToFree(S);
+    const bool newton_direction = !d.isZero(0.0);
+    if (!newton_direction) d = scaled_gradient_step;
     // The projected Armijo search, first along Newton's direction, then (if that finds no
-    // decrease) along the scaled gradient. The test allows J's rounding: close to the solution
-    // Newton's decrease, quadratic in the residual, is below it.
+    // decrease, or is no descent direction) along the scaled gradient. Where the predicted
+    // decrease is itself at J's rounding (close to the solution, where Newton's decrease is
+    // quadratic in the residual) J may not decrease by more than its rounding.
     const double rounding = 16.0 * std::numeric_limits<double>::epsilon() * (1.0 + std::abs(out.J));
     bool accepted = false;
     for (const Mat* direction : {static_cast<const Mat*>(&d), &scaled_gradient_step}) {
+      if (direction != &d && !newton_direction) break;  // the same direction again
       for (double step = 1.0; step >= options.min_step && !accepted; step *= options.backtrack) {
+        if (limit.Reached()) {
+          return stop("max_cpu_seconds",
+                      "reached max_cpu_seconds in the line search of Newton step " +
+                          std::to_string(out.iterations) + " (projected residual " +
+                          MessageNumber(out.residual, 3) + ")");
+        }
         Ut = *U + step * (*direction + active_step);
         reduced.Project(&Ut);
         const double decrease = Dot(G, Ut - *U);
+        if (!(decrease < 0.0)) continue;  // the projection left no descent at this step
         const double Jt = reduced.Value(Ut);
-        if (std::isfinite(Jt) && Jt <= out.J + options.sufficient_decrease * decrease + rounding) {
+        const double allowed = -decrease <= rounding ? rounding : 0.0;
+        if (std::isfinite(Jt) && Jt <= out.J + options.sufficient_decrease * decrease + allowed) {
           accepted = true;
         }
-        if (limit.Reached()) break;
       }
       if (accepted) break;
     }
     if (!accepted) {
+      if (limit.Reached()) {
+        return stop("max_cpu_seconds",
+                    "reached max_cpu_seconds at Newton step " + std::to_string(out.iterations) +
+                        " (projected residual " + MessageNumber(out.residual, 3) + ")");
+      }
       return stop("line_search",
                   "no step >= " + MessageNumber(options.min_step, 3) +
                       " decreased J enough at Newton step " + std::to_string(out.iterations) +
@@ -205,39 +257,40 @@ StageAugmentedLagrangianOutcome StageNewtonAugmentedLagrangian(const StageRkOcp&
   double previous = std::numeric_limits<double>::infinity();
   Mat X;
   Vec psi(problem.num_terminal());
-  for (; out.outer_iterations < max_outer_iterations;) {
+  while (out.outer_iterations < max_outer_iterations) {
     al->SetTerminal(nu, rho);
     out.last = StageNewton(srk, controls, options, limit, U);
     ++out.outer_iterations;
     out.newton_iterations += out.last.iterations;
     out.hessian_products += out.last.hessian_products;
     out.cg_iterations += out.last.cg_iterations;
-    srk.Simulate(*U, &X);
-    if (problem.num_terminal() > 0 && X.allFinite()) {
-      problem.TerminalConstraints(X.col(N), psi);
-      out.terminal_residual = psi.lpNorm<Eigen::Infinity>();
-    } else {
-      out.terminal_residual = problem.num_terminal() > 0 ? kNaN : 0.0;
+    if (!std::isfinite(srk.Simulate(*U, &X))) {
+      out.code = "not_finite";
+      out.why = "inner solve " + std::to_string(out.outer_iterations) + ": J is not finite";
+      return out;
     }
-    const std::string after = " after " + std::to_string(out.outer_iterations) +
-                              " outer iterations (" + std::to_string(out.newton_iterations) +
-                              " Newton steps)";
+    problem.TerminalConstraints(X.col(N), psi);
+    out.terminal_residual = problem.num_terminal() > 0 ? psi.lpNorm<Eigen::Infinity>() : 0.0;
+    // The multipliers the first-order update gives at this iterate; al keeps nu, rho of the
+    // solve just made (its adjoint at U then has lambda_N = grad phi + psi_x^T (nu + rho psi)).
+    out.multipliers = al->TerminalUpdate(X.col(N));
     if (!out.last.converged) {
       out.code = out.last.code;
       out.why = "inner solve " + std::to_string(out.outer_iterations) + ": " + out.last.why +
                 "; terminal residual " + MessageNumber(out.terminal_residual, 3);
       return out;
     }
-    nu = al->TerminalUpdate(X.col(N));
     if (out.terminal_residual <= feasibility_tolerance) {
-      al->SetTerminal(nu, rho);  // the multipliers of the solution: the update at it
       out.converged = true;
       out.code = "converged";
       out.why = "terminal residual " + MessageNumber(out.terminal_residual, 3) +
                 " <= " + MessageNumber(feasibility_tolerance, 3) + ", projected residual " +
-                MessageNumber(out.last.residual, 3) + after;
+                MessageNumber(out.last.residual, 3) + " after " +
+                std::to_string(out.outer_iterations) + " outer iterations (" +
+                std::to_string(out.newton_iterations) + " Newton steps)";
       return out;
     }
+    nu = out.multipliers;
     if (out.terminal_residual > 0.25 * previous) rho = std::min(rho * penalty_growth, max_penalty);
     previous = out.terminal_residual;
   }

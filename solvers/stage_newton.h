@@ -39,14 +39,16 @@ struct StageNewtonOutcome {
 };
 
 /// Minimizes the J of `srk` over the stage controls *U (nu x sN), every column in `controls`
-/// (a box: ControlSet::IsBox(), else std::invalid_argument), from *U (projected first).
+/// (its box and ball blocks), from *U (projected first).
 ///
 /// Scaled by the stage weights w_{k,i} = h_k b_i, the gradient is the stage Hamiltonian's
 /// derivative, g_{k,i} = dJ/du_{k,i} / w_{k,i} = H_u(stage k, i), and the stopping measure is the
 /// projected residual max |u - P_U(u - g)| (zero exactly at a stationary point of the discrete
 /// problem on U, a KKT point of its bounds). Each step (Bertsekas' two-metric projection, SIAM J.
-/// Control Optim. 20, 1982): the components at a bound whose g pushes outwards (within
-/// min(1e-2, residual) of it) take the scaled gradient step; the others a truncated Newton step
+/// Control Optim. 20, 1982): the held directions (within min(1e-2, residual) of U's boundary: a
+/// box component at a bound that g pushes through, the radial direction of a ball block on its
+/// sphere that g pushes outwards) take the scaled gradient step; the others (for a held ball,
+/// its tangent space) a truncated Newton step
 /// d = -H_FF^-1 dJ/du_F by conjugate gradients preconditioned by diag(w) (Eisenstat-Walker
 /// forcing min(0.1, sqrt(residual)); on negative curvature the last positive-curvature iterate,
 /// or the scaled gradient at the first), with Hessian-vector products by central differences of
@@ -70,6 +72,7 @@ struct StageAugmentedLagrangianOutcome {
   int hessian_products = 0;
   int cg_iterations = 0;
   double terminal_residual = NAN;  ///< max_i |psi_i(x_N)| at the end
+  Vec multipliers;                 ///< nu + rho psi(x_N) at the end (the hard form's nu)
   bool converged = false;
   std::string code;  ///< "converged", or the inner failure's code, or "max_outer_iterations"
   std::string why;
@@ -78,10 +81,14 @@ struct StageAugmentedLagrangianOutcome {
 /// The hard terminal form psi(x_N) = 0: StageNewton on the augmented Lagrangian `al` (whose
 /// terminal multipliers and penalty this sets; `srk` must be built on `al` in
 /// TerminalMode::kHard), the multipliers updated nu <- nu + rho psi after each converged inner
-/// solve, rho <- growth rho when max |psi| fell by less than a quarter. Starts from nu = 0 and
-/// `initial_penalty`; converged when the inner solve converged and max |psi| <=
-/// feasibility_tolerance. With Newton the inner solves are exact, so the loop's rate is the
-/// multiplier method's (linear, faster as rho grows: Bertsekas 1982, Sec. 2.2).
+/// solve, rho <- penalty_growth rho when max |psi| did not fall to a quarter of its previous
+/// value. Starts from nu = 0 and `initial_penalty`; converged when the inner solve converged
+/// and max |psi| <= feasibility_tolerance. The multipliers of the solution, nu + rho psi at it,
+/// are the outcome's `multipliers`; `al` keeps those of the last inner solve, so that an adjoint
+/// sweep of `srk` at the final U gives the hard form's costates (lambda_N = grad phi + psi_x^T
+/// multipliers). With Newton the inner solves are exact,
+/// so the loop's rate is the multiplier method's (linear, faster as rho grows: Bertsekas 1982,
+/// Sec. 2.2).
 StageAugmentedLagrangianOutcome StageNewtonAugmentedLagrangian(const StageRkOcp& srk,
                                                                AugmentedLagrangianOcp* al,
                                                                const ControlSet& controls,

@@ -13,8 +13,13 @@
 #include "core/costate_error.h"
 #include "core/rk_tableau.h"
 #include "core/stage_rk_ocp.h"
+#include "core/timer.h"
 #include "problems/registry.h"
+#include "solvers/augmented_lagrangian_ocp.h"
+#include "solvers/descent_loop.h"
 #include "solvers/hamiltonian_family.h"
+#include "solvers/solver.h"
+#include "solvers/stage_descent_passes.h"
 
 namespace ocpb {
 namespace {
@@ -108,6 +113,10 @@ TEST(StageNewton, FamilyPolishOnRk4InTheHardForm) {
   EXPECT_NE(s.message.find("Newton (projected, truncated, on the rk4 stage controls"),
             std::string::npos)
       << s.message;
+  // The costates of the hard form: lambda_N = psi_x^T nu = nu (psi = x(1)), at the multipliers.
+  ASSERT_EQ(s.costates.cols(), 21);
+  EXPECT_NEAR(s.costates(0, 20), s.solver_stats.at("nu_0"), 1e-8);
+  EXPECT_NEAR(s.costates(1, 20), s.solver_stats.at("nu_1"), 1e-8);
 
   const std::unique_ptr<Ocp> bounded = MakeProblem("double-integrator-bounded", {}, 1);
   r.grid = TimeGrid::Uniform(bounded->t0(), bounded->tf(), 100);
@@ -116,6 +125,118 @@ TEST(StageNewton, FamilyPolishOnRk4InTheHardForm) {
   EXPECT_LE(s.solver_stats.at("terminal_residual"), 1e-8);
   const double reference = *FindProblem("double-integrator-bounded").reference_value;
   EXPECT_LT(std::abs(s.objective - reference) / reference, 1e-6) << s.objective;
+}
+
+// A ball and a box in one control set: the paper's problem without its channel map (acceleration
+// in a disc, spectral efficiency >= 0), RK4 at N = 20, penalty form, from 250 descent steps.
+// At Newton's end every stage control is a KKT point of its set: inside the disc H_u = 0 on
+// the acceleration, on its circle H_u = -mu n with mu >= 0 (no tangential part); the spectral
+// efficiency's H_u is 0 where it is positive and >= 0 at its bound.
+TEST(StageNewton, EndsAtAKktPointOfABallAndABox) {
+  const std::unique_ptr<Ocp> ocp = MakeProblem("comm-path2d", {"channel=0"}, 1);
+  const TimeGrid grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 20);
+  const StageRkOcp srk(*ocp, grid, RkTableau::Classical4(), TerminalMode::kPenalty);
+  StageDescentPasses passes(srk, nullptr);
+  const Mat U0 = DefaultInitialGuess(*ocp, grid).values();
+  Mat U(ocp->nu(), srk.controls());
+  for (int c = 0; c < U.cols(); ++c) {
+    U.col(c) = U0.col(c / srk.stages());
+    ocp->control_set().Project(U.col(c));
+  }
+  passes.Start(U);
+  DescentLoopOptions loop;
+  loop.max_iterations = 250;
+  std::vector<IterationRecord> history;
+  const Stopwatch clock;
+  RunDescentLoop(loop, clock, &passes, &history);
+  U = passes.U();
+  const StageNewtonOutcome out = StageNewton(srk, ocp->control_set(), {}, {}, &U);
+  ASSERT_TRUE(out.converged) << out.why;
+  EXPECT_LE(out.J, passes.J());
+  Mat X, Lambda, Y, P, G;
+  srk.Simulate(U, &X);
+  srk.Adjoint(U, X, &Lambda, &Y, &P, &G);
+  int on_circle = 0, at_bound = 0;
+  for (int k = 0; k < srk.intervals(); ++k) {
+    for (int i = 0; i < srk.stages(); ++i) {
+      const int c = k * srk.stages() + i;
+      const Vec Hu = G.col(c) / srk.StageWeight(k, i);
+      for (const ControlSet::Block& b : ocp->control_set().blocks()) {
+        const Vec u = U.col(c).segment(b.offset, b.size);
+        const Vec h = Hu.segment(b.offset, b.size);
+        if (b.kind == ControlSet::Kind::kBall) {
+          const Vec n = (u - b.center) / (u - b.center).norm();
+          if ((u - b.center).norm() < b.radius - 1e-9) {
+            EXPECT_LE(h.lpNorm<Eigen::Infinity>(), 1e-8) << c;
+          } else {
+            ++on_circle;
+            EXPECT_LE(h.dot(n), 1e-8) << c;                                      // mu >= 0
+            EXPECT_LE((h - h.dot(n) * n).lpNorm<Eigen::Infinity>(), 1e-8) << c;  // no tangent
+          }
+          continue;
+        }
+        for (int j = 0; j < b.size; ++j) {
+          if (u[j] <= b.lower[j]) {
+            ++at_bound;
+            EXPECT_GE(h[j], -1e-8) << c;
+          } else if (u[j] >= b.upper[j]) {
+            ++at_bound;
+            EXPECT_LE(h[j], 1e-8) << c;
+          } else {
+            EXPECT_LE(std::abs(h[j]), 1e-8) << c;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(on_circle + at_bound, 0);  // some constraint is active
+}
+
+// Each way StageNewton stops, and the multiplier loop's limit.
+TEST(StageNewton, StopsForEachReasonAndSaysWhich) {
+  const std::unique_ptr<Ocp> ocp = MakeProblem("vanderpol", {}, 1);
+  const TimeGrid grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 20);
+  const StageRkOcp srk(*ocp, grid, RkTableau::Classical4(), TerminalMode::kPenalty);
+  const Mat U0 = Mat::Zero(ocp->nu(), srk.controls());
+  Mat U = U0;
+  StageNewtonOptions options;
+  options.max_iterations = 0;
+  StageNewtonOutcome out = StageNewton(srk, ocp->control_set(), options, {}, &U);
+  EXPECT_EQ(out.code, "max_iterations");
+  EXPECT_FALSE(out.converged);
+  EXPECT_NE(out.why.find("projected residual"), std::string::npos) << out.why;
+  const Stopwatch clock;
+  U = U0;
+  out = StageNewton(srk, ocp->control_set(), {}, CpuLimit{&clock, 0.0}, &U);
+  EXPECT_EQ(out.code, "max_cpu_seconds");
+  U = U0;
+  U(0, 3) = NAN;
+  out = StageNewton(srk, ocp->control_set(), {}, {}, &U);
+  EXPECT_EQ(out.code, "not_finite");
+  EXPECT_TRUE(std::isnan(StageProjectedResidual(srk, ocp->control_set(), U)));
+
+  // The hard form's loop with one outer iteration: rho = 1 leaves psi far from 0.
+  const std::unique_ptr<Ocp> di = MakeProblem("double-integrator", {}, 1);
+  const TimeGrid di_grid = TimeGrid::Uniform(di->t0(), di->tf(), 20);
+  AugmentedLagrangianOcp al(*di, di_grid);
+  const StageRkOcp hard(al, di_grid, RkTableau::Classical4(), TerminalMode::kHard);
+  U = Mat::Zero(di->nu(), hard.controls());
+  const StageAugmentedLagrangianOutcome a = StageNewtonAugmentedLagrangian(
+      hard, &al, di->control_set(), {}, 1.0, 10.0, 1e10, 1e-10, 1, {}, &U);
+  EXPECT_EQ(a.code, "max_outer_iterations");
+  EXPECT_FALSE(a.converged);
+  EXPECT_TRUE(a.last.converged);
+  EXPECT_GT(a.terminal_residual, 1e-3);
+  EXPECT_EQ(a.multipliers.size(), 2);
+
+  // In the family: Newton's limit is the result's status, with its code.
+  SolveRequest r;
+  r.grid = TimeGrid::Uniform(di->t0(), di->tf(), 20);
+  r.terminal = TerminalMode::kHard;
+  r.options = {{"scheme", "rk4"}, {"newton_max_iterations", "1"}};
+  const SolveResult s = HamiltonianFamily(HamiltonianFamily::Preset::kPolish).Solve(*di, r);
+  EXPECT_EQ(s.status, SolveStatus::kMaxIterations) << s.message;
+  EXPECT_EQ(s.solver_status, "stage_newton_max_iterations");
 }
 
 }  // namespace

@@ -217,7 +217,9 @@ Mat RefineToStationary(const StageRkOcp& srk, Mat U) {
   StageNewtonOptions options;
   options.tolerance = 1e-14;
   options.max_iterations = 20;
-  StageNewton(srk, srk.ocp().control_set(), options, {}, &U);
+  const StageNewtonOutcome out = StageNewton(srk, srk.ocp().control_set(), options, {}, &U);
+  // 1e-14 is below what rounding allows on some grids: the line search then ends it, close.
+  EXPECT_TRUE(out.converged || out.residual < 1e-11) << out.why;
   return U;
 }
 
@@ -288,7 +290,7 @@ TEST(HamiltonianFamilyScheme, NotApplicableCasesNameTheOption) {
   s = HamiltonianFamily(HamiltonianFamily::Preset::kAugmentedLagrangian).Solve(*bd, r);
   EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
   EXPECT_NE(s.message.find("scheme=rk4"), std::string::npos) << s.message;
-  // The polish on the stage controls: a fixed horizon and a box control set.
+  // The polish on the stage controls keeps the horizon fixed.
   const std::unique_ptr<Ocp> free_time = MakeProblem("double-integrator-free-time", {}, 1);
   r = SolveRequest();
   r.grid = TimeGrid::Uniform(free_time->t0(), free_time->tf(), 20);
@@ -296,11 +298,6 @@ TEST(HamiltonianFamilyScheme, NotApplicableCasesNameTheOption) {
   s = HamiltonianFamily(HamiltonianFamily::Preset::kPolish).Solve(*free_time, r);
   EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
   EXPECT_NE(s.message.find("free final time needs scheme=euler"), std::string::npos) << s.message;
-  const std::unique_ptr<Ocp> paper = MakeProblem("comm-path2d", {"channel=0"}, 1);
-  r.grid = TimeGrid::Uniform(paper->t0(), paper->tf(), 20);
-  s = HamiltonianFamily(HamiltonianFamily::Preset::kPolish).Solve(*paper, r);
-  EXPECT_EQ(s.status, SolveStatus::kNotApplicable);
-  EXPECT_NE(s.message.find("needs a box control set"), std::string::npos) << s.message;
 }
 
 // The hard terminal form by the outer loop on the stage controls: the double integrator's
