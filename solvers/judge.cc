@@ -73,6 +73,20 @@ void AddDiscretizationWarning(const SolveRequest& request,
            "higher-order scheme"});
 }
 
+void AddReformulatedWarning(const SolveResult& result, Judgement* j) {
+  if (result.status == SolveStatus::kNumericalFailure || result.status == SolveStatus::kError ||
+      result.status == SolveStatus::kInvalidInput) {
+    return;
+  }
+  const auto reformulated = result.solver_stats.find("reformulated");
+  if (reformulated == result.solver_stats.end() || reformulated->second != 1.0) return;
+  j->warnings.push_back(
+      {"reformulated",
+       "the method solved the problem's Hamiltonian reformulation (path constraints as "
+       "penalties, or H regularized): its status is about that problem, whose optimum is not "
+       "this one's; judge the answer by the fine re-simulation's Jbar and violations"});
+}
+
 void AddFeasibilityWarning(const SolveRequest& request, const JudgeOptions& options, Judgement* j) {
   std::vector<std::string> violated;
   const double tol = options.feasibility_tolerance;
@@ -173,6 +187,7 @@ Judgement JudgeResult(const Ocp& ocp,
   AddNotFiniteWarning(options, &j);
   AddDiscretizationWarning(request, result, options, &j);
   AddFeasibilityWarning(request, options, &j);
+  AddReformulatedWarning(result, &j);
   return j;
 }
 

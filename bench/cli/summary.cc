@@ -273,7 +273,9 @@ std::string SummaryMarkdown(const std::string& suite_name,
         "U, a path constraint or (hard form) the terminal constraints by more than 1e-3, "
         "`not_finite` when the re-simulation on the method's grid (J) is not finite (with the "
         "status numerical_failure unless the fine one is finite and the method's scheme is "
-        "not the judge's integrator). Each "
+        "not the judge's integrator), `reformulated` when the method solved the problem's "
+        "Hamiltonian reformulation (penalties for path constraints, a regularized H) rather than "
+        "the problem. Each "
         "record's `stopping_tolerance` names the option that bounds its "
         "accuracy (Ipopt: `tol`).\n\n";
   md << OverviewMarkdown(records);

@@ -214,6 +214,25 @@ TEST(DefaultStart, ANominalControlOfTheWrongSizeIsRefusedByEveryMethod) {
   }
 }
 
+// A method that solved the problem's Hamiltonian reformulation (bryson-denham's state
+// constraint as a penalty) says so, whatever its status; Ipopt on the problem itself does not.
+TEST(JudgeResult, SaysWhenTheMethodSolvedAReformulation) {
+  const auto ocp = MakeProblem("bryson-denham", {}, 0);
+  const SolveRequest request = RequestFor(*ocp, 50, TerminalMode::kHard, "");
+  const SolveResult polish = Solve("hamiltonian-polish", *ocp, request);
+  ASSERT_NE(polish.status, SolveStatus::kNotApplicable) << polish.message;
+  ASSERT_EQ(polish.solver_stats.at("reformulated"), 1.0);
+  EXPECT_TRUE(JudgeResult(*ocp, request, polish).HasWarning("reformulated"));
+  const SolveRequest nlp = RequestFor(*ocp, 50, TerminalMode::kHard, "euler");
+  const SolveResult ipopt = Solve("ipopt", *ocp, nlp);
+  ASSERT_EQ(ipopt.status, SolveStatus::kConverged) << ipopt.message;
+  EXPECT_FALSE(JudgeResult(*ocp, nlp, ipopt).HasWarning("reformulated"));
+  // A failed solve is judged by nothing: no warning about what it solved.
+  SolveResult failed = polish;
+  failed.status = SolveStatus::kNumericalFailure;
+  EXPECT_FALSE(JudgeResult(*ocp, request, failed).HasWarning("reformulated"));
+}
+
 TEST(JudgeResult, RefusesOptionsOutOfRange) {
   const auto ocp = MakeProblem("hager", {}, 0);
   const SolveRequest request = RequestFor(*ocp, 10, TerminalMode::kPenalty, "");
