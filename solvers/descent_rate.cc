@@ -54,7 +54,7 @@ std::string DescentRateNote(const std::optional<DescentRate>& rate, double targe
         (steps < 1e5 ? std::to_string(static_cast<long long>(steps)) : MessageNumber(steps, 3)) +
         " more to |theta| <= " + MessageNumber(target, 3) + " at that rate";
   }
-  return note + "; a Newton end game (polish=true) converges in a few steps where it applies";
+  return note + "; a Newton end game (polish=true) needs far fewer steps where it converges";
 }
 
 }  // namespace ocpb

@@ -30,8 +30,8 @@ std::optional<DescentRate> MeasureDescentRate(const std::vector<IterationRecord>
                                               int window = 200);
 
 /// "; over its last 200 steps |theta| fell by a factor 1 - 0.0013 per step (linear): about 4100
-/// more to |theta| <= 0.0012 at that rate; a Newton end game (polish=true) converges in a few
-/// steps where it applies" (or "did not fall"); "" without a rate.
+/// more to |theta| <= 0.0012 at that rate; a Newton end game (polish=true) needs far fewer
+/// steps where it converges" (or "did not fall"); "" without a rate.
 std::string DescentRateNote(const std::optional<DescentRate>& rate, double target);
 
 }  // namespace ocpb

@@ -371,8 +371,9 @@ std::string LimitRateNote(const DescentLoopOptions& loop,
 
 // The polish on a Runge-Kutta scheme's stage controls (solvers/stage_newton.h): projected
 // truncated Newton on the discrete problem from the descent's controls U, in the hard form inside
-// a multiplier loop. Its iterate becomes the result's whether it converged or not (Newton's
-// iterates only decrease J, or J_A); the status and message say which. True when converged.
+// a multiplier loop. Its iterate becomes the result's whether it converged or not (its line
+// search accepts decreases of J, or J_A, up to J's rounding); the status and message say which.
+// True when converged.
 bool StagePolish(const FamilyRun& run,
                  const SolveRequest& request,
                  const TimeGrid& grid,
@@ -391,10 +392,7 @@ bool StagePolish(const FamilyRun& run,
   const CpuLimit limit{&run.clock, o.max_cpu_seconds};
   const double cpu0 = run.clock.cpu();
   const bool hard = request.terminal == TerminalMode::kHard && problem.num_terminal() > 0;
-  StageNewtonOutcome last;
-  std::string code, why;
-  bool converged = false;
-  int newton_iterations = 0, hessian_products = 0, cg_iterations = 0;
+  StageAugmentedLagrangianOutcome a;
   Mat X, Lambda, Y, P, G;
   if (hard) {
     AugmentedLagrangianOcp al(problem, grid);
@@ -402,8 +400,7 @@ bool StagePolish(const FamilyRun& run,
     const AugmentedLagrangianRule& rule = o.augmented_lagrangian;
     // Newton's tolerance is the polish's on psi too (as the Euler polish's ||F||_inf, which
     // holds psi): with the loop's 1e-8 the J of the double integrator stayed 1.3e-8 off.
-    const StageAugmentedLagrangianOutcome a =
-        StageNewtonAugmentedLagrangian(srk,
+    a = StageNewtonAugmentedLagrangian(srk,
                                        &al,
                                        problem.control_set(),
                                        no,
@@ -414,13 +411,6 @@ bool StagePolish(const FamilyRun& run,
                                        rule.max_outer_iterations,
                                        limit,
                                        &U);
-    last = a.last;
-    code = a.code;
-    why = a.why;
-    converged = a.converged;
-    newton_iterations = a.newton_iterations;
-    hessian_products = a.hessian_products;
-    cg_iterations = a.cg_iterations;
     stats["outer_iterations"] = a.outer_iterations;
     stats["terminal_residual"] = a.terminal_residual;
     stats["penalty"] = al.rho();
@@ -432,30 +422,24 @@ bool StagePolish(const FamilyRun& run,
     if (std::isfinite(srk.Simulate(U, &X))) srk.Adjoint(U, X, &Lambda, &Y, &P, &G);
   } else {
     const StageRkOcp srk(problem, grid, tableau, request.terminal);
-    last = StageNewton(srk, problem.control_set(), no, limit, &U);
-    code = last.code;
-    why = last.why;
-    converged = last.converged;
-    newton_iterations = last.iterations;
-    hessian_products = last.hessian_products;
-    cg_iterations = last.cg_iterations;
+    a = SingleSolveOutcome(StageNewton(srk, problem.control_set(), no, limit, &U));
     if (std::isfinite(srk.Simulate(U, &X))) srk.Adjoint(U, X, &Lambda, &Y, &P, &G);
   }
-  stats["newton_iterations"] = newton_iterations;
-  stats["newton_hessian_products"] = hessian_products;
-  stats["newton_cg_iterations"] = cg_iterations;
-  stats["newton_residual_inf"] = last.residual;
+  stats["newton_iterations"] = a.newton_iterations;
+  stats["newton_hessian_products"] = a.hessian_products;
+  stats["newton_cg_iterations"] = a.cg_iterations;
+  stats["newton_residual_inf"] = a.last.residual;
   stats["newton_cpu_seconds"] = run.clock.cpu() - cpu0;
-  r->status = converged                   ? SolveStatus::kConverged
-              : code == "max_cpu_seconds" ? SolveStatus::kMaxTime
-              : code == "line_search"     ? SolveStatus::kStepTooSmall
-              : code == "not_finite"      ? SolveStatus::kNumericalFailure
-                                          : SolveStatus::kMaxIterations;
-  r->solver_status = "stage_newton_" + code;
-  r->iterations = descent_iterations + newton_iterations;
+  r->status = a.converged                                       ? SolveStatus::kConverged
+              : a.code == "max_cpu_seconds"                     ? SolveStatus::kMaxTime
+              : a.code == "line_search" || a.code == "rounding" ? SolveStatus::kStepTooSmall
+              : a.code == "not_finite"                          ? SolveStatus::kNumericalFailure
+                                                                : SolveStatus::kMaxIterations;
+  r->solver_status = "stage_newton_" + a.code;
+  r->iterations = descent_iterations + a.newton_iterations;
   r->message += "; Newton (projected, truncated, on the " + std::string(SchemeName(o.scheme)) +
                 " stage controls" + (hard ? ", in a multiplier loop" : "") + ", after " +
-                std::to_string(descent_iterations) + " descent steps): " + why;
+                std::to_string(descent_iterations) + " descent steps): " + a.why;
   if (X.allFinite() && X.cols() == grid.size()) {
     r->controls = StageControls(grid, tableau, U, problem.control_set());
     r->states = X;
@@ -466,12 +450,12 @@ bool StagePolish(const FamilyRun& run,
                           NAN,
                           -1,
                           hard ? stats["terminal_residual"] : NAN,
-                          last.residual,
+                          a.last.residual,
                           run.clock.cpu()});
   } else {
     r->message += " (the controls are the descent's)";
   }
-  return converged;
+  return a.converged;
 }
 
 // The family's descent on a Runge-Kutta scheme with one control per stage (scheme rk2, rk4;

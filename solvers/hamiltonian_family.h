@@ -215,7 +215,8 @@ struct HamiltonianFamilyOptions {
 /// adjoint at the last solve's (nu, rho); "outer_iterations", "terminal_residual", "penalty",
 /// "nu_<i>"); one attempt, not grid-sequenced. Its iterate is the result's (its line search accepts
 /// only decreases of J, or J_A, to J's rounding), its status the polish's (solver_status
-/// "stage_newton_<code>": converged, max_iterations, line_search -> step_too_small, not_finite
+/// "stage_newton_<code>": converged, max_iterations, line_search and rounding -> step_too_small,
+/// not_finite
 /// -> numerical_failure, max_cpu_seconds, max_outer_iterations); stats "newton_iterations",
 /// "newton_hessian_products", "newton_cg_iterations", "newton_residual_inf" (the projected
 /// residual), "newton_cpu_seconds"; one history row for the polished iterate (dual_inf: the

@@ -108,11 +108,13 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
                  &AL::initial_penalty,
                  "outer loop: rho_0",
                  OptionBounds::Above(0));
-  t.NestedMember("al_penalty_growth",
-                 &Options::augmented_lagrangian,
-                 &AL::penalty_growth,
-                 "outer loop: rho factor when the infeasibility did not fall below eta",
-                 OptionBounds::Above(1));
+  t.NestedMember(
+      "al_penalty_growth",
+      &Options::augmented_lagrangian,
+      &AL::penalty_growth,
+      "outer loop: rho factor when the infeasibility did not fall below eta (the rk2/rk4 "
+      "polish's loop: when max |psi| did not fall to a quarter)",
+      OptionBounds::Above(1));
   t.NestedMember("al_max_penalty",
                  &Options::augmented_lagrangian,
                  &AL::max_penalty,
@@ -172,7 +174,7 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
   t.Integer("newton_stall_steps",
             &O::newton_stall_steps,
             "polish: an attempt ends after this many Newton steps in a row of length <= 1/256 "
-            "(0: off)",
+            "(0: off; not used by the rk2/rk4 polish)",
             OptionBounds::AtLeast(0));
   t.Number("newton_backtrack",
            &O::newton_backtrack,
@@ -180,7 +182,7 @@ OptionBinding<O> MakeBinding(const std::string& owner) {
            OptionBounds::Open(0, 1));
   t.Number("newton_sufficient_decrease",
            &O::newton_sufficient_decrease,
-           "polish: Armijo constant c of Newton's merit 1/2 ||F||^2",
+           "polish: Armijo constant c of Newton's merit 1/2 ||F||^2 (rk2/rk4: of J)",
            OptionBounds::Open(0, 0.5));
   t.template Enum<IndirectNewtonOptions::LinearSolver>(
       "newton_linear_solver",

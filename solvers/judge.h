@@ -36,8 +36,8 @@ namespace ocpb {
 ///  - "reformulated": the method solved the problem's Hamiltonian reformulation (the solver's
 ///    solver_stats["reformulated"] = 1: path constraints as penalties, H regularized where it is
 ///    linear in u), so its status is about that problem, whose optimum is not this one's
-///    (bryson-denham: the family's polish converged 0.5 % below the constrained optimum, within
-///    the fine grid's 1e-3 feasibility). Not for a method that failed (numerical_failure,
+///    (bryson-denham: the family's RK4 polish converged 0.7 % below the constrained optimum,
+///    within the fine grid's 1e-3 feasibility). Not for a method that failed (numerical_failure,
 ///    error, invalid_input).
 struct JudgeWarning {
   std::string code;

@@ -56,9 +56,14 @@ class Reduced {
 // at a bound that the scaled gradient S pushes through, and the radial direction of a ball block
 // on its sphere that S pushes outwards. ProjectToFree removes them from a matrix of the controls'
 // shape (per column an orthogonal projection, so it commutes with the per-column weights).
+// AddSphereCurvature adds what the sphere's curvature gives the Hessian of the Lagrangian on a
+// held ball's tangent space: with G = dJ/du = -lambda n on the sphere (lambda = -G.n > 0 there)
+// and the constraint |u - c| - r <= 0 of Hessian (I - n n^T) / |u - c|, the term
+// (lambda / |u - c|) P_T. Without it the tangent step of an H nearly linear in u has no
+// curvature and runs far along the tangent.
 class HeldDirections {
  public:
-  HeldDirections(const ControlSet& set, const Mat& U, const Mat& S, double eps)
+  HeldDirections(const ControlSet& set, const Mat& U, const Mat& G, const Mat& S, double eps)
       : free_(Mat::Ones(U.rows(), U.cols())) {
     for (int c = 0; c < U.cols(); ++c) {
       for (const ControlSet::Block& b : set.blocks()) {
@@ -77,7 +82,8 @@ class HeldDirections {
         if (norm > 0.0 && norm >= b.radius - eps) {
           normal /= norm;
           if (normal.dot(S.col(c).segment(b.offset, b.size)) < 0.0) {
-            radial_.push_back({c, b.offset, normal});
+            const double curvature = -normal.dot(G.col(c).segment(b.offset, b.size)) / norm;
+            radial_.push_back({c, b.offset, normal, curvature});
           }
         }
       }
@@ -94,10 +100,19 @@ class HeldDirections {
     return V;
   }
 
+  // Hp += the sphere's term for p in the free space (p's held blocks are tangent already).
+  void AddSphereCurvature(const Mat& p, Mat* Hp) const {
+    for (const Radial& r : radial_) {
+      const int n = static_cast<int>(r.normal.size());
+      Hp->col(r.col).segment(r.offset, n) += r.curvature * p.col(r.col).segment(r.offset, n);
+    }
+  }
+
  private:
   struct Radial {
     int col, offset;
     Vec normal;
+    double curvature;  // lambda / |u - c| (> 0: held only when G pushes outwards)
   };
   Mat free_;
   std::vector<Radial> radial_;
@@ -124,6 +139,7 @@ StageNewtonOutcome StageNewton(const StageRkOcp& srk,
   reduced.Project(U);
   Mat G, Gp, Gm, Hp, Ut;
   const Vec& w = reduced.weight();
+  int null_steps = 0;  // accepted steps in a row that did not lower J (at its rounding)
   auto stop = [&](const char* code, std::string why) {
     out.code = code;
     out.why = std::move(why);
@@ -153,7 +169,7 @@ StageNewtonOutcome StageNewton(const StageRkOcp& srk,
     // The two-metric split: the held directions take the scaled gradient step, the free ones
     // Newton's.
     const Mat S = reduced.Scaled(G);
-    const HeldDirections held(reduced.set(), *U, S, std::min(1e-2, out.residual));
+    const HeldDirections held(reduced.set(), *U, G, S, std::min(1e-2, out.residual));
     const Mat active_step = held.ProjectToFree(S) - S;
     // Preconditioned CG on H_FF d = -G_F, M = diag(w).
     auto precondition = [&](const Mat& r) {
@@ -168,6 +184,7 @@ StageNewtonOutcome StageNewton(const StageRkOcp& srk,
         return false;
       }
       Hp = held.ProjectToFree((Gp - Gm) / (2.0 * t));
+      held.AddSphereCurvature(p, &Hp);
       return Hp.allFinite();
     };
     Mat d = Mat::Zero(U->rows(), U->cols());
@@ -178,7 +195,7 @@ StageNewtonOutcome StageNewton(const StageRkOcp& srk,
     const double forcing = std::min(0.1, std::sqrt(out.residual));
     const double cg_stop = forcing * forcing * rz;
     for (int it = 0; it < options.max_cg_iterations && rz > 0.0; ++it) {
-      if (limit.Reached()) break;  // reported below, before the line search
+      if (limit.Reached()) break;  // reported at the line search's first check
       ++out.cg_iterations;
       if (!hessian_times(p)) break;
       const double pHp = Dot(p, Hp);
@@ -218,6 +235,7 @@ StageNewtonOutcome StageNewton(const StageRkOcp& srk,
         const double allowed = -decrease <= rounding ? rounding : 0.0;
         if (std::isfinite(Jt) && Jt <= out.J + options.sufficient_decrease * decrease + allowed) {
           accepted = true;
+          null_steps = Jt < out.J ? 0 : null_steps + 1;
         }
       }
       if (accepted) break;
@@ -235,7 +253,25 @@ StageNewtonOutcome StageNewton(const StageRkOcp& srk,
     }
     *U = Ut;
     ++out.iterations;
+    if (null_steps >= 3) {
+      return stop("rounding",
+                  "J did not decrease over 3 Newton steps in a row (at its rounding; projected "
+                  "residual " +
+                      MessageNumber(out.residual, 3) + ")");
+    }
   }
+}
+
+StageAugmentedLagrangianOutcome SingleSolveOutcome(const StageNewtonOutcome& solve) {
+  StageAugmentedLagrangianOutcome out;
+  out.last = solve;
+  out.newton_iterations = solve.iterations;
+  out.hessian_products = solve.hessian_products;
+  out.cg_iterations = solve.cg_iterations;
+  out.converged = solve.converged;
+  out.code = solve.code;
+  out.why = solve.why;
+  return out;
 }
 
 StageAugmentedLagrangianOutcome StageNewtonAugmentedLagrangian(const StageRkOcp& srk,

@@ -33,8 +33,8 @@ struct StageNewtonOutcome {
   int cg_iterations = 0;     ///< over all Newton steps
   double residual = NAN;     ///< the projected residual at the end (below)
   double J = NAN;            ///< J(U) at the end
-  std::string code;          ///< "converged", "max_iterations", "line_search", "not_finite",
-                             ///< "max_cpu_seconds"
+  std::string code;          ///< "converged", "max_iterations", "line_search", "rounding" (J
+                             ///< at its rounding for 3 steps), "not_finite", "max_cpu_seconds"
   std::string why;           ///< one sentence for the message
 };
 
@@ -77,6 +77,10 @@ struct StageAugmentedLagrangianOutcome {
   std::string code;  ///< "converged", or the inner failure's code, or "max_outer_iterations"
   std::string why;
 };
+
+/// One StageNewton solve as the loop's outcome (the penalty form: no outer iteration, no
+/// multipliers), so that a caller reads both forms alike.
+StageAugmentedLagrangianOutcome SingleSolveOutcome(const StageNewtonOutcome& solve);
 
 /// The hard terminal form psi(x_N) = 0: StageNewton on the augmented Lagrangian `al` (whose
 /// terminal multipliers and penalty this sets; `srk` must be built on `al` in

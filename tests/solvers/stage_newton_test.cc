@@ -131,8 +131,10 @@ TEST(StageNewton, FamilyPolishOnRk4InTheHardForm) {
 // in a disc, spectral efficiency >= 0), RK4 at N = 20, penalty form, from 250 descent steps.
 // At Newton's end every stage control is a KKT point of its set: inside the disc H_u = 0 on
 // the acceleration, on its circle H_u = -mu n with mu >= 0 (no tangential part); the spectral
-// efficiency's H_u is 0 where it is positive and >= 0 at its bound.
-TEST(StageNewton, EndsAtAKktPointOfABallAndABox) {
+// efficiency's H_u is 0 where it is positive and >= 0 at its bound. (Here the disc is not
+// active; with umax small enough to make it active, 0.12 and 0.2, Newton stops at its
+// iteration limit: results/notes/2026-12-07-family-rk4-polish.md.)
+TEST(StageNewton, EndsAtAKktPointOfABoxWithABallInTheSet) {
   const std::unique_ptr<Ocp> ocp = MakeProblem("comm-path2d", {"channel=0"}, 1);
   const TimeGrid grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 20);
   const StageRkOcp srk(*ocp, grid, RkTableau::Classical4(), TerminalMode::kPenalty);
@@ -189,7 +191,7 @@ TEST(StageNewton, EndsAtAKktPointOfABallAndABox) {
       }
     }
   }
-  EXPECT_GT(on_circle + at_bound, 0);  // some constraint is active
+  EXPECT_GT(at_bound, 0);  // the spectral efficiency's bound is active (the disc is not here)
 }
 
 // Each way StageNewton stops, and the multiplier loop's limit.
