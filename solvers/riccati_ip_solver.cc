@@ -147,13 +147,6 @@ RiccatiIpOptions RiccatiIpOptions::Apply(const OptionMap& options, RiccatiIpOpti
 
 namespace {
 
-// The refusal of a boundary inequality (row i of b(x(t0), x(tf)) with lower < upper).
-std::string RiccatiIpBoundaryInequality(const Ocp& ocp, int i) {
-  return "problem '" + ocp.name() + "' has a boundary inequality (row " + std::to_string(i) +
-         " of b(x(t0), x(tf)) with lower < upper), which riccati-ip does not take (it takes "
-         "boundary equalities): ipopt and nlopt on a collocation transcription solve it";
-}
-
 // The Euler NLP of one CollocationNlp read as stages: x_{k+1} = x_k + h_k f(t_k, x_k, u_k),
 // stage k < N with variables (x_k, u_k), stage N with x_N and, when there are path
 // constraints, a copy v = u_{N-1} (the NLP's path constraint at t_N reads u_{N-1}, which the
@@ -201,11 +194,17 @@ class EulerStages {
   Vec ufixed;  // per control component: the fixed value, NaN for the free ones
   int nuf() const { return static_cast<int>(ufree.size()); }
   bool has_fixed_controls() const { return nuf() < nu; }
-  // Boundary constraints b(x_0, x_N) = b_lo (equalities; inequalities are refused): rows after
-  // psi's among the terminal rows (Values::psi, Iterate::nu). They need x_0's free components
-  // at x_N, so with boundary constraints the recursion carries them (ncw) beside T.
+  // Boundary constraints b_lo <= b(x_0, x_N) <= b_hi: rows after psi's among the terminal rows
+  // (Values::psi, Iterate::nu). They need x_0's free components at x_N, so with boundary
+  // constraints the recursion carries them (ncw) beside T. An equality row reads
+  // b - b_lo = 0; an inequality row (lower < upper, listed in bineq) b - s = 0 with a slack s
+  // within [sblo, sbhi] (Iterate::SB), as Ipopt writes d_L <= d(x) <= d_U: the slacks are
+  // eliminated in the Riccati solve's final Schur complement (RiccatiProblem::slack_hessian).
   int nb = 0;
-  Vec blo;
+  Vec blo;  // the equality rows' values (0 on the inequality rows)
+  std::vector<int> bineq;
+  Vec sblo, sbhi;  // per inequality row, +-inf where unbounded
+  int nbi() const { return static_cast<int>(bineq.size()); }
   int ncw() const { return nb > 0 ? nw() : 0; }
   // The entries every stage's state carries after x: T (free_time), then x_0's free components.
   int np() const { return nT() + ncw(); }
@@ -221,7 +220,7 @@ class EulerStages {
   // the final point is projected onto them, as Ipopt projects its own (honor_original_bounds,
   // its default).
   struct {
-    Vec lb, ub, xlb, xub, x0lb, x0ub, Tlb, Tub;
+    Vec lb, ub, xlb, xub, x0lb, x0ub, Tlb, Tub, sblo, sbhi;
   } original;
 
   // Relaxes every inequality by factor * max(1, |bound|), as Ipopt does.
@@ -231,12 +230,12 @@ class EulerStages {
     for (int b = 0; b < nball; ++b) {
       relax_ball[b] = factor * std::max(1.0, balls[b].radius * balls[b].radius);
     }
-    for (Vec* lower : {&lb, &xlb, &x0lb, &Tlb}) {
+    for (Vec* lower : {&lb, &xlb, &x0lb, &Tlb, &sblo}) {
       for (double& v : *lower) {
         if (RipFinite(v)) v -= factor * std::max(1.0, std::abs(v));
       }
     }
-    for (Vec* upper : {&ub, &xub, &x0ub, &Tub}) {
+    for (Vec* upper : {&ub, &xub, &x0ub, &Tub, &sbhi}) {
       for (double& v : *upper) {
         if (RipFinite(v)) v += factor * std::max(1.0, std::abs(v));
       }
@@ -263,6 +262,8 @@ class EulerStages {
     Mat zxl, zxu;  // nx x (N+1): x_0's initial-state bounds' in column 0, then the state
                    // bounds' (0 where unbounded or fixed; empty without either)
     Mat zTl, zTu;  // 1 x 1: T's bounds' (free_time; 0 where unbounded)
+    Mat SB;        // nbi x 1: the boundary inequalities' slacks
+    Mat zSl, zSu;  // nbi x 1: their bounds' multipliers (0 where unbounded)
     Mat lam;       // nx x N, defect multipliers (NLP convention, scaled problem)
     Vec lamV, nu;
   };
@@ -297,6 +298,7 @@ class EulerStages {
     std::vector<Vec> c;
     Mat defects;        // nx x N: x_{k+1} - x_k - h f
     Vec psi, copy_row;  // psi: the terminal rows, psi(x_N) (hard form) then b(x_0, x_N) - b_lo
+                        // (b - s on the inequality rows)
     bool ok = false;
   };
 
@@ -433,13 +435,18 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
   st->initial_cost = !st->free0.empty() && ocp.HasInitialCost();
   st->nb = ocp.num_boundary();
   if (st->nb > 0) {
-    st->blo = ocp.boundary_bounds().lower;
+    const VectorBounds& bb = ocp.boundary_bounds();
+    st->blo = bb.lower;
+    std::vector<double> lo, hi;
     for (int i = 0; i < st->nb; ++i) {
-      if (!(ocp.boundary_bounds().lower[i] == ocp.boundary_bounds().upper[i])) {
-        *why_not = RiccatiIpBoundaryInequality(ocp, i);
-        return nullptr;
-      }
+      if (bb.lower[i] == bb.upper[i]) continue;
+      st->bineq.push_back(i);
+      st->blo[i] = 0.0;  // the row is b - s
+      lo.push_back(bb.lower[i] <= -kRipInfBound ? -kRipInf : bb.lower[i]);
+      hi.push_back(bb.upper[i] >= kRipInfBound ? kRipInf : bb.upper[i]);
     }
+    st->sblo = Eigen::Map<const Vec>(lo.data(), st->nbi());
+    st->sbhi = Eigen::Map<const Vec>(hi.data(), st->nbi());
   }
   if (tnlp.HasFinalTimeVariable()) {
     st->free_time = true;
@@ -459,7 +466,8 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
   }
   st->nball = static_cast<int>(st->balls.size());
   st->relax_ball.assign(st->nball, 0.0);
-  st->original = {st->lb, st->ub, st->xlb, st->xub, st->x0lb, st->x0ub, st->Tlb, st->Tub};
+  st->original = {
+      st->lb, st->ub, st->xlb, st->xub, st->x0lb, st->x0ub, st->Tlb, st->Tub, st->sblo, st->sbhi};
   st->copy = st->nc > 0;
   return st;
 }
@@ -524,6 +532,7 @@ void EulerStages::EvalValues(const Iterate& it, Values* out) const {
   if (nb > 0) {
     ocp.BoundaryConstraints(it.X.col(0), it.X.col(N), v.psi.tail(nb));
     v.psi.tail(nb) -= blo;
+    for (int i = 0; i < nbi(); ++i) v.psi[npsi + bineq[i]] -= it.SB(i, 0);  // (blo: 0 there)
   }
   if (!copy) v.copy_row.resize(0);
   v.f = J;
@@ -812,6 +821,8 @@ struct Direction {
   Mat dzl, dzu;
   Mat dzxl, dzxu;  // the state bounds' multipliers
   Mat dzTl, dzTu;  // T's
+  Mat dSB;         // the boundary inequalities' slacks (nbi x 1)
+  Mat dzSl, dzSu;  // their bounds' multipliers
   Mat lam;         // new values
   Vec lamV, nu;
 };
@@ -828,8 +839,10 @@ class RiccatiInteriorPoint {
   // entry with a lower and an upper multiplier in z (zl, zu or zxl,
   // zxu). Every barrier, step and multiplier rule below loops over them.
   // The final time T (free_time) is a third kind: one entry at node 0, whose barrier terms
-  // enter stage 0's block where T is a variable (TimeBoundTerms), not through AddBoundTerms.
-  enum class BoxKind { kControl, kState, kTime };
+  // enter stage 0's block where T is a variable (TimeBoundTerms), not through AddBoundTerms;
+  // the boundary inequalities' slacks a fourth (one column, "node 0"), whose barrier terms go
+  // to the Riccati solve's terminal slacks (SlackTerms).
+  enum class BoxKind { kControl, kState, kTime, kSlack };
   struct Box {
     BoxKind kind = BoxKind::kControl;
     const Vec* lb = nullptr;  // relaxed by bound_relax_factor
@@ -842,33 +855,34 @@ class RiccatiInteriorPoint {
   std::vector<Box> boxes_;
   // Mat& for an Iterate or Direction of either constness: the member of b's kind.
   template <class It>
-  static auto& Pick(It& it, const Box& b, auto control, auto state, auto time) {
+  static auto& Pick(It& it, const Box& b, auto control, auto state, auto time, auto slack) {
     return b.kind == BoxKind::kControl ? it.*control
            : b.kind == BoxKind::kState ? it.*state
-                                       : it.*time;
+           : b.kind == BoxKind::kTime  ? it.*time
+                                       : it.*slack;
   }
   template <class It>
   static auto& Value(It& it, const Box& b) {
-    return Pick(it, b, &Iterate::U, &Iterate::X, &Iterate::T);
+    return Pick(it, b, &Iterate::U, &Iterate::X, &Iterate::T, &Iterate::SB);
   }
   template <class It>
   static auto& Zl(It& it, const Box& b) {
-    return Pick(it, b, &Iterate::zl, &Iterate::zxl, &Iterate::zTl);
+    return Pick(it, b, &Iterate::zl, &Iterate::zxl, &Iterate::zTl, &Iterate::zSl);
   }
   template <class It>
   static auto& Zu(It& it, const Box& b) {
-    return Pick(it, b, &Iterate::zu, &Iterate::zxu, &Iterate::zTu);
+    return Pick(it, b, &Iterate::zu, &Iterate::zxu, &Iterate::zTu, &Iterate::zSu);
   }
   static const Mat& Step(const Direction& d, const Box& b) {
-    return Pick(d, b, &Direction::dU, &Direction::dX, &Direction::dT);
+    return Pick(d, b, &Direction::dU, &Direction::dX, &Direction::dT, &Direction::dSB);
   }
   template <class D>
   static auto& DZl(D& d, const Box& b) {
-    return Pick(d, b, &Direction::dzl, &Direction::dzxl, &Direction::dzTl);
+    return Pick(d, b, &Direction::dzl, &Direction::dzxl, &Direction::dzTl, &Direction::dzSl);
   }
   template <class D>
   static auto& DZu(D& d, const Box& b) {
-    return Pick(d, b, &Direction::dzu, &Direction::dzxu, &Direction::dzTu);
+    return Pick(d, b, &Direction::dzu, &Direction::dzxu, &Direction::dzTu, &Direction::dzSu);
   }
   // Calls f(box, node k, component j, lower bound, upper bound) for every entry with a finite
   // bound on at least one side (the other side +-inf).
@@ -966,6 +980,12 @@ class RiccatiInteriorPoint {
   // Adds T's barrier terms (its Sigma and barrier gradient, kappa_d for a one-sided bound) to
   // hTT and gT, as AddBoundTerms does for the other variables.
   void TimeBoundTerms(double mu, double* hTT, double* gT) const;
+  // The boundary inequalities' slacks in the Riccati solve (RiccatiProblem::slack_hessian and
+  // slack_gradient on their terminal rows of qp_): weight `base` (0 for the Newton step, 1 for
+  // the restoration's minimum-norm step and the least-squares multipliers) plus, with
+  // `barrier`, Sigma = z / distance; the gradient is the barrier's (-+ mu / distance, kappa_d mu
+  // for a one-sided bound) with `barrier`, else the bound multipliers' z_u - z_l.
+  void SlackTerms(double mu, double base, bool barrier);
   // Swaps a trial's primal variables (x, u, T, v, slacks) into it_.
   void TakePrimal(Iterate* trial);
   // The restoration's Levenberg-Marquardt form of stage q: x_{k+1} = A x + B u + b + e with e
@@ -1085,6 +1105,10 @@ void RiccatiInteriorPoint::Measure(double mu) {
   }
   double dual = rx_.rightCols(N).lpNorm<Eigen::Infinity>();
   for (int i : S_.free0) dual = std::max(dual, std::abs(rx_(i, 0)));
+  for (int i = 0; i < S_.nbi(); ++i) {  // a slack's: -nu - z_l + z_u
+    const double r = -it_.nu[S_.npsi + S_.bineq[i]] - it_.zSl(i, 0) + it_.zSu(i, 0);
+    dual = std::max(dual, std::abs(r));
+  }
   dual = std::max(dual, std::abs(rT_));
   for (int j : S_.ufree) dual = std::max(dual, ru_.row(j).lpNorm<Eigen::Infinity>());
   if (rv_.size() > 0) dual = std::max(dual, rv_.lpNorm<Eigen::Infinity>());
@@ -1126,7 +1150,7 @@ void RiccatiInteriorPoint::Measure(double mu) {
     if (RipFinite(hi)) bound(hi - x, Zu(it_, b)(j, k));
   });
   const int n = N * (S_.nx + S_.nuf()) + S_.nw() + S_.nT() + static_cast<int>(it_.V.size()) +
-                nb;  // slacks count too
+                S_.nbi() + nb;  // slacks count too
   s_d_ = std::max(kSMax, mult_sum / std::max(1, m + n)) / kSMax;
   s_c_ = std::max(kSMax, bound_sum / std::max(1, n)) / kSMax;
   dual_inf_ = dual;
@@ -1221,6 +1245,7 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   TerminalRows(&qp_.C);
   qp_.c = r.psi;
   qp_.x0.resize(0);
+  SlackTerms(mu, feasibility ? 1.0 : 0.0, true);
 
   // delta_w goes to every diagonal entry of the recursion, the carried copies T_k, w_k
   // included, so T and w are regularized N + 1 times where Ipopt regularizes them once. Making
@@ -1271,6 +1296,8 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   for (int i = 0; i < S_.nw(); ++i) d->dX(S_.free0[i], 0) = sol_.u[0][ne + i];
   d->dT.resize(S_.nT(), S_.nT());
   if (S_.free_time) d->dT(0, 0) = sol_.u[0][ne + S_.nw()];
+  d->dSB.resize(S_.nbi(), 1);
+  for (int i = 0; i < S_.nbi(); ++i) d->dSB(i, 0) = sol_.s[S_.npsi + S_.bineq[i]];
   d->dU.resize(nu, N);
   d->lam.resize(nx, N);
   for (int k = 0; k < N; ++k) {
@@ -1323,6 +1350,8 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   d->dzxu.setZero(it_.zxu.rows(), it_.zxu.cols());
   d->dzTl.setZero(S_.nT(), S_.nT());
   d->dzTu.setZero(S_.nT(), S_.nT());
+  d->dzSl.setZero(S_.nbi(), 1);
+  d->dzSu.setZero(S_.nbi(), 1);
   ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
     const double x = Value(it_, b)(j, k), dx = Step(*d, b)(j, k);
     if (RipFinite(lo)) {
@@ -1361,7 +1390,9 @@ void RiccatiInteriorPoint::Refine(double dw, double dc) {
 
 void RiccatiInteriorPoint::AddBoundTerms(int k, double mu, Mat* H, Vec* g) const {
   for (const Box& b : boxes_) {
-    if (k < b.first || k >= b.last || b.kind == BoxKind::kTime) continue;
+    if (k < b.first || k >= b.last || b.kind == BoxKind::kTime || b.kind == BoxKind::kSlack) {
+      continue;
+    }
     const int off = k < S_.N ? b.offset : 0;  // x_N leads the terminal block
     const Mat& x = Value(it_, b);
     for (int j = 0; j < b.lb->size(); ++j) {
@@ -1416,6 +1447,7 @@ void RiccatiInteriorPoint::PrimalTrial(const Direction& d, double alpha, Iterate
   trial->X = it_.X + alpha * d.dX;
   trial->U = it_.U + alpha * d.dU;
   trial->T = it_.T + alpha * d.dT;
+  trial->SB = it_.SB + alpha * d.dSB;
   if (S_.copy) {
     trial->V = it_.V + alpha * d.dV;
   } else {
@@ -1800,6 +1832,37 @@ void RiccatiInteriorPoint::TimeBoundTerms(double mu, double* hTT, double* gT) co
   }
 }
 
+void RiccatiInteriorPoint::SlackTerms(double mu, double base, bool barrier) {
+  if (S_.nbi() == 0) {
+    qp_.slack_hessian.resize(0);
+    qp_.slack_gradient.resize(0);
+    return;
+  }
+  qp_.slack_hessian.setZero(S_.nterm());
+  qp_.slack_gradient.setZero(S_.nterm());
+  for (int i = 0; i < S_.nbi(); ++i) {
+    const int row = S_.npsi + S_.bineq[i];
+    const double sb = it_.SB(i, 0), lo = S_.sblo[i], hi = S_.sbhi[i];
+    double h = base, g = 0.0;
+    if (!barrier) {
+      g = it_.zSu(i, 0) - it_.zSl(i, 0);
+    } else {
+      if (RipFinite(lo)) {
+        h += it_.zSl(i, 0) / (sb - lo);
+        g -= mu / (sb - lo);
+        if (!RipFinite(hi)) g += kKappaD * mu;
+      }
+      if (RipFinite(hi)) {
+        h += it_.zSu(i, 0) / (hi - sb);
+        g += mu / (hi - sb);
+        if (!RipFinite(lo)) g -= kKappaD * mu;
+      }
+    }
+    qp_.slack_hessian[row] = h;
+    qp_.slack_gradient[row] = g;
+  }
+}
+
 void RiccatiInteriorPoint::RelaxDefects(RiccatiStage* q) const {
   const int nx = S_.nx, ns = static_cast<int>(q->A.cols()), nv = static_cast<int>(q->B.cols());
   const int n = ns + nv, rows = static_cast<int>(q->B.rows());
@@ -1824,6 +1887,7 @@ void RiccatiInteriorPoint::TakePrimal(Iterate* trial) {
   it_.X.swap(trial->X);
   it_.U.swap(trial->U);
   it_.T.swap(trial->T);
+  it_.SB.swap(trial->SB);
   it_.V.swap(trial->V);
   it_.s.swap(trial->s);
 }
@@ -1880,6 +1944,7 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
   TerminalRows(&qp_.C);
   qp_.c.setZero(S_.nterm());
   qp_.x0.resize(0);
+  SlackTerms(mu_, 1.0, false);
   ++factorizations_;
   if (riccati_.Solve(qp_, 0.0, 0.0, &sol_) == RiccatiOutcome::kSolved) {
     Iterate trial = it_;
@@ -1929,6 +1994,15 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   if (S_.has_state_bounds()) {
     boxes_.push_back({BoxKind::kState, &S_.xlb, &S_.xub, 1, N + 1, 0, &o.xlb, &o.xub});
   }
+  // The boundary inequalities' slacks start at b(x(t0), x(tf)) of the starting point (pushed
+  // into their bounds below), as Ipopt starts its slacks at d(x_0).
+  it_.SB.resize(S_.nbi(), 1);
+  if (S_.nbi() > 0) {
+    boxes_.push_back({BoxKind::kSlack, &S_.sblo, &S_.sbhi, 0, 1, 0, &o.sblo, &o.sbhi});
+    Vec b(S_.nb);
+    S_.ocp.BoundaryConstraints(it_.X.col(0), it_.X.col(N), b);
+    for (int i = 0; i < S_.nbi(); ++i) it_.SB(i, 0) = b[S_.bineq[i]];
+  }
   // Controls and states pushed into their bounds (Ipopt's bound_push, bound_frac).
   ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
     double& x = Value(it_, b)(j, k);
@@ -1965,6 +2039,8 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   it_.zxu.setZero(it_.zxl.rows(), it_.zxl.cols());
   it_.zTl.setZero(S_.nT(), S_.nT());
   it_.zTu.setZero(S_.nT(), S_.nT());
+  it_.zSl.setZero(S_.nbi(), 1);
+  it_.zSu.setZero(S_.nbi(), 1);
   ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
     if (RipFinite(lo)) Zl(it_, b)(j, k) = 1.0;
     if (RipFinite(hi)) Zu(it_, b)(j, k) = 1.0;
@@ -2205,6 +2281,8 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     }
     it_.zTl += alpha_z * d.dzTl;
     it_.zTu += alpha_z * d.dzTu;
+    it_.zSl += alpha_z * d.dzSl;
+    it_.zSu += alpha_z * d.dzSu;
     ClampBoundMultipliers();
     std::swap(vals_, tv);
     ++iterations_;
@@ -2235,6 +2313,7 @@ NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
     projected.X = it_.X;
     projected.U = it_.U;
     projected.T = it_.T;
+    projected.SB = it_.SB;  // (not an NLP variable)
     for (const Box& b : boxes_) {
       for (int k = b.first; k < b.last; ++k) {
         for (int j = 0; j < b.lb->size(); ++j) {
@@ -2350,7 +2429,7 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
   takes.state_bounds = true;  // an augmented state); states have bounds
   takes.free_initial_state = true;
   takes.free_final_time = true;
-  takes.boundary_constraints = true;  // equalities: below
+  takes.boundary_constraints = true;  // equalities and inequalities (slacks)
   if (std::string why = UnsupportedFeature(ocp, "riccati-ip", takes); !why.empty()) return why;
   const TranscriptionOptions options = TranscriptionOptionsFor(request);
   if (!options.scaling.IsIdentity()) {
@@ -2358,11 +2437,6 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
            "state_scale and control_scale must be left at 1";
   }
   if (options.mesh.enabled()) return "riccati-ip does not run mesh refinement";
-  for (int i = 0; i < ocp.num_boundary(); ++i) {
-    if (!(ocp.boundary_bounds().lower[i] == ocp.boundary_bounds().upper[i])) {
-      return RiccatiIpBoundaryInequality(ocp, i);
-    }
-  }
 
   return "";
 }
@@ -2406,6 +2480,7 @@ bool EulerStageLagrangian(const TranscribedNlp& nlp,
   if (S->npsi > 0) it.nu.head(S->npsi) = lambda.segment(S->nlp.terminal_row_begin(), S->npsi);
   if (S->nb > 0) it.nu.tail(S->nb) = lambda.segment(S->nlp.boundary_row_begin(), S->nb);
   it.lamV = Vec::Zero(S->copy ? nu : 0);
+  it.SB.setZero(S->nbi(), 1);  // the inequality rows read b, as the NLP's
   Values v;
   S->EvalValues(it, &v);
   std::vector<StageEval> st;

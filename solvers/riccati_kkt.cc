@@ -254,7 +254,22 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
     v.E.resize(nxN, npsi);
     if (npsi > 0) v.E = problem.C.transpose();
   }
+  // Slacks of terminal rows, eliminated: each row's constant gains slack_gradient / (slack_hessian
+  // + dw) and its dual regularization 1 / (slack_hessian + dw).
+  slack_inverse_.setZero(npsi);
+  if (problem.slack_hessian.size() > 0) {
+    if (problem.slack_hessian.size() != npsi || problem.slack_gradient.size() != npsi ||
+        (problem.slack_hessian.array() < 0.0).any()) {
+      throw std::invalid_argument(
+          "RiccatiSolver::Solve: slack_hessian and slack_gradient need one entry >= 0 per "
+          "terminal row");
+    }
+    for (int i = 0; i < npsi; ++i) {
+      if (problem.slack_hessian[i] > 0.0) slack_inverse_[i] = 1.0 / (problem.slack_hessian[i] + dw);
+    }
+  }
   e_ = problem.c;
+  if (problem.slack_gradient.size() > 0) e_ += problem.slack_gradient.cwiseProduct(slack_inverse_);
   G_.setZero(npsi, npsi);
 
   for (int k = N - 1; k >= 0; --k) {
@@ -277,6 +292,7 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
   if (npsi > 0) {
     S_ = -0.5 * (G_ + G_.transpose());
     S_.diagonal().array() += dc;
+    S_.diagonal() += slack_inverse_;
     schur_.compute(S_);
     const Vec& lam = schur_.eigenvalues();
     const double scale = std::max(1.0, lam.cwiseAbs().maxCoeff());
@@ -290,7 +306,7 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
   }
   b_.resize(N);
   for (int k = 0; k < N; ++k) b_[k] = &problem.stages[k].b;
-  TerminalMultiplierAndForwardSweep(problem, b_, problem.x0, solution);
+  TerminalMultiplierAndForwardSweep(problem, b_, problem.x0, problem.slack_gradient, solution);
   factored_ = true;
   return RiccatiOutcome::kSolved;
 }
@@ -298,6 +314,7 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
 void RiccatiSolver::TerminalMultiplierAndForwardSweep(const RiccatiProblem& problem,
                                                       const std::vector<const Vec*>& b,
                                                       const Vec& x0,
+                                                      const Vec& slack_gradient,
                                                       RiccatiSolution* solution) {
   const int N = static_cast<int>(problem.stages.size());
   const int npsi = static_cast<int>(problem.C.rows());
@@ -315,6 +332,8 @@ void RiccatiSolver::TerminalMultiplierAndForwardSweep(const RiccatiProblem& prob
     nu_.noalias() = V * (V.transpose() * rhs_).cwiseQuotient(lam);
   }
   solution->nu = nu_;
+  solution->s = nu_.cwiseProduct(slack_inverse_);
+  if (slack_gradient.size() > 0) solution->s -= slack_gradient.cwiseProduct(slack_inverse_);
   const double* nu = nu_.data();
 
   // Forward sweep.
@@ -363,6 +382,7 @@ void RiccatiSolver::SolveFactored(const RiccatiProblem& problem,
   // e += E_{k+1}^T (b + B k_k). G, P, E, K and M do not depend on the right-hand side.
   values_[N].p = rhs.qN;
   e_ = rhs.c;
+  if (rhs.slack_gradient.size() > 0) e_ += rhs.slack_gradient.cwiseProduct(slack_inverse_);
   for (int k = N - 1; k >= 0; --k) {
     const RiccatiStage& s = problem.stages[k];
     StageFactor& f = factors_[k];
@@ -398,7 +418,7 @@ void RiccatiSolver::SolveFactored(const RiccatiProblem& problem,
   }
   b_.resize(N);
   for (int k = 0; k < N; ++k) b_[k] = &rhs.b[k];
-  TerminalMultiplierAndForwardSweep(problem, b_, rhs.x0, solution);
+  TerminalMultiplierAndForwardSweep(problem, b_, rhs.x0, rhs.slack_gradient, solution);
 }
 
 double RiccatiKktResidual(
@@ -457,9 +477,21 @@ double RiccatiKktResidual(
   worst = std::max(worst, max_abs(stN));
   stN = -stN;
   r->c.resize(npsi);
+  r->slack_gradient.resize(0);
   if (npsi > 0) {
     r->c = p.c - dc * z.nu;
     GemmNN(npsi, 1, nxN, 1.0, p.C.data(), npsi, z.x[N].data(), nxN, 1.0, r->c.data(), npsi);
+    if (p.slack_hessian.size() > 0) {
+      // The slacks' rows and their stationarity (slack_hessian + dw) s + slack_gradient - nu.
+      r->slack_gradient.setZero(npsi);
+      for (int i = 0; i < npsi; ++i) {
+        if (!(p.slack_hessian[i] > 0.0)) continue;
+        r->c[i] -= z.s[i];
+        r->slack_gradient[i] = (p.slack_hessian[i] + dw) * z.s[i] + p.slack_gradient[i] - z.nu[i];
+      }
+      worst = std::max(worst, max_abs(r->slack_gradient));
+      r->slack_gradient = -r->slack_gradient;
+    }
     worst = std::max(worst, max_abs(r->c));
     r->c = -r->c;
   }

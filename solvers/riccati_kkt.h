@@ -34,13 +34,24 @@ struct RiccatiStage {
 /// always have full rank). Multipliers follow the convention of core/nlp.h for the rows
 /// x_{k+1} - A_k x_k - B_k u_k - b_k = 0 and C x_N + c = 0: the Lagrangian is the objective plus
 /// lambda_k^T (x_{k+1} - A_k x_k - B_k u_k - b_k) plus nu^T (C x_N + c).
+///
+/// Terminal rows may have a slack (an inequality row d(x) in [lo, hi] written d(x) - s = 0 with
+/// s bounded, as Ipopt writes it): row i with slack_hessian[i] > 0 reads
+/// C_i x_N + c_i - s_i - dc nu_i = 0, and the objective gains the slack's own terms
+/// 1/2 (slack_hessian[i] + dw) s_i^2 + slack_gradient[i] s_i (in an interior point, the
+/// barrier's Sigma and gradient of the slack's bounds). The slacks are eliminated before the
+/// final Schur complement: s_i = (nu_i - slack_gradient[i]) / (slack_hessian[i] + dw), which
+/// adds 1 / (slack_hessian[i] + dw) to that row's dual regularization; the inertia test is
+/// unchanged (each slack is a positive pivot). Empty vectors, or zero entries: no slacks.
 struct RiccatiProblem {
   std::vector<RiccatiStage> stages;
   Mat QN;  ///< nx_N square
   Vec qN;
   Mat C;  ///< npsi x nx_N (npsi may be 0)
   Vec c;
-  Vec x0;  ///< nx_0 (often 0: the initial state is fixed and not a variable)
+  Vec x0;              ///< nx_0 (often 0: the initial state is fixed and not a variable)
+  Vec slack_hessian;   ///< npsi entries >= 0 (0: the row has no slack), or empty
+  Vec slack_gradient;  ///< npsi entries (0 where no slack), or empty
 };
 
 /// The vectors of a RiccatiProblem's right-hand side, for RiccatiSolver::SolveFactored (the
@@ -48,6 +59,7 @@ struct RiccatiProblem {
 struct RiccatiRhs {
   std::vector<Vec> q, b;
   Vec qN, c, x0;
+  Vec slack_gradient;  ///< as RiccatiProblem's (empty: zeros)
 };
 
 struct RiccatiSolution {
@@ -55,6 +67,7 @@ struct RiccatiSolution {
   std::vector<Vec> u;       ///< N entries
   std::vector<Vec> lambda;  ///< N entries, the multipliers of the transitions
   Vec nu;                   ///< npsi
+  Vec s;                    ///< npsi: the terminal rows' slacks (0 where a row has none)
 };
 
 /// How a factorization went.
@@ -107,11 +120,13 @@ class RiccatiSolver {
  private:
   template <int kNx, int kNu>
   bool BackwardStage(const RiccatiStage& s, int k, double dw, int npsi);
-  // The terminal multiplier from the final Schur complement's eigendecomposition (schur_) and
-  // the forward sweep; b[k] and x0 are the right-hand side's.
+  // The terminal multiplier from the final Schur complement's eigendecomposition (schur_), the
+  // terminal slacks, and the forward sweep; b[k], x0 and slack_gradient are the right-hand
+  // side's.
   void TerminalMultiplierAndForwardSweep(const RiccatiProblem& problem,
                                          const std::vector<const Vec*>& b,
                                          const Vec& x0,
+                                         const Vec& slack_gradient,
                                          RiccatiSolution* solution);
 
   // The workspace, sized on the first call and reused (no heap allocation once the stage
@@ -143,6 +158,8 @@ class RiccatiSolver {
   // The final Schur complement's eigendecomposition (npsi > 0), kept for SolveFactored.
   Eigen::SelfAdjointEigenSolver<Mat> schur_;
   std::vector<const Vec*> b_;
+  // 1 / (slack_hessian + dw) per terminal row of the last Solve (0 where a row has no slack).
+  Vec slack_inverse_;
 };
 
 /// The residual of z in the KKT conditions of p (with its dw and dc): returns its max norm and

@@ -7,11 +7,9 @@ namespace {
 std::string FreeFinalTimeReason(const Ocp& ocp, const std::string& solver) {
   return "problem '" + ocp.name() + "' has a free final time, which " + solver +
          " does not take (it keeps the horizon fixed): indirect-newton (H(tf) = 0) and the "
-         "NLP solvers on a collocation transcription (T a variable) solve it" +
-         std::string(!ProblemFeatures::Of(ocp).boundary_inequalities
-                         ? ", and so does riccati-ip on euler"
-                         : "") +
-         "; the time-scaled problems (brachistochrone, zermelo, steering, goddard, robot-arm) "
+         "NLP solvers on a collocation transcription (T a variable) solve it, and so does "
+         "riccati-ip on euler; the time-scaled problems (brachistochrone, zermelo, steering, "
+         "goddard, robot-arm) "
          "pose free time on a fixed horizon for every method";
 }
 
@@ -20,12 +18,10 @@ constexpr const char* kCollocationSolvers =
     "ipopt and nlopt on a collocation transcription (euler, trapezoid, hermite-simpson, lgr) "
     "solve it";
 
-// kCollocationSolvers, and riccati-ip where it takes every feature the problem uses (all but
-// boundary inequalities).
-std::string WhoSolvesIt(const ProblemFeatures& uses) {
-  std::string who = kCollocationSolvers;
-  if (!uses.boundary_inequalities) who += ", and so does riccati-ip on euler";
-  return who;
+// kCollocationSolvers, and riccati-ip, which takes every feature of the problem class (since
+// 2026-12-08 boundary inequalities too).
+std::string WhoSolvesIt() {
+  return std::string(kCollocationSolvers) + ", and so does riccati-ip on euler";
 }
 
 }  // namespace
@@ -67,21 +63,21 @@ std::string UnsupportedFeature(const Ocp& ocp,
     return "problem '" + ocp.name() +
            "' has static parameters (constant decisions, posed as a "
            "partly free initial state), which " +
-           solver + " does not take: " + WhoSolvesIt(uses);
+           solver + " does not take: " + WhoSolvesIt();
   }
   if (uses.free_initial_state && !takes.free_initial_state) {
     return "problem '" + ocp.name() + "' has a free initial state, which " + solver +
-           " does not take (it starts every trajectory from x0): " + WhoSolvesIt(uses);
+           " does not take (it starts every trajectory from x0): " + WhoSolvesIt();
   }
   if (uses.state_bounds && !takes.state_bounds) {
     return "problem '" + ocp.name() + "' has state bounds, which " + solver +
            " does not take (its states follow from the controls, or it has no bounds on "
            "them): " +
-           WhoSolvesIt(uses);
+           WhoSolvesIt();
   }
   if (uses.boundary_constraints && !takes.boundary_constraints) {
     return "problem '" + ocp.name() + "' has boundary constraints b(x(t0), x(tf)), which " +
-           solver + " does not take: " + WhoSolvesIt(uses);
+           solver + " does not take: " + WhoSolvesIt();
   }
   return "";
 }

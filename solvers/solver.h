@@ -75,7 +75,8 @@ struct ProblemFeatures {
   bool free_initial_state = false;    ///< Ocp::HasFreeInitialState (with its initial cost)
   bool state_bounds = false;          ///< Ocp::state_bounds
   bool boundary_constraints = false;  ///< Ocp::num_boundary() > 0
-  /// Some boundary row has lower < upper (an inequality); Of only (no method's `takes` reads it)
+  /// Some boundary row has lower < upper (an inequality); Of only (no method's `takes` reads it;
+  /// every method that takes boundary constraints takes their inequalities)
   bool boundary_inequalities = false;
   /// The features `ocp` uses.
   static ProblemFeatures Of(const Ocp& ocp);

@@ -89,9 +89,9 @@ void DescribeProblem(const std::string& name) {
   std::cout << "features: "
             << (features.empty()
                     ? "none (fixed horizon, fixed x(t0), no state bounds or boundary constraints)"
-                    : features + " (ipopt and nlopt on a collocation transcription take them" +
-                          std::string(!f.boundary_inequalities ? ", and riccati-ip on euler" : "") +
-                          "; methods that do not say not_applicable)")
+                    : features +
+                          " (ipopt and nlopt on a collocation transcription take them, and "
+                          "riccati-ip on euler; methods that do not say not_applicable)")
             << "\n";
   std::cout << "parameters (--set key=value, suite \"set\"):\n" << parameters.Describe();
 }

@@ -484,14 +484,17 @@ TEST(ProblemClass, MethodsThatDoNotTakeAFeatureAreNotApplicableWithTheReason) {
   for (const std::string solver : {"hamiltonian", "indirect-newton"}) {
     const SolveResult r = SolveWith(solver, coupled, Request(coupled, 10, TerminalMode::kHard));
     EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << solver;
-    // Who solves it: riccati-ip takes boundary equalities only, so it is not named here...
-    EXPECT_EQ(r.message.find("riccati-ip"), std::string::npos) << r.message;
+    // Who solves it: riccati-ip, which takes boundary inequalities too.
+    EXPECT_NE(r.message.find("riccati-ip on euler"), std::string::npos) << r.message;
     EXPECT_NE(r.message.find("boundary constraints"), std::string::npos) << r.message;
   }
   const SolveResult riccati =
       SolveWith("riccati-ip", coupled, Request(coupled, 10, TerminalMode::kHard, "euler"));
-  EXPECT_EQ(riccati.status, SolveStatus::kNotApplicable);
-  EXPECT_NE(riccati.message.find("boundary inequality"), std::string::npos) << riccati.message;
+  EXPECT_EQ(riccati.status, SolveStatus::kConverged) << riccati.message;
+  const SolveResult ipopt =  // the same Euler NLP (the second row one-sided: upper 1, lower -inf)
+      SolveWith("ipopt", coupled, Request(coupled, 10, TerminalMode::kHard, "euler"));
+  ASSERT_EQ(ipopt.status, SolveStatus::kConverged) << ipopt.message;
+  EXPECT_NEAR(riccati.objective, ipopt.objective, 1e-8 * std::max(1.0, std::abs(ipopt.objective)));
   const SolveResult shooting =
       SolveWith("ipopt", coupled, Request(coupled, 10, TerminalMode::kHard, "single-shooting"));
   EXPECT_EQ(shooting.status, SolveStatus::kNotApplicable);

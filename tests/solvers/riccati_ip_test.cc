@@ -7,7 +7,9 @@
 #include <iostream>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -93,8 +95,20 @@ RiccatiSolution DenseSolve(const RiccatiProblem& p, double dw, double dc) {
   }
   const int rt = m;
   m += npsi;
+  // Terminal slacks (slack_hessian[i] > 0): primal variables after x_N, each with its own
+  // Hessian entry and gradient, and -1 in its terminal row.
+  std::vector<int> so(npsi, -1);
+  for (int i = 0; i < p.slack_hessian.size(); ++i) {
+    if (p.slack_hessian[i] > 0.0) so[i] = n++;
+  }
   Mat K = Mat::Zero(n + m, n + m);
   Vec r = Vec::Zero(n + m);
+  for (int i = 0; i < npsi; ++i) {
+    if (so[i] < 0) continue;
+    K(so[i], so[i]) = p.slack_hessian[i];
+    r[so[i]] = -p.slack_gradient[i];
+    K(n + rt + i, so[i]) = -1.0;
+  }
   for (int k = 0; k < N; ++k) {
     const RiccatiStage& s = p.stages[k];
     const int w = static_cast<int>(s.Q.rows());
@@ -126,11 +140,16 @@ RiccatiSolution DenseSolve(const RiccatiProblem& p, double dw, double dc) {
     }
   }
   out.nu = sol.segment(n + rt, npsi);
+  out.s = Vec::Zero(npsi);
+  for (int i = 0; i < npsi; ++i) {
+    if (so[i] >= 0) out.s[i] = sol[so[i]];
+  }
   return out;
 }
 
 double MaxDifference(const RiccatiSolution& a, const RiccatiSolution& b) {
   double d = (a.nu - b.nu).lpNorm<Eigen::Infinity>();
+  if (a.s.size() > 0 || b.s.size() > 0) d = std::max(d, (a.s - b.s).lpNorm<Eigen::Infinity>());
   for (size_t k = 0; k < a.x.size(); ++k) {
     if (a.x[k].size() > 0) d = std::max(d, (a.x[k] - b.x[k]).lpNorm<Eigen::Infinity>());
   }
@@ -303,6 +322,72 @@ TEST(RiccatiKkt, SolveFactoredMatchesADenseSolveOfANewRightHandSide) {
   ADD_FAILURE() << "no indefinite problem failed to factorize";
 }
 
+// Terminal rows with slacks (riccati-ip's boundary inequalities): eliminated in the final Schur
+// complement, the solution is the dense solve's with the slacks as variables, with and without
+// both regularizations (dw reaches the slacks too), through SolveFactored and the residual.
+TEST(RiccatiKkt, TerminalSlacksMatchADenseSolve) {
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> positive(0.05, 5.0);
+  for (const KktCase& c : std::vector<KktCase>{{{0, 3, 3, 3, 3}, {2, 2, 2, 2}, 3},
+                                               {{2, 4, 4, 4, 6}, {1, 2, 2, 2}, 2},
+                                               {{0, 1}, {1}, 1}}) {
+    for (int trial = 0; trial < 4; ++trial) {
+      RiccatiProblem p = RandomProblem(&rng, c.nx, c.nu, c.npsi, true);
+      p.slack_hessian = Vec::Zero(c.npsi);
+      p.slack_gradient = Vec::Zero(c.npsi);
+      for (int i = 0; i < c.npsi; ++i) {
+        if (i % 2 == 1 && trial % 2 == 0) continue;  // some rows without a slack
+        p.slack_hessian[i] = positive(rng);
+        p.slack_gradient[i] = positive(rng) - 2.5;
+      }
+      for (const auto& [dw, dc] : {std::pair{0.0, 0.0}, std::pair{0.3, 1e-3}}) {
+        RiccatiSolver solver;
+        RiccatiSolution z;
+        ASSERT_EQ(solver.Solve(p, dw, dc, &z), RiccatiOutcome::kSolved);
+        const RiccatiSolution d = DenseSolve(p, dw, dc);
+        EXPECT_LT(MaxDifference(z, d), 1e-10 * Scale(d)) << "dw " << dw;
+        for (int i = 0; i < c.npsi; ++i) {
+          if (p.slack_hessian[i] == 0.0) EXPECT_EQ(z.s[i], 0.0);
+        }
+        RiccatiRhs res;
+        EXPECT_LT(RiccatiKktResidual(p, dw, dc, z, &res), 1e-11 * Scale(z));
+        // A new right-hand side, the slacks' gradient included, on the kept factorization.
+        RiccatiProblem p2 = WithNewRhs(&rng, p);
+        for (int i = 0; i < c.npsi; ++i) {
+          if (p.slack_hessian[i] > 0.0) p2.slack_gradient[i] = positive(rng) - 2.5;
+        }
+        RiccatiRhs rhs = RhsOfProblem(p2);
+        rhs.slack_gradient = p2.slack_gradient;
+        solver.SolveFactored(p, rhs, &z);
+        const RiccatiSolution d2 = DenseSolve(p2, dw, dc);
+        EXPECT_LT(MaxDifference(z, d2), 1e-10 * Scale(d2)) << "SolveFactored, dw " << dw;
+        // The residual of the exact solution moved by delta solves, on the factorization, to
+        // delta (the slacks' part included).
+        RiccatiSolution moved = d2;
+        for (int i = 0; i < c.npsi; ++i) {
+          if (p.slack_hessian[i] > 0.0) moved.s[i] += 0.5;
+        }
+        moved.nu[0] += 0.25;
+        RiccatiRhs r;
+        RiccatiKktResidual(p2, dw, dc, moved, &r);
+        RiccatiSolution correction;
+        solver.SolveFactored(p2, r, &correction);
+        for (int i = 0; i < c.npsi; ++i) {
+          const double expected = p.slack_hessian[i] > 0.0 ? 0.5 : 0.0;
+          EXPECT_NEAR(correction.s[i], expected, 1e-9 * Scale(d2)) << "row " << i;
+        }
+        EXPECT_NEAR(correction.nu[0], 0.25, 1e-9 * Scale(d2));
+      }
+    }
+  }
+  RiccatiProblem bad = RandomProblem(&rng, {0, 2, 2}, {1, 1}, 2, true);
+  bad.slack_hessian = Vec::Constant(2, -1.0);
+  bad.slack_gradient = Vec::Zero(2);
+  RiccatiSolver solver;
+  RiccatiSolution z;
+  EXPECT_THROW(solver.Solve(bad, 0.0, 0.0, &z), std::invalid_argument);
+}
+
 // The KKT residual of a solution moved by delta is K delta; solved with the factorization it
 // gives delta back (the correction iterative refinement subtracts), and the exact solution's
 // residual is at rounding level.
@@ -387,6 +472,10 @@ TEST(RiccatiIpStages, LagrangianDerivativesMatchFiniteDifferencesAndTheNlp) {
       {"moonlander", {}, TerminalMode::kHard},  // free time, controls in the dynamics
       // boundary equalities (phase links) on free x_0 components and static parameters
       {"two-phase-double-integrator", {}, TerminalMode::kHard},
+      // boundary inequalities: on a free x_0 (coupled-ends); with free time and state bounds
+      // (mountain-car); the NLP's rows read b, the stages' b - s (s = 0 here)
+      {"coupled-ends", {}, TerminalMode::kHard},
+      {"mountain-car", {}, TerminalMode::kHard},
   };
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0.0, 1.0);
@@ -647,6 +736,53 @@ TEST(RiccatiIpSolver, FreeInitialStatesAndStaticParametersReachIpoptsOptimum) {
   }
 }
 
+// Boundary inequalities b_lo <= b(x(t0), x(tf)) <= b_hi as rows b - s = 0 with a bounded slack
+// s (Ipopt's form), the slack eliminated in the Riccati solve's final Schur complement: the
+// optimum of the Euler NLP is Ipopt's, the rows' multipliers are Ipopt's, and the rows hold
+// within their bounds. coupled-ends: 0 <= x(1) - x(0) <= 0.8 coupling a free x(0) with x(1), the
+// upper bound active; mountain-car: v(tf) >= 0 (inactive at the optimum) beside state bounds and
+// a free final time.
+TEST(RiccatiIpSolver, BoundaryInequalitiesReachIpoptsOptimum) {
+  for (const std::string name : {"coupled-ends", "mountain-car"}) {
+    SCOPED_TRACE(name);
+    const auto ocp = MakeProblem(name, {}, 1);
+    ASSERT_GT(ocp->num_boundary(), 0);
+    const auto nlp = EulerNlp(*ocp, 50, TerminalMode::kHard);
+    NlpSolution ip, rip;
+    ASSERT_NO_FATAL_FAILURE(BothConvergeToOneOptimum(*nlp, 1e-10, &ip, &rip));
+    // Every variable but mountain-car's last control, which moves only v(tf) (no cost, its
+    // bound inactive): the NLP's optimum is not unique there, and the two stop 1.4e-3 apart.
+    const auto& collocation = dynamic_cast<const CollocationNlp&>(*nlp);
+    Vec dz = rip.z - ip.z;
+    if (name == "mountain-car") {
+      dz.segment(collocation.layout().controls.back().offset, ocp->nu()).setZero();
+      dz[collocation.layout().states.back().offset + 1] = 0.0;
+    }
+    EXPECT_LT(dz.lpNorm<Eigen::Infinity>(), 1e-6 * (1.0 + ip.z.lpNorm<Eigen::Infinity>()));
+    EXPECT_LE(rip.iterations, ip.iterations + 2);  // measured 8 / 8, 20 / 19
+    const int row = collocation.boundary_row_begin();
+    double largest = 0.0;
+    for (int i = 0; i < ocp->num_boundary(); ++i) {
+      const double y = ip.lambda[row + i];
+      largest = std::max(largest, std::abs(y));
+      EXPECT_NEAR(rip.lambda[row + i], y, 1e-6 * (1.0 + std::abs(y))) << "row " << i;
+    }
+    if (name == "coupled-ends") EXPECT_GT(largest, 0.1);  // the active upper bound's
+    Vec b(ocp->num_boundary());
+    const Mat X = nlp->StateTrajectory(rip.z).values();
+    ocp->BoundaryConstraints(X.col(0), X.col(X.cols() - 1), b);
+    for (int i = 0; i < b.size(); ++i) {
+      const double lo = ocp->boundary_bounds().lower[i], hi = ocp->boundary_bounds().upper[i];
+      EXPECT_GE(b[i], lo - 1e-8 * std::max(1.0, std::abs(lo)));
+      EXPECT_LE(b[i], hi + 1e-8 * std::max(1.0, std::abs(hi)));
+    }
+    std::cout << "[ riccati-ip ] " << name << " N=50 (boundary inequality): iterations "
+              << rip.iterations << " (Ipopt " << ip.iterations << "), |df|/|f| "
+              << std::abs(rip.objective - ip.objective) / std::max(1.0, std::abs(ip.objective))
+              << ", the rows' largest multiplier " << largest << "\n";
+  }
+}
+
 // A free final time T as an augmented state (x_k, T) carried through the recursion, a variable
 // of stage 0: on five problems the optimum of the Euler NLP is Ipopt's, T included, and T's bound
 // multiplier is Ipopt's.
@@ -904,13 +1040,6 @@ TEST(RiccatiIpSolver, NotApplicableOutsideItsClass) {
   request.transcription_options = {{"objective_scale", 2.0}};
   EXPECT_EQ(solver->Solve(*lqr, request).status, SolveStatus::kNotApplicable);
   request.transcription_options = OptionMap();
-
-  // A boundary inequality (coupled-ends: 0 <= x(1) - x(0) <= 0.8); equalities are taken.
-  const auto coupled = MakeProblem("coupled-ends", {}, 1);
-  request.grid = TimeGrid::Uniform(coupled->t0(), coupled->tf(), 10);
-  const SolveResult rb = solver->Solve(*coupled, request);
-  EXPECT_EQ(rb.status, SolveStatus::kNotApplicable);
-  EXPECT_NE(rb.message.find("boundary inequality"), std::string::npos) << rb.message;
 
   request.transcription = "no-such-scheme";
   EXPECT_THROW(solver->Solve(*lqr, request), std::invalid_argument);
