@@ -78,7 +78,7 @@ struct RiccatiIpOptions {
 /// Why riccati-ip cannot solve `request` on `ocp` (empty when it can): a transcription other
 /// than "euler", a transcription scaling other than the identity, or mesh refinement. A free or
 /// partly free initial state, static parameters, a free final time, boundary equalities and
-/// inequalities (since 2026-12-08) and fixed control components (lower == upper: no variables)
+/// inequalities (since 2026-12-07) and fixed control components (lower == upper: no variables)
 /// are in its class. An empty or unknown transcription name is
 /// not a reason: Solve throws std::invalid_argument for it, as every NLP solver does.
 std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request);

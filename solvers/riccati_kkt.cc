@@ -193,9 +193,16 @@ bool RiccatiSolver::BackwardStage(const RiccatiStage& s, int k, double dw, int n
       const Vec& lam = eig_.eigenvalues();
       const double scale = std::max(1.0, lam.cwiseAbs().maxCoeff());
       const int neg = static_cast<int>((lam.array() < 0.0).count());
+      const bool singular = lam.cwiseAbs().minCoeff() <= 1e-12 * scale;
+      if (eig_.info() == Eigen::Success && singular && k == 0 && nx == 0 && npsi > 0) {
+        // A singular first stage without a state: its controls and the terminal multiplier
+        // are solved together (JointFirstStage), where the terminal rows may supply the
+        // curvature the stage lacks.
+        JointFirstStage(s, vn, npsi);
+        return true;
+      }
       negative_ += neg;
-      if (eig_.info() != Eigen::Success || lam.cwiseAbs().minCoeff() <= 1e-12 * scale ||
-          negative_ > npsi) {
+      if (eig_.info() != Eigen::Success || singular || negative_ > npsi) {
         failed_stage_ = k;
         return false;
       }
@@ -231,6 +238,23 @@ bool RiccatiSolver::BackwardStage(const RiccatiStage& s, int k, double dw, int n
   return true;
 }
 
+void RiccatiSolver::JointFirstStage(const RiccatiStage& s, const ValueFunction& vn, int npsi) {
+  const int nu = static_cast<int>(s.B.cols());
+  const int nn = static_cast<int>(s.A.rows());
+  joint_ = true;
+  joint_K_.setZero(nu + npsi, nu + npsi);
+  joint_K_.topLeftCorner(nu, nu) = Huu_;  // dw included
+  joint_K_.topRightCorner(nu, npsi) = BE_;
+  joint_K_.bottomLeftCorner(npsi, nu) = BE_.transpose();
+  joint_gu_ = gu_;
+  // The parameter's e gains E^T b (its B^T E k part is the joint solve's).
+  GemmTN(npsi, 1, nn, 1.0, vn.E.data(), nn, s.b.data(), nn, 1.0, e_.data(), npsi);
+  ValueFunction& v = values_[0];  // no state: V_0 is the parameter's part alone
+  v.P.resize(0, 0);
+  v.p.resize(0);
+  v.E.resize(0, npsi);
+}
+
 RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
                                     double dw,
                                     double dc,
@@ -240,6 +264,7 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
   failed_stage_ = -1;
   negative_ = 0;
   factored_ = false;
+  joint_ = false;
   factors_.resize(N);
   values_.resize(N + 1);
 
@@ -289,7 +314,40 @@ RiccatiOutcome RiccatiSolver::Solve(const RiccatiProblem& problem,
   // The inertia of the whole KKT matrix is that of the dynamics pairs, plus the H_uu's, plus that
   // of G_0 - dc I (Haynsworth): it is right when -(G_0 - dc I) has exactly as many negative
   // eigenvalues as the H_uu's had, and no zero one.
-  if (npsi > 0) {
+  if (joint_) {
+    // The first stage's controls and nu together: [H_uu, B^T E; E^T B, G - dc I - D] (D the
+    // slacks' 1 / (Sigma + dw)) must have as many negative eigenvalues as there are terminal
+    // rows beyond the later stages' negative curvature (Haynsworth again), and no zero one.
+    joint_K_.bottomRightCorner(npsi, npsi) = 0.5 * (G_ + G_.transpose());
+    joint_K_.bottomRightCorner(npsi, npsi).diagonal().array() -= dc;
+    joint_K_.bottomRightCorner(npsi, npsi).diagonal() -= slack_inverse_;
+    // Equilibrated (Ruiz: D K D with every row's largest entry near 1), which keeps the
+    // inertia (Sylvester) and makes the eigenvalues' zero test scale-free: the condensed
+    // blocks of a stiff problem span many orders of magnitude.
+    const int n = static_cast<int>(joint_K_.rows());
+    joint_d_.setOnes(n);
+    jrhs_.resize(n);  // scratch: the rows' largest entries
+    for (int pass = 0; pass < 10; ++pass) {
+      for (int i = 0; i < n; ++i) {  // the row's largest entry of D K D
+        double r = 0.0;
+        for (int j = 0; j < n; ++j) r = std::max(r, std::abs(joint_K_(i, j)) * joint_d_[j]);
+        jrhs_[i] = r * joint_d_[i];
+      }
+      for (int i = 0; i < n; ++i) {
+        if (jrhs_[i] > 0.0) joint_d_[i] /= std::sqrt(jrhs_[i]);
+      }
+    }
+    joint_eig_.compute(joint_d_.asDiagonal() * joint_K_ * joint_d_.asDiagonal());
+    const Vec& lam = joint_eig_.eigenvalues();
+    const double scale = std::max(1.0, lam.cwiseAbs().maxCoeff());
+    if (joint_eig_.info() != Eigen::Success || lam.cwiseAbs().minCoeff() <= 1e-13 * scale) {
+      return RiccatiOutcome::kTerminalRowsDegenerate;
+    }
+    if (static_cast<int>((lam.array() < 0.0).count()) != npsi - negative_) {
+      failed_stage_ = 0;
+      return RiccatiOutcome::kNotPositiveDefinite;
+    }
+  } else if (npsi > 0) {
     S_ = -0.5 * (G_ + G_.transpose());
     S_.diagonal().array() += dc;
     S_.diagonal() += slack_inverse_;
@@ -318,9 +376,21 @@ void RiccatiSolver::TerminalMultiplierAndForwardSweep(const RiccatiProblem& prob
                                                       RiccatiSolution* solution) {
   const int N = static_cast<int>(problem.stages.size());
   const int npsi = static_cast<int>(problem.C.rows());
-  // The terminal multiplier from the final Schur complement.
+  // The terminal multiplier from the final Schur complement, or with a joint first stage from
+  // the joint system (with u_0).
   nu_.setZero(npsi);
-  if (npsi > 0) {
+  if (joint_) {
+    jrhs_.resize(joint_K_.rows());
+    const int nu0 = static_cast<int>(joint_gu_.size());
+    jrhs_.head(nu0) = -joint_gu_;
+    jrhs_.tail(npsi) = -e_;
+    const Vec& lam = joint_eig_.eigenvalues();
+    const Mat& V = joint_eig_.eigenvectors();
+    jrhs_ = jrhs_.cwiseProduct(joint_d_);
+    jsol_.noalias() = V * (V.transpose() * jrhs_).cwiseQuotient(lam);
+    jsol_ = jsol_.cwiseProduct(joint_d_);
+    nu_ = jsol_.tail(npsi);
+  } else if (npsi > 0) {
     const Vec& lam = schur_.eigenvalues();
     const Mat& V = schur_.eigenvectors();
     rhs_ = e_;
@@ -352,9 +422,13 @@ void RiccatiSolver::TerminalMultiplierAndForwardSweep(const RiccatiProblem& prob
     Vec& uk = solution->u[k];
     Vec& xn = solution->x[k + 1];
     Vec& lam = solution->lambda[k];
-    uk = f.k;
-    GemmNN(nu_k, 1, nx, 1.0, f.K.data(), nu_k, xk.data(), nx, 1.0, uk.data(), nu_k);
-    GemmNN(nu_k, 1, npsi, 1.0, f.M.data(), nu_k, nu, npsi, 1.0, uk.data(), nu_k);
+    if (k == 0 && joint_) {
+      uk = jsol_.head(nu_k);
+    } else {
+      uk = f.k;
+      GemmNN(nu_k, 1, nx, 1.0, f.K.data(), nu_k, xk.data(), nx, 1.0, uk.data(), nu_k);
+      GemmNN(nu_k, 1, npsi, 1.0, f.M.data(), nu_k, nu, npsi, 1.0, uk.data(), nu_k);
+    }
     xn = *b[k];
     GemmNN(nn, 1, nx, 1.0, s.A.data(), nn, xk.data(), nx, 1.0, xn.data(), nn);
     GemmNN(nn, 1, nu_k, 1.0, s.B.data(), nn, uk.data(), nu_k, 1.0, xn.data(), nn);
@@ -397,6 +471,11 @@ void RiccatiSolver::SolveFactored(const RiccatiProblem& problem,
     gu_ = rhs.q[k].tail(nu);
     GemmTN(nx, 1, nn, 1.0, s.A.data(), nn, Pbp_.data(), nn, 1.0, gx_.data(), nx);
     GemmTN(nu, 1, nn, 1.0, s.B.data(), nn, Pbp_.data(), nn, 1.0, gu_.data(), nu);
+    if (k == 0 && joint_) {  // the joint solve takes g_u and e += E^T b
+      joint_gu_ = gu_;
+      GemmTN(npsi, 1, nn, 1.0, vn.E.data(), nn, b.data(), nn, 1.0, e_.data(), npsi);
+      continue;
+    }
     if (nu > 0) {
       if (f.cholesky) {
         f.k = gu_;

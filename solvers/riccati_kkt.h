@@ -120,6 +120,10 @@ class RiccatiSolver {
  private:
   template <int kNx, int kNu>
   bool BackwardStage(const RiccatiStage& s, int k, double dw, int npsi);
+  struct ValueFunction;
+  // Stage 0 without a state and with a singular H_uu (from BackwardStage's scratch): keeps
+  // H_uu, g_u and B^T E for the joint solve of u_0 and nu (joint_K_), adds E^T b to e.
+  void JointFirstStage(const RiccatiStage& s, const ValueFunction& vn, int npsi);
   // The terminal multiplier from the final Schur complement's eigendecomposition (schur_), the
   // terminal slacks, and the forward sweep; b[k], x0 and slack_gradient are the right-hand
   // side's.
@@ -160,6 +164,13 @@ class RiccatiSolver {
   std::vector<const Vec*> b_;
   // 1 / (slack_hessian + dw) per terminal row of the last Solve (0 where a row has no slack).
   Vec slack_inverse_;
+  // A joint first stage (JointFirstStage): the matrix [H_uu, B^T E; E^T B, G - dc I - D], its
+  // eigendecomposition, the stage's g_u, and the right-hand side and solution of the last solve.
+  bool joint_ = false;
+  Mat joint_K_;
+  Eigen::SelfAdjointEigenSolver<Mat> joint_eig_;
+  Vec joint_gu_, jrhs_, jsol_;
+  Vec joint_d_;  // the joint matrix's equilibration D (eigendecomposed: D K D)
 };
 
 /// The residual of z in the KKT conditions of p (with its dw and dc): returns its max norm and

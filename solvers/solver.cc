@@ -19,7 +19,7 @@ constexpr const char* kCollocationSolvers =
     "solve it";
 
 // kCollocationSolvers, and riccati-ip, which takes every feature of the problem class (since
-// 2026-12-08 boundary inequalities too).
+// 2026-12-07 boundary inequalities too).
 std::string WhoSolvesIt() {
   return std::string(kCollocationSolvers) + ", and so does riccati-ip on euler";
 }

@@ -388,6 +388,51 @@ TEST(RiccatiKkt, TerminalSlacksMatchADenseSolve) {
   EXPECT_THROW(solver.Solve(bad, 0.0, 0.0, &z), std::invalid_argument);
 }
 
+// A first stage without a state whose H_uu is singular (no curvature of its own, P_1 = 0) while
+// terminal rows fix what its controls move (pinene: the free initial components of its phases,
+// fixed by the phase links): u_0 and nu are solved together, the result the dense solve's, on
+// SolveFactored too; without enough terminal rows the system is singular and said so.
+TEST(RiccatiKkt, SingularFirstStageIsSolvedWithTheTerminalRows) {
+  std::mt19937 rng(31);
+  for (int trial = 0; trial < 6; ++trial) {
+    const int npsi = trial % 2 == 0 ? 3 : 2;
+    // nx = {0, 3, 3, 3}, nu = {npsi, 2, 2}: u_0 moves x_1 = B u_0 + b, which x_N's rows fix.
+    RiccatiProblem p = RandomProblem(&rng, {0, 3, 3, 3}, {npsi, 2, 2}, npsi, true);
+    p.stages[0].Q.setZero();  // H_uu of stage 0 = Q + B^T P_1 B = 0 below
+    for (int k = 1; k < 3; ++k) {
+      p.stages[k].Q.topRows(3).setZero();  // no state curvature: P_k = 0 for every k
+      p.stages[k].Q.leftCols(3).setZero();
+    }
+    p.QN.setZero();
+    if (trial >= 4) {  // with slacks on the terminal rows
+      p.slack_hessian = Vec::Constant(npsi, 0.7);
+      p.slack_gradient = RandomMatrix(&rng, npsi, 1);
+    }
+    RiccatiSolver solver;
+    RiccatiSolution z;
+    ASSERT_EQ(solver.Solve(p, 0.0, 0.0, &z), RiccatiOutcome::kSolved) << "trial " << trial;
+    const RiccatiSolution d = DenseSolve(p, 0.0, 0.0);
+    EXPECT_LT(MaxDifference(z, d), 1e-9 * Scale(d)) << "trial " << trial;
+    ASSERT_EQ(solver.Solve(p, 0.0, 1e-3, &z), RiccatiOutcome::kSolved);
+    EXPECT_LT(MaxDifference(z, DenseSolve(p, 0.0, 1e-3)), 1e-9 * Scale(z));
+    RiccatiProblem p2 = WithNewRhs(&rng, p);
+    RiccatiRhs rhs = RhsOfProblem(p2);
+    rhs.slack_gradient = p2.slack_gradient;
+    solver.SolveFactored(p, rhs, &z);
+    const RiccatiSolution d2 = DenseSolve(p2, 0.0, 1e-3);
+    EXPECT_LT(MaxDifference(z, d2), 1e-9 * Scale(d2)) << "SolveFactored, trial " << trial;
+  }
+  // One terminal row for two controls without curvature: a direction nothing fixes.
+  RiccatiProblem p = RandomProblem(&rng, {0, 3, 3}, {2, 2}, 1, true);
+  p.stages[0].Q.setZero();
+  p.stages[1].Q.topRows(3).setZero();
+  p.stages[1].Q.leftCols(3).setZero();
+  p.QN.setZero();
+  RiccatiSolver solver;
+  RiccatiSolution z;
+  EXPECT_EQ(solver.Solve(p, 0.0, 0.0, &z), RiccatiOutcome::kTerminalRowsDegenerate);
+}
+
 // The KKT residual of a solution moved by delta is K delta; solved with the factorization it
 // gives delta back (the correction iterative refinement subtracts), and the exact solution's
 // residual is at rounding level.
@@ -865,6 +910,26 @@ TEST(RiccatiIpSolver, BoundaryEqualitiesReachIpoptsOptimum) {
               << ", boundary multipliers max |diff| " << (rb - lb).lpNorm<Eigen::Infinity>()
               << "\n";
   }
+}
+
+// pinene (COPS' alpha-pinene: 8 phases between observations, no controls, the rate constants
+// as static parameters): stage 0's variables are the 75 free initial components, whose H_uu is
+// singular for the recursion (the phase links, terminal rows, fix them); the joint solve of the
+// first stage with the terminal multiplier takes Ipopt's path (7 iterations, as Ipopt) where the
+// inertia correction had regularized every step and the method did not converge in 3000.
+TEST(RiccatiIpSolver, SingularFirstStageTakesIpoptsPath) {
+  const auto ocp = MakeProblem("pinene", {}, 1);
+  const auto nlp = EulerNlp(*ocp, 8, TerminalMode::kHard);
+  NlpSolution ip, rip;
+  ASSERT_NO_FATAL_FAILURE(BothConvergeToOneOptimum(*nlp, 1e-8, &ip, &rip));
+  EXPECT_LE(rip.iterations, ip.iterations + 2);
+  EXPECT_EQ(rip.stats.at("riccati_ip_regularizations"), 0.0);
+  EXPECT_LT((rip.z - ip.z).lpNorm<Eigen::Infinity>(),
+            1e-6 * (1.0 + ip.z.lpNorm<Eigen::Infinity>()));
+  std::cout << "[ riccati-ip ] pinene N=8 (singular first stage): iterations " << rip.iterations
+            << " (Ipopt " << ip.iterations << "), |df|/|f| "
+            << std::abs(rip.objective - ip.objective) / std::max(1.0, std::abs(ip.objective))
+            << "\n";
 }
 
 // A state bound active at x_N on a problem with path constraints, whose terminal block is
