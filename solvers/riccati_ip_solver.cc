@@ -440,6 +440,11 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
     std::vector<double> lo, hi;
     for (int i = 0; i < st->nb; ++i) {
       if (bb.lower[i] == bb.upper[i]) continue;
+      if (bb.lower[i] <= -kRipInfBound && bb.upper[i] >= kRipInfBound) {
+        *why_not = "riccati-ip does not take a boundary row bounded on neither side (row " +
+                   std::to_string(i) + ")";
+        return nullptr;
+      }
       st->bineq.push_back(i);
       st->blo[i] = 0.0;  // the row is b - s
       lo.push_back(bb.lower[i] <= -kRipInfBound ? -kRipInf : bb.lower[i]);
@@ -787,19 +792,20 @@ void RhsOf(const RiccatiProblem& p, RiccatiRhs* r) {
   r->qN = p.qN;
   r->c = p.c;
   r->x0 = p.x0;
+  r->slack_gradient = p.slack_gradient;
 }
 
 // The max norm of p's right-hand side (its vectors).
 double RhsMaxNorm(const RiccatiProblem& p) {
   const auto norm = [](const Vec& v) { return v.size() > 0 ? v.cwiseAbs().maxCoeff() : 0.0; };
-  double v = std::max({norm(p.qN), norm(p.c), norm(p.x0)});
+  double v = std::max({norm(p.qN), norm(p.c), norm(p.x0), norm(p.slack_gradient)});
   for (const RiccatiStage& s : p.stages) v = std::max({v, norm(s.q), norm(s.b)});
   return v;
 }
 
 double MaxNorm(const RiccatiSolution& z) {
   const auto norm = [](const Vec& v) { return v.size() > 0 ? v.cwiseAbs().maxCoeff() : 0.0; };
-  double v = norm(z.nu);
+  double v = std::max(norm(z.nu), norm(z.s));
   for (const Vec& x : z.x) v = std::max(v, norm(x));
   for (const Vec& u : z.u) v = std::max(v, norm(u));
   for (const Vec& l : z.lambda) v = std::max(v, norm(l));
@@ -1246,6 +1252,12 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   qp_.c = r.psi;
   qp_.x0.resize(0);
   SlackTerms(mu, feasibility ? 1.0 : 0.0, true);
+  // The joint first stage where boundary rows link x(t0)'s free components (multi-phase and
+  // estimation problems: their first stage's curvature comes from those rows, pinene's never
+  // from the stage itself); elsewhere (a free T, free x(t0) without boundary rows) a singular
+  // first stage is regularized, as before: jointly solved, quadrotor's last steps at tol 1e-10
+  // (H_uu singular in its last iterations) oscillated and stopped at the acceptable level.
+  qp_.joint_first_stage = S_.nb > 0;
 
   // delta_w goes to every diagonal entry of the recursion, the carried copies T_k, w_k
   // included, so T and w are regularized N + 1 times where Ipopt regularizes them once. Making
@@ -1385,6 +1397,7 @@ void RiccatiInteriorPoint::Refine(double dw, double dc) {
       sol_.lambda[k] -= correction_.lambda[k];
     }
     sol_.nu -= correction_.nu;
+    sol_.s -= correction_.s;
   }
 }
 
@@ -1945,6 +1958,7 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
   qp_.c.setZero(S_.nterm());
   qp_.x0.resize(0);
   SlackTerms(mu_, 1.0, false);
+  qp_.joint_first_stage = S_.nb > 0;  // as BuildAndSolve's
   ++factorizations_;
   if (riccati_.Solve(qp_, 0.0, 0.0, &sol_) == RiccatiOutcome::kSolved) {
     Iterate trial = it_;
@@ -1994,28 +2008,35 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   if (S_.has_state_bounds()) {
     boxes_.push_back({BoxKind::kState, &S_.xlb, &S_.xub, 1, N + 1, 0, &o.xlb, &o.xub});
   }
-  // The boundary inequalities' slacks start at b(x(t0), x(tf)) of the starting point (pushed
-  // into their bounds below), as Ipopt starts its slacks at d(x_0).
   it_.SB.resize(S_.nbi(), 1);
   if (S_.nbi() > 0) {
     boxes_.push_back({BoxKind::kSlack, &S_.sblo, &S_.sbhi, 0, 1, 0, &o.sblo, &o.sbhi});
+  }
+  // Controls and states pushed into their bounds (Ipopt's bound_push, bound_frac); then the
+  // boundary inequalities' slacks set to b(x(t0), x(tf)) at the pushed point and pushed into
+  // theirs, as Ipopt starts its slacks at d(x_0).
+  const auto push = [&](bool slacks) {
+    ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
+      if ((b.kind == BoxKind::kSlack) != slacks) return;
+      double& x = Value(it_, b)(j, k);
+      const double width = RipFinite(lo) && RipFinite(hi) ? hi - lo : kRipInf;
+      if (RipFinite(lo)) {
+        x = std::max(
+            x, lo + std::min(o_.bound_push * std::max(1.0, std::abs(lo)), o_.bound_frac * width));
+      }
+      if (RipFinite(hi)) {
+        x = std::min(
+            x, hi - std::min(o_.bound_push * std::max(1.0, std::abs(hi)), o_.bound_frac * width));
+      }
+    });
+  };
+  push(false);
+  if (S_.nbi() > 0) {
     Vec b(S_.nb);
     S_.ocp.BoundaryConstraints(it_.X.col(0), it_.X.col(N), b);
     for (int i = 0; i < S_.nbi(); ++i) it_.SB(i, 0) = b[S_.bineq[i]];
+    push(true);
   }
-  // Controls and states pushed into their bounds (Ipopt's bound_push, bound_frac).
-  ForEachBounded([&](const Box& b, int k, int j, double lo, double hi) {
-    double& x = Value(it_, b)(j, k);
-    const double width = RipFinite(lo) && RipFinite(hi) ? hi - lo : kRipInf;
-    if (RipFinite(lo)) {
-      x = std::max(
-          x, lo + std::min(o_.bound_push * std::max(1.0, std::abs(lo)), o_.bound_frac * width));
-    }
-    if (RipFinite(hi)) {
-      x = std::min(
-          x, hi - std::min(o_.bound_push * std::max(1.0, std::abs(hi)), o_.bound_frac * width));
-    }
-  });
   if (S_.copy) it_.V = it_.U.col(N - 1);
   double cpu0 = CpuSeconds();
   S_.EvalValues(it_, &vals_);
@@ -2437,7 +2458,16 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
            "state_scale and control_scale must be left at 1";
   }
   if (options.mesh.enabled()) return "riccati-ip does not run mesh refinement";
-
+  for (int i = 0; i < ocp.num_boundary(); ++i) {
+    // A row bounded on neither side constrains nothing; its slack would be free, which the
+    // elimination in the Riccati solve does not take (D = 1 / (Sigma + delta_w) needs Sigma > 0).
+    if (ocp.boundary_bounds().lower[i] <= -kRipInfBound &&
+        ocp.boundary_bounds().upper[i] >= kRipInfBound) {
+      return "problem '" + ocp.name() + "' has a boundary row bounded on neither side (row " +
+             std::to_string(i) +
+             " of b(x(t0), x(tf))), which riccati-ip does not take: drop the row, or use ipopt";
+    }
+  }
   return "";
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include "core/types.h"
 
@@ -52,6 +53,10 @@ struct RiccatiProblem {
   Vec x0;              ///< nx_0 (often 0: the initial state is fixed and not a variable)
   Vec slack_hessian;   ///< npsi entries >= 0 (0: the row has no slack), or empty
   Vec slack_gradient;  ///< npsi entries (0 where no slack), or empty
+  /// Whether a first stage without a state (x0 empty) whose H_uu fails its own test (singular,
+  /// or more negative curvature than the terminal rows can remove) is solved jointly with the
+  /// terminal multiplier (RiccatiSolver::Solve) rather than reported kNotPositiveDefinite.
+  bool joint_first_stage = true;
 };
 
 /// The vectors of a RiccatiProblem's right-hand side, for RiccatiSolver::SolveFactored (the
@@ -121,7 +126,7 @@ class RiccatiSolver {
   template <int kNx, int kNu>
   bool BackwardStage(const RiccatiStage& s, int k, double dw, int npsi);
   struct ValueFunction;
-  // Stage 0 without a state and with a singular H_uu (from BackwardStage's scratch): keeps
+  // Stage 0 without a state whose H_uu is not positive definite (BackwardStage's scratch): keeps
   // H_uu, g_u and B^T E for the joint solve of u_0 and nu (joint_K_), adds E^T b to e.
   void JointFirstStage(const RiccatiStage& s, const ValueFunction& vn, int npsi);
   // The terminal multiplier from the final Schur complement's eigendecomposition (schur_), the
@@ -167,10 +172,14 @@ class RiccatiSolver {
   // A joint first stage (JointFirstStage): the matrix [H_uu, B^T E; E^T B, G - dc I - D], its
   // eigendecomposition, the stage's g_u, and the right-hand side and solution of the last solve.
   bool joint_ = false;
+  bool joint_first_stage_ = true;  // the problem's joint_first_stage
   Mat joint_K_;
-  Eigen::SelfAdjointEigenSolver<Mat> joint_eig_;
+  Eigen::SelfAdjointEigenSolver<Mat> joint_eig_;  // its inertia
+  Eigen::PartialPivLU<Mat> joint_lu_;             // its solves
   Vec joint_gu_, jrhs_, jsol_;
   Vec joint_d_;  // the joint matrix's equilibration D (eigendecomposed: D K D)
+  // The final Schur complement's equilibration with terminal slacks (empty without: S itself).
+  Vec schur_d_;
 };
 
 /// The residual of z in the KKT conditions of p (with its dw and dc): returns its max norm and

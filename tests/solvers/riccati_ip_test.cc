@@ -821,6 +821,16 @@ TEST(RiccatiIpSolver, BoundaryInequalitiesReachIpoptsOptimum) {
       EXPECT_GE(b[i], lo - 1e-8 * std::max(1.0, std::abs(lo)));
       EXPECT_LE(b[i], hi + 1e-8 * std::max(1.0, std::abs(hi)));
     }
+    // Refined steps (a correction every step) keep the slacks consistent with the rest of the
+    // step: the same optimum in as many iterations.
+    RiccatiIpOptions refined;
+    refined.tol = 1e-10;
+    refined.min_refinement_steps = 1;
+    const NlpSolution rr = SolveEulerNlpWithRiccatiIp(*nlp, refined);
+    EXPECT_EQ(rr.status, SolveStatus::kConverged) << rr.message;
+    EXPECT_NEAR(rr.objective, rip.objective, 1e-10 * std::max(1.0, std::abs(rip.objective)));
+    EXPECT_LE(rr.iterations, rip.iterations + 1);
+    EXPECT_GT(rr.stats.at("riccati_ip_refinement_steps"), 0.0);
     std::cout << "[ riccati-ip ] " << name << " N=50 (boundary inequality): iterations "
               << rip.iterations << " (Ipopt " << ip.iterations << "), |df|/|f| "
               << std::abs(rip.objective - ip.objective) / std::max(1.0, std::abs(ip.objective))
@@ -1105,6 +1115,22 @@ TEST(RiccatiIpSolver, NotApplicableOutsideItsClass) {
   request.transcription_options = {{"objective_scale", 2.0}};
   EXPECT_EQ(solver->Solve(*lqr, request).status, SolveStatus::kNotApplicable);
   request.transcription_options = OptionMap();
+
+  // A boundary row bounded on neither side (coupled-ends' row with its bounds removed): no
+  // constraint, and a free slack the elimination does not take; refused with the row named.
+  class FreeRow final : public ForwardingOcp {
+   public:
+    explicit FreeRow(const Ocp& inner) : ForwardingOcp(inner) {
+      const double inf = std::numeric_limits<double>::infinity();
+      SetBoundaryConstraints(Vec::Constant(1, -inf), Vec::Constant(1, inf));
+    }
+  };
+  const auto coupled = MakeProblem("coupled-ends", {}, 1);
+  const FreeRow free_row(*coupled);
+  request.grid = TimeGrid::Uniform(coupled->t0(), coupled->tf(), 10);
+  const SolveResult rb = solver->Solve(free_row, request);
+  EXPECT_EQ(rb.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(rb.message.find("bounded on neither side (row 0"), std::string::npos) << rb.message;
 
   request.transcription = "no-such-scheme";
   EXPECT_THROW(solver->Solve(*lqr, request), std::invalid_argument);
