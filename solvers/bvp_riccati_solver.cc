@@ -375,12 +375,14 @@ std::unique_ptr<BvpRiccatiSolver::Sweep> MakeRiccatiSweep(const PmpResidual& pmp
 }  // namespace
 
 BvpRiccatiSolver::BvpRiccatiSolver(const PmpResidual& pmp, Kernel kernel)
-    : sweep_(MakeRiccatiSweep(pmp, kernel)) {}
+    : sweep_(pmp.free_initial_state() ? nullptr : MakeRiccatiSweep(pmp, kernel)) {}
 
 BvpRiccatiSolver::~BvpRiccatiSolver() = default;
 
-bool BvpRiccatiSolver::Factorize() { return sweep_->Factorize(); }
+bool BvpRiccatiSolver::Factorize() { return sweep_ != nullptr && sweep_->Factorize(); }
 
-bool BvpRiccatiSolver::Solve(const Vec& b, Vec* d) { return sweep_->Solve(b, d); }
+bool BvpRiccatiSolver::Solve(const Vec& b, Vec* d) {
+  return sweep_ != nullptr && sweep_->Solve(b, d);
+}
 
 }  // namespace ocpb

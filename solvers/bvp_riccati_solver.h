@@ -40,7 +40,9 @@ namespace ocpb {
 /// Factorize() and Solve() return false when a block is singular or not finite, and Solve()
 /// also when the solution's residual |J d - b|_inf exceeds `kRelativeResidual` |b|_inf after one
 /// step of iterative refinement; the caller then uses the sparse LU (IndirectNewton does, and
-/// counts it).
+/// counts it). The sweep starts from x_0 fixed by the initial rows: with a free initial state
+/// (PmpResidual::free_initial_state(), transversality rows over (x_0, p_0)) Factorize() always
+/// returns false, so every step goes to the caller's sparse LU.
 class BvpRiccatiSolver {
  public:
   /// The accepted relative residual of a solve (|J d - b|_inf <= this |b|_inf).

@@ -112,8 +112,11 @@ HamiltonianTarget ResolveNewtonTarget(const Ocp& original, const IndirectNewtonO
   options.regularization = o.regularization;
   HamiltonianTarget t = ResolveHamiltonianTarget(original, options);
   const std::string prefix = t.NotePrefix();
-  ProblemFeatures takes;  // H(tf) = 0 closes a free final time; x(t0) is fixed, no state bounds
+  // H(tf) = 0 closes a free final time, p(t0) = -grad phi0 (clipped by the bounds) a free
+  // initial state and static parameters (PmpResidual); no state bounds, no boundary rows.
+  ProblemFeatures takes;
   takes.free_final_time = true;
+  takes.free_initial_state = true;
   if (std::string why = UnsupportedFeature(original, "indirect-newton", takes); !why.empty()) {
     t.not_applicable = Result(SolveStatus::kNotApplicable, "not_applicable", why);
   } else if (!t.ocp->HasHamiltonianMinimizer()) {
@@ -269,6 +272,7 @@ class NewtonIteration {
     r->solver_status = solver_status_;
     r->message = r->message.empty() ? message_ : r->message + "; Newton: " + message_;
     r->controls = pmp_.ControlFunction(z_);
+    if (pmp_.free_initial_state()) r->initial_state = X.col(0);
     r->state_grid = solution_grid;
     r->states = std::move(X);
     r->costates = std::move(P);

@@ -111,6 +111,9 @@ PmpResidual::PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode
       mode_(mode),
       scheme_(scheme),
       free_time_(ocp.free_final_time().has_value()),
+      free_initial_(ocp.HasFreeInitialState()),
+      initial_cost_(free_initial_ && ocp.HasInitialCost()),
+      initial_bounds_(ocp.InitialNodeBounds()),
       nx_(ocp.nx()),
       nu_(ocp.nu()),
       npsi_(ocp.num_terminal()),
@@ -119,6 +122,8 @@ PmpResidual::PmpResidual(const Ocp& ocp, const TimeGrid& grid, TerminalMode mode
       size_(2 * ocp.nx() * (grid.intervals() + 1) + nnu_ + (free_time_ ? 1 : 0)),
       derivative_(ocp) {
   CheckApplicable(ocp, grid);
+  initial_gradient_.resize(nx_);
+  initial_hessian_.setZero(nx_, nx_);
   if (free_time_) {
     s_.resize(N_ + 1);
     for (int k = 0; k <= N_; ++k) s_[k] = (grid.t(k) - grid.t0()) / (grid.tf() - grid.t0());
@@ -167,8 +172,11 @@ void PmpResidual::BuildStructure() {
   // The entries' layout (BuildSparseMatrix's order): the initial rows' identity, each interval's
   // dense block, the terminal blocks, then the free final time's column and row.
   const int nx = nx_;
+  // A free initial state's rows are dense over (x_0, p_0) (the transversality rows read p_0 and
+  // phi0's Hessian); a fixed one keeps the identity, so its structure is the same as before.
+  initial_entries_ = free_initial_ ? 2 * nx * nx : nx;
   interval_entries_ = 8 * nx * nx;
-  terminal_offset_ = nx + N_ * interval_entries_;
+  terminal_offset_ = initial_entries_ + N_ * interval_entries_;
   time_offset_ = terminal_offset_ + 2 * nx * nx + 2 * nx * nnu_;
   int entries = time_offset_;
   if (free_time_) {
@@ -184,7 +192,7 @@ void PmpResidual::EulerConstantEntries() {
   // -h G_p), the costate rows (-h E_x, I, 0, -I - h E_p); the middle columns never change.
   const int nx = nx_, W = 4 * nx_;
   for (int k = 0; k < N_; ++k) {
-    double* base = entries_.data() + nx + k * interval_entries_;
+    double* base = entries_.data() + initial_entries_ + k * interval_entries_;
     for (int i = 0; i < nx; ++i) {
       double* s = base + i * W;
       double* c = base + (nx + i) * W;
@@ -203,7 +211,13 @@ void PmpResidual::BuildSparseMatrix() const {
   const int nx = nx_, W = 4 * nx_;
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(entries_.size());
-  for (int i = 0; i < nx; ++i) t.emplace_back(i, i, 0.0);
+  for (int i = 0; i < nx; ++i) {
+    if (!free_initial_) {
+      t.emplace_back(i, i, 0.0);
+      continue;
+    }
+    for (int c = 0; c < 2 * nx; ++c) t.emplace_back(i, c, 0.0);
+  }
   for (int k = 0; k < N_; ++k) {
     for (int r = 0; r < 2 * nx; ++r) {
       for (int c = 0; c < W; ++c) t.emplace_back(Row(k) + r, Col(k) + c, 0.0);
@@ -403,7 +417,7 @@ bool PmpResidual::EvaluateTrapezoid(ConstVecRef z,
     *squares += F.segment(Row(k), 2 * nx).squaredNorm();
     if (*squares > abandon_limit) return Abandon(k);
     if (!with_jacobian) continue;
-    const int base = nx + k * interval_entries_;
+    const int base = initial_entries_ + k * interval_entries_;
     for (int i = 0; i < nx; ++i) {
       const int s = base + i * W;         // state row i
       const int c = base + (nx + i) * W;  // costate row i
@@ -485,7 +499,7 @@ bool PmpResidual::EvaluateEuler(ConstVecRef z,
     *squares += sq;
     if (*squares > abandon_limit) return Abandon(k);
     if (!with_jacobian) continue;
-    double* rows = v + nx + k * interval_entries_;
+    double* rows = v + initial_entries_ + k * interval_entries_;
     WithSmallDims(nx, nu_, [&]<int kNx, int>() {
       EulerIntervalEntries<kNx>(nx, h, d.Gx.data(), d.Gp.data(), d.Ex.data(), d.Ep.data(), rows);
     });
@@ -543,6 +557,62 @@ bool PmpResidual::Abandon(int k) {
   return false;
 }
 
+bool PmpResidual::EvaluateInitialRows(ConstVecRef z, VecRef F, bool with_jacobian, double* J) {
+  const int nx = nx_;
+  double* v = entries_.data();
+  if (!free_initial_) {
+    F.head(nx) = z.head(nx) - ocp_.x0();
+    if (with_jacobian) {
+      for (int i = 0; i < nx; ++i) v[i] = 1.0;
+    }
+    return true;
+  }
+  // Row i of a free component: x_0,i - clip(x_0,i - (p_0,i + dphi0/dx_0,i), lo_i, hi_i), the
+  // transversality condition p(t0) = -grad phi0 where the bound is inactive and x_0,i = the
+  // bound where it is active (the projection's natural residual; semismooth as u*'s clipping).
+  const auto x0 = z.head(nx);
+  const auto p0 = z.segment(nx, nx);
+  initial_gradient_.setZero(nx);
+  if (initial_cost_) {
+    double phi0 = 0.0;
+    ocp_.InitialCostGradient(x0, &phi0, initial_gradient_);
+    *J += phi0;
+    if (with_jacobian) ocp_.InitialCostHessian(x0, 1.0, initial_hessian_);
+  }
+  if (with_jacobian) {
+    std::fill(v, v + initial_entries_, 0.0);
+    if (!initial_cost_) initial_hessian_.setZero(nx, nx);
+  }
+  const Vec& lo = initial_bounds_.lower;
+  const Vec& hi = initial_bounds_.upper;
+  for (int i = 0; i < nx; ++i) {
+    double* row = v + 2 * nx * i;  // columns x_0, then p_0
+    if (!(lo[i] < hi[i])) {        // fixed
+      F[i] = x0[i] - lo[i];
+      if (with_jacobian) row[i] = 1.0;
+      continue;
+    }
+    const double r = p0[i] + initial_gradient_[i];
+    const double y = x0[i] - r;
+    if (y < lo[i] || y > hi[i]) {  // the bound is active
+      F[i] = x0[i] - (y < lo[i] ? lo[i] : hi[i]);
+      if (with_jacobian) row[i] = 1.0;
+      continue;
+    }
+    F[i] = r;
+    if (with_jacobian) {
+      for (int j = 0; j < nx; ++j) row[j] = initial_hessian_(i, j);
+      row[nx + i] = 1.0;
+    }
+  }
+  if (!(F.head(nx).allFinite() && (!with_jacobian || initial_hessian_.allFinite()))) {
+    failure_ = Failure::kNonFinite;
+    failure_node_ = 0;
+    return false;
+  }
+  return true;
+}
+
 bool PmpResidual::Evaluate(
     ConstVecRef z, VecRef F, double* cost, bool with_jacobian, double abandon_above) {
   const int nx = nx_;
@@ -554,11 +624,8 @@ bool PmpResidual::Evaluate(
   double* v = entries_.data();
   auto put = [v](int e, double value) { v[e] = value; };
 
-  F.head(nx) = z.head(nx) - ocp_.x0();
-  if (with_jacobian) {
-    for (int i = 0; i < nx; ++i) put(i, 1.0);
-  }
-  double J = 0.0;
+  double J = 0.0, initial_cost = 0.0;
+  if (!EvaluateInitialRows(z, F, with_jacobian, &initial_cost)) return false;
   const double T = FinalTime(z);
   if (free_time_ && !(T > grid_.t0() && ocp_.AdmitsFinalTime(T))) {
     failure_ = Failure::kBadFinalTime;
@@ -575,6 +642,7 @@ bool PmpResidual::Evaluate(
           ? EvaluateEuler(z, F, T, with_jacobian, reuse, abandon_limit, &squares, &J)
           : EvaluateTrapezoid(z, F, T, with_jacobian, reuse, abandon_limit, &squares, &J);
   if (!ok) return false;
+  J += initial_cost;
 
   // Terminal rows.
   failure_node_ = N_ + 1;
@@ -657,7 +725,7 @@ bool PmpResidual::Evaluate(
 
 Eigen::Map<const PmpResidual::RowMajorMat> PmpResidual::IntervalBlock(int k) const {
   return Eigen::Map<const RowMajorMat>(
-      entries_.data() + nx_ + k * interval_entries_, 2 * nx_, 4 * nx_);
+      entries_.data() + initial_entries_ + k * interval_entries_, 2 * nx_, 4 * nx_);
 }
 
 void PmpResidual::TerminalBlock(MatRef block) const {

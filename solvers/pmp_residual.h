@@ -21,6 +21,9 @@ namespace ocpb {
 /// are the boundary-value problem
 ///
 ///   x' = f(t, x, u*),  p' = -H_x(t, x, u*, p),  x(t0) = x0,
+///   free initial state (Ocp::HasFreeInitialState(), static parameters among them):
+///     for each free component i, p_i(t0) = -d phi0 / d x_i(t0) where x_i(t0) lies strictly
+///     inside its bounds [l_i, u_i], x_i(t0) = the bound where the condition pushes it out,
 ///   penalty form:  p(tf) = grad Phi(x(tf)),     Phi = phi + sum_i w_i psi_i^2,
 ///   hard form:     p(tf) = grad phi(x(tf)) + psi_x(x(tf))^T nu,  psi(x(tf)) = 0,
 ///   free final time (Ocp::free_final_time()):  also H(tf) = 0, with tf an unknown,
@@ -30,7 +33,8 @@ namespace ocpb {
 /// problems, and of Betts, "Practical Methods for Optimal Control", 2nd ed., Sec. 4.5, here applied
 /// to the Hamiltonian system) gives F(z) = 0 with
 ///
-///   rows [0, nx):                   x_0 - x0
+///   rows [0, nx):                   x_0 - x0; on a free component i instead
+///                                   x_0,i - clip(x_0,i - (p_0,i + d phi0 / d x_0,i), l_i, u_i)
 ///   interval k, state rows:         x_{k+1} - x_k - h_k/2 (f_k + f_{k+1})
 ///   interval k, costate rows:       p_{k+1} - p_k + h_k/2 (H_x,k + H_x,k+1)
 ///   terminal costate rows (nx):     p_N - grad Phi(x_N)   (hard: p_N - grad phi(x_N) - psi_x^T nu)
@@ -39,6 +43,17 @@ namespace ocpb {
 ///
 /// Unknowns z = (x_0, p_0, x_1, p_1, ..., x_N, p_N[, nu][, T]): 2 nx (N+1) (+ npsi in the hard
 /// form, + 1 for a free final time), as many as equations.
+///
+/// Free initial state: the projection's natural residual above is p_0,i + d phi0/dx_0,i where the
+/// clip is inactive and x_0,i - l_i (or - u_i) where it is active; a static parameter (a constant
+/// state with a free initial value, Ocp::SetStaticParameters) is one such component, and its
+/// costate row p' = -H_p with p(tf) = d Phi / dp makes p(t0) = -int H_p dt the cost's derivative
+/// in the parameter (its adjoint), so the row is the parameter's stationarity (Bryson and Ho,
+/// Sec. 2.7; the same row for both schemes: Euler's p_0 is the discrete cost's exact gradient in
+/// x_0). Where the clip switches the row is semismooth like u*'s, with the active side's
+/// derivative at the switch. The initial rows are then dense over (x_0, p_0) (phi0's Hessian and
+/// p_0's identity) where a fixed initial state has the identity on x_0, and the discrete cost
+/// gains phi0(x_0) (Ocp::InitialCost).
 ///
 /// Free final time: the request's grid fixes the nodes' relative positions s_k = (t_k - t0) /
 /// (tf - t0) on [0, 1] (tf the problem's nominal final time); the unknown T moves them, t_k =
@@ -129,6 +144,9 @@ class PmpResidual {
   int num_multipliers() const { return nnu_; }
   /// True when the final time is an unknown (the problem's free_final_time()).
   bool free_final_time() const { return free_time_; }
+  /// True when some component of x(t0) is an unknown (Ocp::HasFreeInitialState()): the initial
+  /// rows are then the transversality rows above, not the identity on x_0.
+  bool free_initial_state() const { return free_initial_; }
 
   /// z from states X (nx x N+1), costates P (nx x N+1), multipliers nu (num_multipliers()) and,
   /// for a free final time, the final time T (ignored otherwise).
@@ -187,7 +205,7 @@ class PmpResidual {
   ///  - TimeColumn() (free final time): the T column's entries in every row but the last
   ///    (size() - 1; zeros off the structure); TimeRow(): the last row's entries in every column
   ///    but T's (size() - 1). The (T, T) entry is structurally zero.
-  /// The initial rows are the identity on x_0 (no accessor).
+  /// The initial rows are the identity on x_0 with a fixed initial state (no accessor).
   using RowMajorMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   Eigen::Map<const RowMajorMat> IntervalBlock(int k) const;
   void TerminalBlock(MatRef block) const;
@@ -227,6 +245,9 @@ class PmpResidual {
                     bool reuse,
                     NodeValues* n,
                     NodeBlocks* b);
+  // The initial rows (x_0 - x0, or a free component's transversality row) and their Jacobian
+  // entries; adds phi0(x_0) to *J with a free initial state. False when not finite.
+  bool EvaluateInitialRows(ConstVecRef z, VecRef F, bool with_jacobian, double* J);
   // Records an abandoned evaluation at interval k; returns false.
   bool Abandon(int k);
   // True when z is bitwise the point of the last successful evaluation (values_ hold it).
@@ -266,6 +287,11 @@ class PmpResidual {
   TerminalMode mode_;
   Scheme scheme_;
   bool free_time_;
+  bool free_initial_;            // Ocp::HasFreeInitialState()
+  bool initial_cost_;            // phi0 counts: a free initial state with Ocp::HasInitialCost()
+  VectorBounds initial_bounds_;  // Ocp::InitialNodeBounds()
+  Vec initial_gradient_;         // grad phi0(x_0) of the last evaluation (zero without phi0)
+  Mat initial_hessian_;          // its Hessian (with the Jacobian)
   int nx_, nu_, npsi_, nnu_, N_, size_;
   std::vector<double> s_;  // free final time: the nodes' relative positions on [0, 1]
   MinimizerDerivative derivative_;
@@ -279,6 +305,7 @@ class PmpResidual {
   // value_index_[e] is the position in jacobian_.valuePtr() of structural entry e, in the order
   // BuildStructure() generates them.
   mutable std::vector<int> value_index_;
+  int initial_entries_ = 0;   // nx (the identity), or 2 nx^2 with a free initial state
   int interval_entries_ = 0;  // 8 nx^2
   int terminal_offset_ = 0;   // first terminal entry
   int time_offset_ = 0;       // free final time: first entry of the T column, then the H row

@@ -59,15 +59,18 @@ std::string UnsupportedFeature(const Ocp& ocp,
                                const ProblemFeatures& takes) {
   const ProblemFeatures uses = ProblemFeatures::Of(ocp);
   if (uses.free_final_time && !takes.free_final_time) return FreeFinalTimeReason(ocp, solver);
+  // indirect-newton takes these two too (transversality rows), where it applies at all.
+  const std::string and_newton =
+      "; indirect-newton too, where the problem has a closed-form Hamiltonian minimizer";
   if (uses.free_initial_state && !takes.free_initial_state && ocp.num_static_parameters() > 0) {
     return "problem '" + ocp.name() +
            "' has static parameters (constant decisions, posed as a "
            "partly free initial state), which " +
-           solver + " does not take: " + WhoSolvesIt();
+           solver + " does not take: " + WhoSolvesIt() + and_newton;
   }
   if (uses.free_initial_state && !takes.free_initial_state) {
     return "problem '" + ocp.name() + "' has a free initial state, which " + solver +
-           " does not take (it starts every trajectory from x0): " + WhoSolvesIt();
+           " does not take (it starts every trajectory from x0): " + WhoSolvesIt() + and_newton;
   }
   if (uses.state_bounds && !takes.state_bounds) {
     return "problem '" + ocp.name() + "' has state bounds, which " + solver +

@@ -31,6 +31,10 @@ FreeStart::FreeStart(const Parameters& params)
   SetInitialStateBounds(Eigen::Vector2d(lo_, 0.0), Eigen::Vector2d(hi_, 0.0));
 }
 
+void FreeStart::MinimizeHamiltonian(double, ConstVecRef, ConstVecRef p, VecRef u) const {
+  u[0] = p[1] > 0.0 ? -p[0] / p[1] : std::numeric_limits<double>::quiet_NaN();
+}
+
 FreeStart::Optimum FreeStart::AnalyticOptimum() const {
   const double T = tf() - t0();
   const double k = q_ / (1.0 + q_ * T);
@@ -66,7 +70,8 @@ ProblemInfo FreeStartProblemInfo() {
       "analytic J* = 1.025 (derived in problems/reference/free_start.h from the transversality "
       "conditions of a free initial state, Bryson-Ho Sec. 2.7)";
   p.hamiltonian_note =
-      "not applicable: a free initial state (the family starts every trajectory from x0)";
+      "not applicable: a free initial state (the family starts every trajectory from x0); "
+      "indirect-newton takes it (transversality p(t0) = -grad phi0, clipped by the bounds)";
   p.reference_costate = [](double) {
     return FreeStart(Parameters(FreeStart::ParameterSpecs())).OptimalCostate();
   };

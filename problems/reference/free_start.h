@@ -27,7 +27,9 @@ namespace ocpb {
 /// hi = 0.5: the unconstrained x1(0) = 8/9 is cut to the bound 0.5 (active), J* = 1.025.
 /// Costates (H = p^T f, Mayer): p1 = q (x1(T)* - b), p2 = 1, constant.
 ///
-/// Not for the Hamiltonian family, indirect-newton, riccati-ip or single shooting (they start
+/// H = p1 u + p2 u^2/2 has the closed-form minimizer u* = -p1 / p2 (p2 = 1 on every costate of
+/// the problem), so indirect-newton solves it with the transversality rows of a free initial
+/// state (solvers/pmp_residual.h). Not for the Hamiltonian family or single shooting (they start
 /// every trajectory from a fixed x0: not_applicable).
 class FreeStart final : public AutoDiffOcp<FreeStart, 2, 1> {
  public:
@@ -43,6 +45,11 @@ class FreeStart final : public AutoDiffOcp<FreeStart, 2, 1> {
     (*f)[0] = u[0];
     (*f)[1] = 0.5 * u[0] * u[0];
   }
+  bool HasHamiltonianMinimizer() const override { return true; }
+  /// u* = -p1 / p2, the minimizer of H where p2 > 0 (p2' = 0 and p2(T) = 1: every costate of
+  /// the problem has p2 = 1); NaN where p2 <= 0, where H has no minimum.
+  void MinimizeHamiltonian(double t, ConstVecRef x, ConstVecRef p, VecRef u) const override;
+
   template <class T>
   T EvalInitialCost(const VecT<T, 2>& x0) const {
     const T d = x0[0] - a_;

@@ -1,5 +1,6 @@
 #include "problems/reference/time_parameter_double_integrator.h"
 
+#include <limits>
 #include <memory>
 
 #include "problems/reference/free_time_double_integrator.h"
@@ -17,6 +18,13 @@ TimeParameterDoubleIntegrator::TimeParameterDoubleIntegrator(const Parameters& p
   SetStaticParameters(Vec::Constant(1, 0.1), Vec::Constant(1, 100.0), Vec::Constant(1, 1.0));
 }
 
+void TimeParameterDoubleIntegrator::MinimizeHamiltonian(double,
+                                                        ConstVecRef x,
+                                                        ConstVecRef p,
+                                                        VecRef u) const {
+  u[0] = x[2] > 0.0 ? -p[1] : std::numeric_limits<double>::quiet_NaN();
+}
+
 ProblemInfo TimeParameterDoubleIntegratorProblemInfo() {
   ProblemInfo p;
   p.name = "double-integrator-time-parameter";
@@ -32,8 +40,8 @@ ProblemInfo TimeParameterDoubleIntegratorProblemInfo() {
   p.reference_source =
       "analytic J* = 4 T*/3, T* = 18^(1/4) (as double-integrator-free-time: T + 6/T^3 minimized)";
   p.hamiltonian_note =
-      "not applicable: a static parameter (the family starts every trajectory from x0; "
-      "double-integrator-free-time poses T for indirect-newton)";
+      "not applicable: a static parameter (the family starts every trajectory from x0); "
+      "indirect-newton takes it through T's adjoint (transversality p_T(0) = 0)";
   p.tags = {"smooth", "free-time", "static-parameters"};
   return p;
 }

@@ -21,7 +21,9 @@ namespace ocpb {
 ///
 /// The same optimum as the free-time form (t = T s); T enters the dynamics and the running cost,
 /// so its derivatives (Jacobian column, Hessian cross terms) are exercised. u* is linear in s:
-/// Hermite-Simpson and LGR are exact. Penalty form: weight C on |x(1)|^2.
+/// Hermite-Simpson and LGR are exact. Penalty form: weight C on |x(1)|^2. indirect-newton solves
+/// it with T's adjoint: p3' = -H_T, p3(1) = 0 and the transversality row p3(0) = 0
+/// (solvers/pmp_residual.h), which is dJ/dT = 0.
 class TimeParameterDoubleIntegrator final
     : public AutoDiffOcp<TimeParameterDoubleIntegrator, 3, 1, 2, 0> {
  public:
@@ -46,6 +48,10 @@ class TimeParameterDoubleIntegrator final
     (*psi)[0] = x[0];
     (*psi)[1] = x[1];
   }
+  bool HasHamiltonianMinimizer() const override { return true; }
+  /// u* = -p2 (H = T (p1 x2 + p2 u + 1 + u^2/2), T > 0); NaN where T <= 0, where H has no
+  /// minimum in u (T's bounds keep it >= 0.1 at every admissible point).
+  void MinimizeHamiltonian(double t, ConstVecRef x, ConstVecRef p, VecRef u) const override;
   /// u = 1: at u = 0 nothing moves.
   Vec NominalControl() const override { return Vec::Ones(1); }
 };
