@@ -91,7 +91,7 @@ std::vector<SolverInfo> BuildSolvers() {
     s.name = "riccati-ip";
     s.description =
         "primal-dual interior point (filter line search) whose Newton step is a stagewise "
-        "Riccati recursion; euler transcription only (solvers/README-riccati-ip.md)";
+        "Riccati recursion; euler and trapezoid transcriptions (solvers/README-riccati-ip.md)";
     s.make = [] { return std::make_unique<RiccatiIpSolver>(); };
     s.uses_transcription = true;
     s.options = RiccatiIpOptions::Schema();

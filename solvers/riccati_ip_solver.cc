@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/LU>
+
 #include "core/option_binding.h"
 #include "core/timer.h"
 #include "solvers/all_finite.h"
@@ -170,6 +172,14 @@ class EulerStages {
   bool hard = false;
   bool copy = false;  // path constraints at t_N: stage N carries v = u_{N-1}
   std::vector<double> t, h;
+  // The trapezoid (since 2026-12-07): N + 1 nodes (x_k, u_k), u_N a variable like the others,
+  // defect k = x_{k+1} - x_k - h_k/2 (f_k + f_{k+1}), running cost sum_k wt_k L_k (wt_k =
+  // (h_{k-1} + h_k) / 2, the NLP's point weights) and path constraints and balls at every node.
+  // No copy. A free final time and boundary constraints are refused (From).
+  bool trapezoid = false;
+  std::vector<double> wt;
+  // The number of control columns: N (Euler), N + 1 (trapezoid).
+  int nctl() const { return trapezoid ? N + 1 : N; }
   Vec lb, ub;  // per control component, +-inf where unbounded (balls: none)
   // Per state component, +-inf where unbounded: the problem's state bounds, which the Euler
   // NLP imposes on x_1..x_N as variable bounds (not on x_0).
@@ -242,7 +252,7 @@ class EulerStages {
     }
   }
 
-  int ni(int k) const { return k < N ? nc + nball : (copy ? nc : 0); }
+  int ni(int k) const { return k < N || trapezoid ? nc + nball : (copy ? nc : 0); }
   bool has_state_bounds() const {
     return xlb.array().isFinite().any() || xub.array().isFinite().any();
   }
@@ -254,7 +264,7 @@ class EulerStages {
   int nw() const { return static_cast<int>(free0.size()); }
 
   struct Iterate {
-    Mat X, U;  // nx x (N+1), nu x N
+    Mat X, U;  // nx x (N+1), nu x nctl()
     Mat T;     // 1 x 1: the final time (free_time), else 0 x 0
     Vec V;     // nu (copy) or empty
     std::vector<Vec> s, y, v;
@@ -296,7 +306,7 @@ class EulerStages {
   struct Values {  // what a line-search trial needs
     double f = 0.0;
     std::vector<Vec> c;
-    Mat defects;        // nx x N: x_{k+1} - x_k - h f
+    Mat defects;        // nx x N: x_{k+1} - x_k - h f (trapezoid: - h/2 (f_k + f_{k+1}))
     Vec psi, copy_row;  // psi: the terminal rows, psi(x_N) (hard form) then b(x_0, x_N) - b_lo
                         // (b - s on the inequality rows)
     bool ok = false;
@@ -307,10 +317,13 @@ class EulerStages {
     return free_time ? (it.T(0, 0) - t0) / duration * h[k] : h[k];
   }
 
-  // u at stage k, or v at stage N (for evaluations at t_N).
+  // u at stage k, or v at stage N (for evaluations at t_N); the trapezoid's u_k at every node.
   Eigen::Ref<const Vec> StageControl(const Iterate& it, int k) const {
-    return k < N ? Eigen::Ref<const Vec>(it.U.col(k)) : Eigen::Ref<const Vec>(it.V);
+    return k < N || trapezoid ? Eigen::Ref<const Vec>(it.U.col(k)) : Eigen::Ref<const Vec>(it.V);
   }
+  // Node k's path rows c - relax and balls |u - c|^2 - r^2 - relax into c (ni(k) rows), with
+  // their Jacobians when cx, cu are given (sized ni(k) x nx, ni(k) x nu, zero).
+  void NodeInequalities(int k, const Iterate& it, VecRef c, Mat* cx, Mat* cu) const;
 
   // Values at `it` into `v` (its storage reused).
   void EvalValues(const Iterate& it, Values* v) const;
@@ -355,12 +368,37 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
   st->nc = ocp.num_path();
   st->hard = nlp->terminal_mode() == TerminalMode::kHard;
   st->npsi = st->hard ? ocp.num_terminal() : 0;
-  const int N = static_cast<int>(lay.controls.size());
+  // The trapezoid's shape: N + 1 nodes, each a point (t_k, x_k, u_k) with weight wt_k and
+  // the path rows, defect k = x_{k+1} - x_k - a_k (f_k + f_{k+1}) with a_k = h_k / 2 > 0.
+  const int nodes = static_cast<int>(lay.states.size());
+  bool trapezoid = nodes >= 2 && static_cast<int>(lay.controls.size()) == nodes &&
+                   static_cast<int>(lay.points.size()) == nodes &&
+                   static_cast<int>(lay.defects.size()) == nodes - 1;
+  for (int k = 0; trapezoid && k < nodes; ++k) {
+    const auto& e = lay.points[k];
+    trapezoid = e.state == k && e.control == k && e.path == (st->nc > 0) && e.cost_weight > 0.0;
+    if (!trapezoid || k == nodes - 1) break;
+    const auto& d = lay.defects[k];
+    trapezoid = d.states.size() == 2 && d.states[0].index == k && d.states[0].coeff == -1.0 &&
+                d.states[1].index == k + 1 && d.states[1].coeff == 1.0 && d.dynamics.size() == 2 &&
+                d.dynamics[0].index == k && d.dynamics[1].index == k + 1 &&
+                d.dynamics[0].coeff > 0.0 && d.dynamics[1].coeff == d.dynamics[0].coeff;
+  }
+  if (trapezoid) {
+    st->trapezoid = true;
+    st->N = nodes - 1;
+    for (int k = 0; k < nodes; ++k) {
+      st->t.push_back(lay.points[k].t);
+      st->wt.push_back(lay.points[k].cost_weight);
+      if (k + 1 < nodes) st->h.push_back(2.0 * lay.defects[k].dynamics[0].coeff);
+    }
+  }
+  const int N = trapezoid ? nodes - 1 : static_cast<int>(lay.controls.size());
   st->N = N;
   // The Euler shape: N + 1 node states, N controls, defect k = x_{k+1} - x_k - h_k f(point k),
   // point k = (t_k, x_k, u_k) with weight h_k, and (path constraints) point N = (t_N, x_N,
   // u_{N-1}).
-  bool euler = N >= 1 && static_cast<int>(lay.states.size()) == N + 1 &&
+  bool euler = !trapezoid && N >= 1 && static_cast<int>(lay.states.size()) == N + 1 &&
                static_cast<int>(lay.defects.size()) == N &&
                static_cast<int>(lay.points.size()) == N + (st->nc > 0 ? 1 : 0);
   for (int k = 0; euler && k < N; ++k) {
@@ -375,16 +413,19 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
       st->h.push_back(e.cost_weight);
     }
   }
-  if (euler && st->nc > 0) {
+  if (trapezoid) {
+    // (t, h, wt: above)
+  } else if (euler && st->nc > 0) {
     const auto& e = lay.points[N];
     euler = e.state == N && e.control == N - 1 && e.cost_weight == 0.0 && e.path;
     st->t.push_back(e.t);
   } else if (euler) {
     st->t.push_back(lay.states[N].t);
   }
-  if (!euler) {
+  if (!euler && !trapezoid) {
     *why_not =
-        "riccati-ip takes the Euler transcription's NLP only (this layout is another scheme)";
+        "riccati-ip takes the Euler and trapezoid transcriptions' NLPs only (this layout is "
+        "another scheme)";
     return nullptr;
   }
   for (const auto& s : lay.states) st->state_off.push_back(s.offset);
@@ -473,7 +514,13 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
   st->relax_ball.assign(st->nball, 0.0);
   st->original = {
       st->lb, st->ub, st->xlb, st->xub, st->x0lb, st->x0ub, st->Tlb, st->Tub, st->sblo, st->sbhi};
-  st->copy = st->nc > 0;
+  st->copy = st->nc > 0 && !st->trapezoid;
+  if (st->trapezoid && (st->free_time || st->nb > 0)) {
+    *why_not = std::string("riccati-ip on the trapezoid does not take ") +
+               (st->free_time ? "a free final time" : "boundary constraints") +
+               " yet (it does on euler)";
+    return nullptr;
+  }
   return st;
 }
 
@@ -481,9 +528,9 @@ void EulerStages::ToIterate(const Vec& z, Iterate* it) const {
   it->T.resize(nT(), nT());
   if (free_time) it->T(0, 0) = z[time_index];
   it->X.resize(nx, N + 1);
-  it->U.resize(nu, N);
+  it->U.resize(nu, nctl());
   for (int k = 0; k <= N; ++k) it->X.col(k) = z.segment(state_off[k], nx);
-  for (int k = 0; k < N; ++k) it->U.col(k) = z.segment(control_off[k], nu);
+  for (int k = 0; k < nctl(); ++k) it->U.col(k) = z.segment(control_off[k], nu);
   for (int j = 0; j < nu; ++j) {
     if (!std::isnan(ufixed[j])) it->U.row(j).setConstant(ufixed[j]);
   }
@@ -493,9 +540,32 @@ void EulerStages::ToIterate(const Vec& z, Iterate* it) const {
 Vec EulerStages::ToNlp(const Iterate& it) const {
   Vec z = Vec::Zero(nlp.num_variables());
   for (int k = 0; k <= N; ++k) z.segment(state_off[k], nx) = it.X.col(k);
-  for (int k = 0; k < N; ++k) z.segment(control_off[k], nu) = it.U.col(k);
+  for (int k = 0; k < nctl(); ++k) z.segment(control_off[k], nu) = it.U.col(k);
   if (free_time) z[time_index] = it.T(0, 0);
   return z;
+}
+
+void EulerStages::NodeInequalities(int k, const Iterate& it, VecRef c, Mat* cx, Mat* cu) const {
+  const auto x = it.X.col(k);
+  const auto u = StageControl(it, k);
+  if (nc > 0) {
+    if (cx != nullptr) {
+      ocp.PathConstraintsJacobian(t[k], x, u, c.head(nc), cx->topRows(nc), cu->topRows(nc));
+    } else {
+      ocp.PathConstraints(t[k], x, u, c.head(nc));
+    }
+    c.head(nc).array() -= relax_path;
+  }
+  for (int b = 0; b < nball; ++b) {
+    const auto& B = balls[b];
+    double d2 = 0.0;
+    for (int i = 0; i < B.size; ++i) {
+      const double d = u[B.offset + i] - B.center[i];
+      d2 += d * d;
+      if (cu != nullptr) (*cu)(nc + b, B.offset + i) = 2.0 * d;
+    }
+    c[nc + b] = d2 - B.radius * B.radius - relax_ball[b];
+  }
 }
 
 void EulerStages::EvalValues(const Iterate& it, Values* out) const {
@@ -505,7 +575,20 @@ void EulerStages::EvalValues(const Iterate& it, Values* out) const {
   Vec& f = f_scratch_;
   f.resize(nx);
   double J = 0.0;
-  for (int k = 0; k < N; ++k) {
+  if (trapezoid) {  // node by node: f_k enters defects k - 1 and k
+    Vec& f_prev = lam_scratch_;
+    for (int k = 0; k <= N; ++k) {
+      const auto x = it.X.col(k);
+      const auto u = it.U.col(k);
+      ocp.Dynamics(t[k], x, u, f);
+      J += wt[k] * ocp.RunningCost(t[k], x, u);
+      if (k > 0) v.defects.col(k - 1) = x - it.X.col(k - 1) - 0.5 * h[k - 1] * (f_prev + f);
+      f_prev = f;
+      v.c[k].resize(ni(k));
+      NodeInequalities(k, it, v.c[k], nullptr, nullptr);
+    }
+  }
+  for (int k = 0; k < N && !trapezoid; ++k) {
     const auto x = it.X.col(k);
     const auto u = it.U.col(k);
     ocp.Dynamics(t[k], x, u, f);
@@ -524,7 +607,7 @@ void EulerStages::EvalValues(const Iterate& it, Values* out) const {
                   relax_ball[b];
     }
   }
-  v.c[N].resize(ni(N));
+  if (!trapezoid) v.c[N].resize(ni(N));
   if (copy) {
     ocp.PathConstraints(t[N], it.X.col(N), it.V, v.c[N]);
     v.c[N].array() -= relax_path;
@@ -559,7 +642,7 @@ bool EulerStages::EvalDerivatives(const Iterate& it,
     s.c.resize(m);
     s.cx.setZero(m, nx);
     s.cu.setZero(m, nu);
-    if (k < N) {
+    if (k < N || trapezoid) {
       s.f.resize(nx);
       s.fx.resize(nx, nx);
       s.fu.resize(nx, nu);
@@ -629,12 +712,21 @@ bool EulerStages::EvalHessians(const Iterate& it,
   Vec& lam_f = lam_scratch_;
   for (int k = 0; k <= N; ++k) {
     StageEval& s = st[k];
-    if (k == N && !copy) break;
+    if (k == N && !copy && !trapezoid) break;
     s.H.resize(nx + nu, nx + nu);
     const auto x = it.X.col(k);
     const auto u = StageControl(it, k);
     const auto mu_path = it.y[k].head(nc);
-    if (k < N) {
+    if (trapezoid) {  // f_k enters defects k - 1 and k with weights h/2
+      lam_f.setZero(nx);
+      if (k < N) lam_f -= 0.5 * h[k] * it.lam.col(k);
+      if (k > 0) lam_f -= 0.5 * h[k - 1] * it.lam.col(k - 1);
+      ocp.PointHessian(t[k], x, u, sigma * wt[k], lam_f, mu_path, s.H);
+      for (int b = 0; b < nball; ++b) {
+        const auto& B = balls[b];
+        s.H.diagonal().segment(nx + B.offset, B.size).array() += 2.0 * it.y[k][nc + b];
+      }
+    } else if (k < N) {
       const double hk = Step(it, k);
       lam_f = -hk * it.lam.col(k);
       ocp.PointHessian(t[k], x, u, sigma * hk, lam_f, mu_path, s.H);
@@ -687,8 +779,33 @@ void EulerStages::LagrangianGradient(const Iterate& it,
                                      Vec* rv,
                                      double* rT) const {
   rx->resize(nx, N + 1);
-  ru->resize(nu, N);
+  ru->resize(nu, nctl());
   *rT = 0.0;
+  if (trapezoid) {
+    rv->resize(0);
+    Vec& m = lam_scratch_;  // h_k/2 lam_k + h_{k-1}/2 lam_{k-1}: f_k's multiplier
+    for (int k = 0; k <= N; ++k) {
+      const StageEval& s = st[k];
+      m.setZero(nx);
+      if (k < N) m += 0.5 * h[k] * it.lam.col(k);
+      if (k > 0) m += 0.5 * h[k - 1] * it.lam.col(k - 1);
+      auto gx = rx->col(k);
+      auto gu = ru->col(k);
+      gx.noalias() = sigma * wt[k] * s.Lx - s.fx.transpose() * m;
+      gu.noalias() = sigma * wt[k] * s.Lu - s.fu.transpose() * m;
+      if (k < N) gx -= it.lam.col(k);
+      if (k > 0) gx += it.lam.col(k - 1);
+      if (ni(k) > 0) {
+        gx.noalias() += s.cx.transpose() * it.y[k];
+        gu.noalias() += s.cu.transpose() * it.y[k];
+      }
+    }
+    if (initial_cost) rx->col(0) += sigma * te.grad0;
+    auto gN = rx->col(N);
+    gN += sigma * te.grad;
+    if (hard && npsi > 0) gN.noalias() += te.psix.transpose() * it.nu.head(npsi);
+    return;
+  }
   for (int k = 0; k < N; ++k) {
     const StageEval& s = st[k];
     const auto lam = it.lam.col(k);
@@ -969,6 +1086,26 @@ class RiccatiInteriorPoint {
   // right-hand side b is the caller's (the Newton step's defects, or zero for the multiplier
   // start).
   bool StageBlocks(int k, const Mat& H, const Vec& g, RiccatiStage* q) const;
+  // The trapezoid's stagewise QP (S_.trapezoid). Its defect k couples the nodes k and k + 1
+  // through u_{k+1} as well, so the recursion's state is xi = (x_k, u_k) (free components of u)
+  // and its control u_{k+1}: stage 0 has no state and the controls (x_0's free components,
+  // u_0), with the identity transition into xi_1 = (x_0, u_0); stage k + 1 (k < N) carries node
+  // k's Hessian and gradient on xi and none on its control (node k + 1's are on xi_{k+2}), and
+  // its transition is the linearized defect solved for x_{k+1}:
+  //   x_{k+1} = M_k^-1 [(I + h/2 f_x,k) x_k + h/2 f_u,k u_k + h/2 f_u,k+1 u_{k+1} - d_k],
+  //   M_k = I - h/2 f_x,k+1,   u_{k+1} = u_{k+1};
+  // the terminal block is node N's (x_N, u_N). The rows are M_k^-1 times the NLP's, so the NLP's
+  // defect multipliers are M_k^-T times the recursion's (TrapezoidPrimalDual), and the KKT
+  // matrix's inertia is the NLP's (a congruence, and each duplicated u_{k+1} adds one positive
+  // and one negative eigenvalue with its copy row). node_H_, node_g_ hold the nodes' (x, u)
+  // blocks (condensed inequalities and bound terms included); `defects` the right-hand side's
+  // defects (nullptr: zero).
+  void TrapezoidQp(double mu, const Residuals& r, bool feasibility, bool relaxed);
+  void TrapezoidStagesFromNodes(const Mat* defects);
+  // The step's dX, dU (nodes 0..N) and defect multipliers from sol_ (the trapezoid's QP).
+  void TrapezoidPrimalDual(Mat* dX, Mat* dU, Mat* lam) const;
+  // LeastSquaresMultipliers' QP for the trapezoid (node blocks I + J^T J).
+  void TrapezoidLeastSquaresQp();
   // u_k's step from a stage's solved "controls" (their last nuf entries are the free control
   // components): scattered into du, 0 for the fixed components.
   void ScatterControls(const Vec& stage_controls, Eigen::Ref<Vec> du) const;
@@ -1067,6 +1204,11 @@ class RiccatiInteriorPoint {
   std::vector<int> nonzero_;
   mutable std::vector<int> stage0_, stagek_;  // StageBlocks' index selections  // StageBlocks'
                                               // stage-0 indices: x_0's free components, u_0
+  // The trapezoid's node blocks, M_k's factors and (x, free u) selection (TrapezoidQp).
+  std::vector<Mat> node_H_;
+  std::vector<Vec> node_g_;
+  std::vector<Eigen::PartialPivLU<Mat>> trap_m_;
+  std::vector<int> trap_sel_;
   double delta_last_ = 0.0;
   int iterations_ = 0, regularizations_ = 0, factorizations_ = 0, trials_ = 0;
   double kkt_cpu_ = 0.0, callback_cpu_ = 0.0, mu_ = 0.1;
@@ -1155,8 +1297,8 @@ void RiccatiInteriorPoint::Measure(double mu) {
     if (RipFinite(lo)) bound(x - lo, Zl(it_, b)(j, k));
     if (RipFinite(hi)) bound(hi - x, Zu(it_, b)(j, k));
   });
-  const int n = N * (S_.nx + S_.nuf()) + S_.nw() + S_.nT() + static_cast<int>(it_.V.size()) +
-                S_.nbi() + nb;  // slacks count too
+  const int n = N * S_.nx + S_.nctl() * S_.nuf() + S_.nw() + S_.nT() +
+                static_cast<int>(it_.V.size()) + S_.nbi() + nb;  // slacks count too
   s_d_ = std::max(kSMax, mult_sum / std::max(1, m + n)) / kSMax;
   s_c_ = std::max(kSMax, bound_sum / std::max(1, n)) / kSMax;
   dual_inf_ = dual;
@@ -1191,73 +1333,77 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   const int ne = relaxed ? S_.nx : 0;
   const int N = S_.N, nx = S_.nx, nu = S_.nu;
   const double cpu0 = CpuSeconds();
-  qp_.stages.resize(N);
-  for (int k = 0; k < N; ++k) {
-    const StageEval& e = st_[k];
-    RiccatiStage& q = qp_.stages[k];
-    // The stage's (x_k, u_k) Hessian and gradient with the slacks and bound multipliers
-    // eliminated, in the workspace H_, g_; then cut into Q, q, A, B.
-    if (feasibility) {
-      H_.setIdentity(nx + nu, nx + nu);
-      g_.setZero(nx + nu);
-    } else {
-      H_ = e.H;
-      g_.resize(nx + nu);
-      const double hk = S_.Step(it_, k);
-      g_.head(nx) = sigma_ * hk * e.Lx;
-      g_.tail(nu) = sigma_ * hk * e.Lu;
-      if (k == 0 && S_.initial_cost) {
-        H_.topLeftCorner(nx, nx) += te_.H0;
-        g_.head(nx) += sigma_ * te_.grad0;
-      }
-    }
-    if (it_.s[k].size() > 0) CondenseInequalities(k, mu, r.ineq[k], nx + nu, &H_, &g_);
-    AddBoundTerms(k, mu, &H_, &g_);
-    if (S_.np() > 0) {
-      // T's entries: its Hessian row, the stage's dJ/dT, and at stage 0 (where T is a
-      // variable) its barrier terms; the restoration's minimum-norm step weighs T once, at 0.
-      // The carried copies of x_0's free components have none.
-      const Vec* HT = feasibility || !S_.free_time ? nullptr : &e.HT;
-      double hTT = feasibility && k == 0 ? 1.0 : 0.0, gT = feasibility ? 0.0 : sigma_ * e.gT;
-      if (k == 0) TimeBoundTerms(mu, &hTT, &gT);
-      WithCarried(H_, g_, HT, hTT, gT, &Ha_, &ga_);
-    }
-    const bool last_copy = StageBlocks(k, S_.np() > 0 ? Ha_ : H_, S_.np() > 0 ? ga_ : g_, &q);
-    q.b.setZero(q.B.rows());
-    q.b.head(nx) = -r.defects.col(k);
-    if (last_copy) q.b.tail(nu) = -r.copy_row;
-    if (relaxed) RelaxDefects(&q);
-  }
-  const int nxN = nx + (S_.copy ? nu : 0);
-  qp_.QN.setZero(nxN, nxN);
-  qp_.qN.setZero(nxN);
-  if (feasibility) {
-    qp_.QN.setIdentity();
+  if (S_.trapezoid) {
+    TrapezoidQp(mu, r, feasibility, relaxed);
   } else {
-    qp_.QN.topLeftCorner(nx, nx) = te_.H;
-    qp_.qN.head(nx) = sigma_ * te_.grad;
+    qp_.stages.resize(N);
+    for (int k = 0; k < N; ++k) {
+      const StageEval& e = st_[k];
+      RiccatiStage& q = qp_.stages[k];
+      // The stage's (x_k, u_k) Hessian and gradient with the slacks and bound multipliers
+      // eliminated, in the workspace H_, g_; then cut into Q, q, A, B.
+      if (feasibility) {
+        H_.setIdentity(nx + nu, nx + nu);
+        g_.setZero(nx + nu);
+      } else {
+        H_ = e.H;
+        g_.resize(nx + nu);
+        const double hk = S_.Step(it_, k);
+        g_.head(nx) = sigma_ * hk * e.Lx;
+        g_.tail(nu) = sigma_ * hk * e.Lu;
+        if (k == 0 && S_.initial_cost) {
+          H_.topLeftCorner(nx, nx) += te_.H0;
+          g_.head(nx) += sigma_ * te_.grad0;
+        }
+      }
+      if (it_.s[k].size() > 0) CondenseInequalities(k, mu, r.ineq[k], nx + nu, &H_, &g_);
+      AddBoundTerms(k, mu, &H_, &g_);
+      if (S_.np() > 0) {
+        // T's entries: its Hessian row, the stage's dJ/dT, and at stage 0 (where T is a
+        // variable) its barrier terms; the restoration's minimum-norm step weighs T once, at 0.
+        // The carried copies of x_0's free components have none.
+        const Vec* HT = feasibility || !S_.free_time ? nullptr : &e.HT;
+        double hTT = feasibility && k == 0 ? 1.0 : 0.0, gT = feasibility ? 0.0 : sigma_ * e.gT;
+        if (k == 0) TimeBoundTerms(mu, &hTT, &gT);
+        WithCarried(H_, g_, HT, hTT, gT, &Ha_, &ga_);
+      }
+      const bool last_copy = StageBlocks(k, S_.np() > 0 ? Ha_ : H_, S_.np() > 0 ? ga_ : g_, &q);
+      q.b.setZero(q.B.rows());
+      q.b.head(nx) = -r.defects.col(k);
+      if (last_copy) q.b.tail(nu) = -r.copy_row;
+      if (relaxed) RelaxDefects(&q);
+    }
+    const int nxN = nx + (S_.copy ? nu : 0);
+    qp_.QN.setZero(nxN, nxN);
+    qp_.qN.setZero(nxN);
+    if (feasibility) {
+      qp_.QN.setIdentity();
+    } else {
+      qp_.QN.topLeftCorner(nx, nx) = te_.H;
+      qp_.qN.head(nx) = sigma_ * te_.grad;
+    }
+    if (S_.copy) {
+      if (!feasibility) qp_.QN += st_[N].H;
+      CondenseInequalities(N, mu, r.ineq[N], nxN, &qp_.QN, &qp_.qN);
+    }
+    AddBoundTerms(N, mu, &qp_.QN, &qp_.qN);
+    if (S_.np() > 0) {  // the terminal block (x_N, T, w, v): T's row empty (x_N's terms do not
+      WithCarried(qp_.QN, qp_.qN, nullptr, 0.0, 0.0, &Ha_, &ga_);  // depend on it)
+      qp_.QN.swap(Ha_);
+      qp_.qN.swap(ga_);
+    }
+    if (!feasibility) AddBoundaryHessian(&qp_.QN);
+    TerminalRows(&qp_.C);
+    qp_.c = r.psi;
+    qp_.x0.resize(0);
+    SlackTerms(mu, feasibility ? 1.0 : 0.0, true);
+    // The joint first stage where boundary rows link x(t0)'s free components (multi-phase and
+    // estimation problems: their first stage's curvature comes from those rows, pinene's never
+    // from the stage itself); elsewhere (a free T, free x(t0) without boundary rows) a singular
+    // first stage is regularized, as before: jointly solved, quadrotor's last steps at tol 1e-10
+    // (H_uu singular in its last iterations) oscillated and stopped at the acceptable level.
+    qp_.joint_first_stage = S_.nb > 0;
   }
-  if (S_.copy) {
-    if (!feasibility) qp_.QN += st_[N].H;
-    CondenseInequalities(N, mu, r.ineq[N], nxN, &qp_.QN, &qp_.qN);
-  }
-  AddBoundTerms(N, mu, &qp_.QN, &qp_.qN);
-  if (S_.np() > 0) {  // the terminal block (x_N, T, w, v): T's row empty (x_N's terms do not
-    WithCarried(qp_.QN, qp_.qN, nullptr, 0.0, 0.0, &Ha_, &ga_);  // depend on it)
-    qp_.QN.swap(Ha_);
-    qp_.qN.swap(ga_);
-  }
-  if (!feasibility) AddBoundaryHessian(&qp_.QN);
-  TerminalRows(&qp_.C);
-  qp_.c = r.psi;
-  qp_.x0.resize(0);
-  SlackTerms(mu, feasibility ? 1.0 : 0.0, true);
-  // The joint first stage where boundary rows link x(t0)'s free components (multi-phase and
-  // estimation problems: their first stage's curvature comes from those rows, pinene's never
-  // from the stage itself); elsewhere (a free T, free x(t0) without boundary rows) a singular
-  // first stage is regularized, as before: jointly solved, quadrotor's last steps at tol 1e-10
-  // (H_uu singular in its last iterations) oscillated and stopped at the acceptable level.
-  qp_.joint_first_stage = S_.nb > 0;
 
   // delta_w goes to every diagonal entry of the recursion, the carried copies T_k, w_k
   // included, so T and w are regularized N + 1 times where Ipopt regularizes them once. Making
@@ -1305,17 +1451,21 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   // The full direction.
   d->dX.resize(nx, N + 1);
   d->dX.col(0).setZero();
-  for (int i = 0; i < S_.nw(); ++i) d->dX(S_.free0[i], 0) = sol_.u[0][ne + i];
   d->dT.resize(S_.nT(), S_.nT());
-  if (S_.free_time) d->dT(0, 0) = sol_.u[0][ne + S_.nw()];
   d->dSB.resize(S_.nbi(), 1);
-  for (int i = 0; i < S_.nbi(); ++i) d->dSB(i, 0) = sol_.s[S_.npsi + S_.bineq[i]];
-  d->dU.resize(nu, N);
+  d->dU.resize(nu, S_.nctl());
   d->lam.resize(nx, N);
-  for (int k = 0; k < N; ++k) {
-    ScatterControls(sol_.u[k], d->dU.col(k));
-    d->dX.col(k + 1) = sol_.x[k + 1].head(nx);
-    d->lam.col(k) = sol_.lambda[k].head(nx);
+  if (S_.trapezoid) {
+    TrapezoidPrimalDual(&d->dX, &d->dU, &d->lam);
+  } else {
+    for (int i = 0; i < S_.nw(); ++i) d->dX(S_.free0[i], 0) = sol_.u[0][ne + i];
+    if (S_.free_time) d->dT(0, 0) = sol_.u[0][ne + S_.nw()];
+    for (int i = 0; i < S_.nbi(); ++i) d->dSB(i, 0) = sol_.s[S_.npsi + S_.bineq[i]];
+    for (int k = 0; k < N; ++k) {
+      ScatterControls(sol_.u[k], d->dU.col(k));
+      d->dX.col(k + 1) = sol_.x[k + 1].head(nx);
+      d->lam.col(k) = sol_.lambda[k].head(nx);
+    }
   }
   if (S_.copy) {
     d->dV = sol_.x[N].tail(nu);
@@ -1337,7 +1487,8 @@ bool RiccatiInteriorPoint::BuildAndSolve(
       continue;
     }
     const StageEval& e = st_[k];
-    const auto du = k < N ? Eigen::Ref<const Vec>(d->dU.col(k)) : Eigen::Ref<const Vec>(d->dV);
+    const auto du =
+        k < N || S_.trapezoid ? Eigen::Ref<const Vec>(d->dU.col(k)) : Eigen::Ref<const Vec>(d->dV);
     const int m = static_cast<int>(s.size());
     Vec& Jd = jd_;
     Jd.resize(m);
@@ -1356,8 +1507,8 @@ bool RiccatiInteriorPoint::BuildAndSolve(
       d->dv[k][i] = mu_s - it_.v[k][i] - sig * ds;
     }
   }
-  d->dzl.setZero(nu, N);
-  d->dzu.setZero(nu, N);
+  d->dzl.setZero(nu, S_.nctl());
+  d->dzu.setZero(nu, S_.nctl());
   d->dzxl.setZero(it_.zxl.rows(), it_.zxl.cols());
   d->dzxu.setZero(it_.zxu.rows(), it_.zxu.cols());
   d->dzTl.setZero(S_.nT(), S_.nT());
@@ -1406,7 +1557,8 @@ void RiccatiInteriorPoint::AddBoundTerms(int k, double mu, Mat* H, Vec* g) const
     if (k < b.first || k >= b.last || b.kind == BoxKind::kTime || b.kind == BoxKind::kSlack) {
       continue;
     }
-    const int off = k < S_.N ? b.offset : 0;  // x_N leads the terminal block
+    // x_N leads the terminal block (Euler's, and the trapezoid's (x_N, u_N)).
+    const int off = k < S_.N || S_.trapezoid ? b.offset : 0;
     const Mat& x = Value(it_, b);
     for (int j = 0; j < b.lb->size(); ++j) {
       const double lo = (*b.lb)[j], hi = (*b.ub)[j];
@@ -1776,6 +1928,133 @@ bool RiccatiInteriorPoint::StageBlocks(int k, const Mat& H, const Vec& g, Riccat
   return last_copy;
 }
 
+void RiccatiInteriorPoint::TrapezoidQp(double mu,
+                                       const Residuals& r,
+                                       bool feasibility,
+                                       bool relaxed) {
+  const int N = S_.N, nx = S_.nx, nu = S_.nu;
+  node_H_.resize(N + 1);
+  node_g_.resize(N + 1);
+  for (int k = 0; k <= N; ++k) {
+    Mat& H = node_H_[k];
+    Vec& g = node_g_[k];
+    const StageEval& e = st_[k];
+    if (feasibility) {
+      H.setIdentity(nx + nu, nx + nu);
+      g.setZero(nx + nu);
+    } else {
+      H = e.H;
+      g.resize(nx + nu);
+      g.head(nx) = sigma_ * S_.wt[k] * e.Lx;
+      g.tail(nu) = sigma_ * S_.wt[k] * e.Lu;
+      if (k == 0 && S_.initial_cost) {
+        H.topLeftCorner(nx, nx) += te_.H0;
+        g.head(nx) += sigma_ * te_.grad0;
+      }
+      if (k == N) {
+        H.topLeftCorner(nx, nx) += te_.H;
+        g.head(nx) += sigma_ * te_.grad;
+      }
+    }
+    if (it_.s[k].size() > 0) CondenseInequalities(k, mu, r.ineq[k], nx + nu, &H, &g);
+    AddBoundTerms(k, mu, &H, &g);
+  }
+  TrapezoidStagesFromNodes(&r.defects);
+  for (int j = 1; relaxed && j <= N; ++j) RelaxDefects(&qp_.stages[j]);
+  qp_.c = r.psi;
+  SlackTerms(mu, feasibility ? 1.0 : 0.0, true);
+}
+
+void RiccatiInteriorPoint::TrapezoidStagesFromNodes(const Mat* defects) {
+  const int N = S_.N, nx = S_.nx, nf = S_.nuf(), nw = S_.nw(), nxi = nx + nf;
+  trap_sel_.resize(nxi);
+  for (int i = 0; i < nx; ++i) trap_sel_[i] = i;
+  for (int j = 0; j < nf; ++j) trap_sel_[nx + j] = nx + S_.ufree[j];
+  qp_.stages.resize(N + 1);
+  trap_m_.resize(N);
+  RiccatiStage& q0 = qp_.stages[0];  // (w, u_0) -> xi_1 = (x_0, u_0)
+  q0.Q.setZero(nw + nf, nw + nf);
+  q0.q.setZero(nw + nf);
+  q0.A.setZero(nxi, 0);
+  q0.B.setZero(nxi, nw + nf);
+  for (int i = 0; i < nw; ++i) q0.B(S_.free0[i], i) = 1.0;
+  for (int j = 0; j < nf; ++j) q0.B(nx + j, nw + j) = 1.0;
+  q0.b.setZero(nxi);
+  Mat M(nx, nx), rhs(nx, nxi + nf);
+  for (int k = 0; k < N; ++k) {
+    RiccatiStage& q = qp_.stages[k + 1];
+    const StageEval& a = st_[k];
+    const StageEval& c = st_[k + 1];
+    const double hh = 0.5 * S_.h[k];
+    q.Q.setZero(nxi + nf, nxi + nf);
+    q.Q.topLeftCorner(nxi, nxi) = node_H_[k](trap_sel_, trap_sel_);
+    q.q.setZero(nxi + nf);
+    q.q.head(nxi) = node_g_[k](trap_sel_);
+    M = -hh * c.fx;
+    M.diagonal().array() += 1.0;
+    trap_m_[k].compute(M);
+    // [I + h/2 f_x,k, h/2 f_u,k (free), h/2 f_u,k+1 (free)], then M_k^-1 times it.
+    rhs.leftCols(nx) = hh * a.fx;
+    rhs.leftCols(nx).diagonal().array() += 1.0;
+    for (int j = 0; j < nf; ++j) {
+      rhs.col(nx + j) = hh * a.fu.col(S_.ufree[j]);
+      rhs.col(nxi + j) = hh * c.fu.col(S_.ufree[j]);
+    }
+    rhs = trap_m_[k].solve(rhs).eval();
+    q.A.setZero(nxi, nxi);
+    q.A.topRows(nx) = rhs.leftCols(nxi);
+    q.B.setZero(nxi, nf);
+    q.B.topRows(nx) = rhs.rightCols(nf);
+    q.B.bottomRows(nf).setIdentity();
+    q.b.setZero(nxi);
+    if (defects != nullptr) q.b.head(nx) = -trap_m_[k].solve(defects->col(k));
+  }
+  qp_.QN = node_H_[N](trap_sel_, trap_sel_);
+  qp_.qN = node_g_[N](trap_sel_);
+  qp_.C.setZero(S_.nterm(), nxi);
+  if (S_.npsi > 0) qp_.C.topLeftCorner(S_.npsi, nx) = te_.psix;
+  qp_.x0.resize(0);
+  qp_.joint_first_stage = false;
+}
+
+void RiccatiInteriorPoint::TrapezoidPrimalDual(Mat* dX, Mat* dU, Mat* lam) const {
+  const int N = S_.N, nx = S_.nx;
+  for (int k = 0; k <= N; ++k) {
+    dX->col(k) = sol_.x[k + 1].head(nx);
+    ScatterControls(sol_.x[k + 1], dU->col(k));
+  }
+  for (int k = 0; k < N; ++k) {
+    lam->col(k) = trap_m_[k].transpose().solve(sol_.lambda[k + 1].head(nx));
+  }
+}
+
+void RiccatiInteriorPoint::TrapezoidLeastSquaresQp() {
+  const int N = S_.N, nx = S_.nx, nu = S_.nu;
+  node_H_.resize(N + 1);
+  node_g_.resize(N + 1);
+  for (int k = 0; k <= N; ++k) {
+    const StageEval& e = st_[k];
+    Mat& H = node_H_[k];
+    Vec& g = node_g_[k];
+    H.setIdentity(nx + nu, nx + nu);
+    g.resize(nx + nu);
+    g.head(nx) = sigma_ * S_.wt[k] * e.Lx;
+    g.tail(nu) = sigma_ * S_.wt[k] * e.Lu - it_.zl.col(k) + it_.zu.col(k);
+    if (S_.has_state_multipliers()) g.head(nx) += it_.zxu.col(k) - it_.zxl.col(k);
+    if (k == 0 && S_.initial_cost) g.head(nx) += sigma_ * te_.grad0;
+    if (k == N) g.head(nx) += sigma_ * te_.grad;
+    if (S_.ni(k) > 0) {
+      Mat J(S_.ni(k), nx + nu);
+      J << e.cx, e.cu;
+      H.noalias() += J.transpose() * J;
+      g.noalias() += J.transpose() * it_.v[k];
+    }
+  }
+  TrapezoidStagesFromNodes(nullptr);
+  qp_.c.setZero(S_.nterm());
+  SlackTerms(mu_, 1.0, false);
+}
+
 void RiccatiInteriorPoint::ScatterControls(const Vec& stage_controls, Eigen::Ref<Vec> du) const {
   du.setZero();
   const auto free = stage_controls.tail(S_.nuf());
@@ -1908,6 +2187,26 @@ void RiccatiInteriorPoint::TakePrimal(Iterate* trial) {
 void RiccatiInteriorPoint::LeastSquaresMultipliers() {
   const int N = S_.N, nx = S_.nx, nu = S_.nu;
   const double cpu0 = CpuSeconds();
+  if (S_.trapezoid) {
+    TrapezoidLeastSquaresQp();
+    ++factorizations_;
+    if (riccati_.Solve(qp_, 0.0, 0.0, &sol_) == RiccatiOutcome::kSolved) {
+      Iterate trial = it_;
+      Mat dX(nx, N + 1), dU(nu, N + 1);
+      TrapezoidPrimalDual(&dX, &dU, &trial.lam);
+      double largest = trial.lam.lpNorm<Eigen::Infinity>();
+      trial.nu = sol_.nu;
+      if (S_.nterm() > 0) largest = std::max(largest, trial.nu.lpNorm<Eigen::Infinity>());
+      for (int k = 0; k <= N; ++k) {
+        if (S_.ni(k) == 0) continue;
+        trial.y[k] = st_[k].cx * dX.col(k) + st_[k].cu * dU.col(k) + it_.v[k];
+        largest = std::max(largest, trial.y[k].lpNorm<Eigen::Infinity>());
+      }
+      if (largest <= 1000.0) it_ = std::move(trial);
+    }
+    kkt_cpu_ += CpuSeconds() - cpu0;
+    return;
+  }
   qp_.stages.resize(N);
   for (int k = 0; k < N; ++k) {
     const StageEval& e = st_[k];
@@ -2000,7 +2299,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   }
   boxes_.clear();
   const auto& o = S_.original;
-  boxes_.push_back({BoxKind::kControl, &S_.lb, &S_.ub, 0, N, nx, &o.lb, &o.ub});
+  boxes_.push_back({BoxKind::kControl, &S_.lb, &S_.ub, 0, S_.nctl(), nx, &o.lb, &o.ub});
   if (S_.has_initial_bounds()) {
     boxes_.push_back({BoxKind::kState, &S_.x0lb, &S_.x0ub, 0, 1, 0, &o.x0lb, &o.x0ub});
   }
@@ -2054,8 +2353,8 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     it_.y[k] = Vec::Zero(S_.ni(k));
     it_.v[k] = Vec::Ones(S_.ni(k));
   }
-  it_.zl.setZero(nu, N);
-  it_.zu.setZero(nu, N);
+  it_.zl.setZero(nu, S_.nctl());
+  it_.zu.setZero(nu, S_.nctl());
   it_.zxl.setZero(S_.has_state_multipliers() ? nx : 0, S_.has_state_multipliers() ? N + 1 : 0);
   it_.zxu.setZero(it_.zxl.rows(), it_.zxl.cols());
   it_.zTl.setZero(S_.nT(), S_.nT());
@@ -2082,8 +2381,8 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   sigma_ = 1.0;
   if (o_.nlp_scaling_method == "gradient-based") {
     double gmax = 0.0;
-    for (int k = 0; k < N; ++k) {
-      const double hk = S_.Step(it_, k);
+    for (int k = 0; k < S_.nctl(); ++k) {
+      const double hk = S_.trapezoid ? S_.wt[k] : S_.Step(it_, k);
       if (k > 0) gmax = std::max(gmax, hk * st_[k].Lx.lpNorm<Eigen::Infinity>());
       for (int i = 0; k == 0 && i < S_.nw(); ++i) {
         const int j = S_.free0[i];
@@ -2183,9 +2482,10 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     StepToBoundary(d, tau, &alpha_max, &alpha_z);
     // Directional derivative of the barrier objective.
     double gphi = 0.0;
-    for (int k = 0; k < N; ++k) {
+    for (int k = 0; k < S_.nctl(); ++k) {
       const StageEval& e = st_[k];
-      gphi += sigma_ * S_.Step(it_, k) * (e.Lx.dot(d.dX.col(k)) + e.Lu.dot(d.dU.col(k)));
+      const double weight = S_.trapezoid ? S_.wt[k] : S_.Step(it_, k);
+      gphi += sigma_ * weight * (e.Lx.dot(d.dX.col(k)) + e.Lu.dot(d.dU.col(k)));
       if (S_.free_time) gphi += sigma_ * e.gT * d.dT(0, 0);
     }
     if (S_.initial_cost) gphi += sigma_ * te_.grad0.dot(d.dX.col(0));
@@ -2213,10 +2513,12 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     double rel = (d.dX.col(0).array().abs() / (1.0 + it_.X.col(0).array().abs())).maxCoeff();
     if (S_.free_time) rel = std::max(rel, std::abs(d.dT(0, 0)) / (1.0 + std::abs(it_.T(0, 0))));
     for (int k = 0; k < N; ++k) {
-      rel = std::max(rel,
-                     (d.dU.col(k).array().abs() / (1.0 + it_.U.col(k).array().abs())).maxCoeff());
       rel = std::max(
           rel, (d.dX.col(k + 1).array().abs() / (1.0 + it_.X.col(k + 1).array().abs())).maxCoeff());
+    }
+    for (int k = 0; k < S_.nctl(); ++k) {
+      rel = std::max(rel,
+                     (d.dU.col(k).array().abs() / (1.0 + it_.U.col(k).array().abs())).maxCoeff());
     }
     const bool tiny = rel < 10.0 * kRipEps && theta < 1e-4;
 
@@ -2356,7 +2658,7 @@ NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
     for (int k = 0; k <= N && nc > 0; ++k) {
       lambda.segment(S_.nlp.path_row_begin() + k * nc, nc) = inv * it_.y[k].head(nc);
     }
-    for (int k = 0; k < N; ++k) {
+    for (int k = 0; k < S_.nctl(); ++k) {
       for (int b = 0; b < S_.nball; ++b) {
         lambda[S_.nlp.ball_row_begin() + k * S_.nball + b] = inv * it_.y[k][nc + b];
       }
@@ -2368,15 +2670,15 @@ NlpSolution RiccatiInteriorPoint::Finish(SolveStatus status,
     const int n = S_.nlp.num_variables();
     out.z_lower = Vec::Zero(n);
     out.z_upper = Vec::Zero(n);
-    for (int k = 0; k < N; ++k) {
+    for (int k = 0; k < S_.nctl(); ++k) {
       out.z_lower.segment(S_.control_off[k], nu) = inv * it_.zl.col(k);
       out.z_upper.segment(S_.control_off[k], nu) = inv * it_.zu.col(k);
-      for (int j = 0; j < nu && S_.has_fixed_controls() && ru_.cols() == N; ++j) {
+      for (int j = 0; j < nu && S_.has_fixed_controls() && ru_.cols() == S_.nctl(); ++j) {
         if (std::isnan(S_.ufixed[j])) continue;  // a fixed one's: its stationarity
         out.z_lower[S_.control_off[k] + j] = std::max(0.0, inv * ru_(j, k));
         out.z_upper[S_.control_off[k] + j] = std::max(0.0, -inv * ru_(j, k));
       }
-      if (S_.has_state_multipliers()) {
+      if (S_.has_state_multipliers() && k < N) {
         out.z_lower.segment(S_.state_off[k + 1], nx) = inv * it_.zxl.col(k + 1);
         out.z_upper.segment(S_.state_off[k + 1], nx) = inv * it_.zxu.col(k + 1);
       }
@@ -2442,16 +2744,22 @@ NlpSolution SolveEulerNlpWithRiccatiIp(const TranscribedNlp& nlp, const RiccatiI
 std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) {
   if (request.transcription.empty()) return "";
   const TranscriptionInfo& info = FindTranscription(request.transcription);  // throws if unknown
-  if (info.name != "euler") {
-    return "riccati-ip solves the euler transcription only in this version (not '" + info.name +
-           "'); use ipopt for the others";
+  if (info.name != "euler" && info.name != "trapezoid") {
+    return "riccati-ip solves the euler and trapezoid transcriptions only in this version (not '" +
+           info.name + "'); use ipopt for the others";
   }
+  const bool euler = info.name == "euler";
   ProblemFeatures takes;      // x(t0)'s free components and T are stage-0 variables (T carried as
   takes.state_bounds = true;  // an augmented state); states have bounds
   takes.free_initial_state = true;
-  takes.free_final_time = true;
-  takes.boundary_constraints = true;  // equalities and inequalities (slacks)
-  if (std::string why = UnsupportedFeature(ocp, "riccati-ip", takes); !why.empty()) return why;
+  takes.free_final_time = euler;
+  takes.boundary_constraints = euler;  // equalities and inequalities (slacks)
+  if (std::string why = UnsupportedFeature(ocp, "riccati-ip", takes); !why.empty()) {
+    if (!euler && (ocp.free_final_time() || ocp.num_boundary() > 0)) {
+      why += " (riccati-ip takes it on euler, not yet on trapezoid)";
+    }
+    return why;
+  }
   const TranscriptionOptions options = TranscriptionOptionsFor(request);
   if (!options.scaling.IsIdentity()) {
     return "riccati-ip works in the problem's units: the transcription options objective_scale, "
@@ -2502,7 +2810,7 @@ bool EulerStageLagrangian(const TranscribedNlp& nlp,
     it.y[k] = Vec::Zero(S->ni(k));
     if (nc > 0 && S->ni(k) > 0)
       it.y[k].head(nc) = lambda.segment(S->nlp.path_row_begin() + k * nc, nc);
-    for (int b = 0; k < N && b < S->nball; ++b) {
+    for (int b = 0; k < S->nctl() && b < S->nball; ++b) {
       it.y[k][nc + b] = lambda[S->nlp.ball_row_begin() + k * S->nball + b];
     }
   }
@@ -2523,7 +2831,7 @@ bool EulerStageLagrangian(const TranscribedNlp& nlp,
   for (int k = 0; k < N; ++k) L += lambda.segment(S->nlp.defect_row(k), nx).dot(v.defects.col(k));
   for (int k = 0; k <= N; ++k) {
     if (S->ni(k) > 0) L += it.y[k].dot(v.c[k]);
-    for (int b = 0; k < N && b < S->nball; ++b) {
+    for (int b = 0; k < S->nctl() && b < S->nball; ++b) {
       L += it.y[k][nc + b] * S->balls[b].radius * S->balls[b].radius;
     }
   }
@@ -2539,12 +2847,12 @@ bool EulerStageLagrangian(const TranscribedNlp& nlp,
   S->LagrangianGradient(it, 1.0, st, te, &rx, &ru, &rv, &rT);
   Vec g = Vec::Zero(nlp.num_variables());
   for (int k = 0; k <= N; ++k) g.segment(S->state_off[k], nx) = rx.col(k);
-  for (int k = 0; k < N; ++k) g.segment(S->control_off[k], nu) = ru.col(k);
+  for (int k = 0; k < S->nctl(); ++k) g.segment(S->control_off[k], nu) = ru.col(k);
   if (S->free_time) g[S->time_index] = rT;
   *gradient = g;
   // Hessian: stage blocks, the terminal block, and the t_N path block on (x_N, u_{N-1}).
   Mat H = Mat::Zero(nlp.num_variables(), nlp.num_variables());
-  for (int k = 0; k < N; ++k) {
+  for (int k = 0; k < S->nctl(); ++k) {  // the trapezoid's node N: (x_N, u_N)
     const int xo = S->state_off[k], uo = S->control_off[k];
     const Mat& Hk = st[k].H;
     H.block(xo, xo, nx, nx) += Hk.topLeftCorner(nx, nx);

@@ -1,5 +1,6 @@
-// The "riccati-ip" solver: a primal-dual interior-point method on the Euler transcription whose
-// Newton step is a stagewise Riccati recursion (solvers/README-riccati-ip.md).
+// The "riccati-ip" solver: a primal-dual interior-point method on the Euler and trapezoid
+// transcriptions whose Newton step is a stagewise Riccati recursion
+// (solvers/README-riccati-ip.md).
 #pragma once
 
 #include <memory>
@@ -76,15 +77,18 @@ struct RiccatiIpOptions {
 };
 
 /// Why riccati-ip cannot solve `request` on `ocp` (empty when it can): a transcription other
-/// than "euler", a transcription scaling other than the identity, or mesh refinement. A free or
-/// partly free initial state, static parameters, a free final time, boundary equalities and
-/// inequalities (since 2026-12-07) and fixed control components (lower == upper: no variables)
-/// are in its class. An empty or unknown transcription name is
-/// not a reason: Solve throws std::invalid_argument for it, as every NLP solver does.
+/// than "euler" and "trapezoid" (since 2026-12-07), a transcription scaling other than the
+/// identity, or mesh refinement; on the trapezoid also a free final time or boundary
+/// constraints (not yet). A free or partly free initial state, static parameters, state bounds
+/// and fixed control components (lower == upper: no variables) are in its class on both, a free
+/// final time and boundary equalities and inequalities (since 2026-12-07) on euler. An empty or
+/// unknown transcription name is not a reason: Solve throws std::invalid_argument for it, as
+/// every NLP solver does.
 std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request);
 
-/// Runs the interior-point method on a TranscribedNlp made by the Euler transcription (with the
-/// identity scaling; a free final time is its last variable), from its StartingPoint. The NLP's own
+/// Runs the interior-point method on a TranscribedNlp made by the Euler or the trapezoid
+/// transcription (with the identity scaling; a free final time, on Euler, is its last variable),
+/// from its StartingPoint (the name is kept from when Euler was the only scheme). The NLP's own
 /// callbacks are not used for the iterations: the stage structure is read off its layout and every
 /// value and derivative comes from its Ocp, one pass per node. The solution is in the NLP's
 /// variables and multiplier convention (core/nlp.h), so SolveTranscribed fills a SolveResult from
@@ -124,11 +128,12 @@ class RiccatiIpSolver final : public Solver {
 
 // ---- for tests ------------------------------------------------------------------------------
 
-/// The Euler NLP's Lagrangian as riccati-ip assembles it, stage by stage, at NLP variables z and
+/// The Euler (or trapezoid) NLP's Lagrangian as riccati-ip assembles it, node by node, at NLP
+/// variables z and
 /// NLP multipliers lambda (core/nlp.h convention, sigma = 1, no bound terms): its value, its
 /// gradient with respect to z (x_0 included) and its Hessian (dense, n x n). Exposed so that the
 /// hand-assembled stage derivatives can be tested against finite differences and against the
-/// NLP's own callbacks. False when `nlp` is not a supported Euler NLP.
+/// NLP's own callbacks. False when `nlp` is not a supported Euler or trapezoid NLP.
 bool EulerStageLagrangian(const TranscribedNlp& nlp,
                           const Vec& z,
                           const Vec& lambda,

@@ -21,7 +21,9 @@ constexpr const char* kCollocationSolvers =
 // kCollocationSolvers, and riccati-ip, which takes every feature of the problem class (since
 // 2026-12-07 boundary inequalities too).
 std::string WhoSolvesIt() {
-  return std::string(kCollocationSolvers) + ", and so does riccati-ip on euler";
+  return std::string(kCollocationSolvers) +
+         ", and so does riccati-ip on euler (on trapezoid too, but for a free final time and "
+         "boundary constraints)";
 }
 
 }  // namespace

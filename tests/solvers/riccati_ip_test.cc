@@ -474,14 +474,22 @@ struct ProblemCase {
   std::string name;
   std::vector<std::string> params;
   TerminalMode terminal;
+  std::string transcription = "euler";
 };
 
-std::unique_ptr<TranscribedNlp> EulerNlp(const Ocp& ocp, int N, TerminalMode terminal) {
+std::unique_ptr<TranscribedNlp> NlpOf(const Ocp& ocp,
+                                      int N,
+                                      TerminalMode terminal,
+                                      const std::string& transcription) {
   SolveRequest request;
   request.grid = TimeGrid::Uniform(ocp.t0(), ocp.tf(), N);
   request.terminal = terminal;
-  request.transcription = "euler";
+  request.transcription = transcription;
   return TranscribeRequest(ocp, request);
+}
+
+std::unique_ptr<TranscribedNlp> EulerNlp(const Ocp& ocp, int N, TerminalMode terminal) {
+  return NlpOf(ocp, N, terminal, "euler");
 }
 
 Mat DenseJacobian(const Nlp& nlp, const Vec& z) {
@@ -521,13 +529,21 @@ TEST(RiccatiIpStages, LagrangianDerivativesMatchFiniteDifferencesAndTheNlp) {
       // (mountain-car); the NLP's rows read b, the stages' b - s (s = 0 here)
       {"coupled-ends", {}, TerminalMode::kHard},
       {"mountain-car", {}, TerminalMode::kHard},
+      // The trapezoid's nodes (since 2026-12-07): path rows and balls at every node, u_N a
+      // variable, each f_k in two defects.
+      {"bryson-denham", {}, TerminalMode::kHard, "trapezoid"},
+      {"double-integrator", {}, TerminalMode::kPenalty, "trapezoid"},
+      {"comm-path2d", {"channel=0"}, TerminalMode::kHard, "trapezoid"},
+      {"free-start", {}, TerminalMode::kPenalty, "trapezoid"},
+      {"insurance", {}, TerminalMode::kHard, "trapezoid"},
+      {"chain", {}, TerminalMode::kHard, "trapezoid"},
   };
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0.0, 1.0);
   for (const ProblemCase& c : cases) {
-    SCOPED_TRACE(c.name);
+    SCOPED_TRACE(c.name + " on " + c.transcription);
     const auto ocp = MakeProblem(c.name, c.params, 1);
-    const auto nlp = EulerNlp(*ocp, 4, c.terminal);
+    const auto nlp = NlpOf(*ocp, 4, c.terminal, c.transcription);
     Vec z = nlp->StartingPoint();
     for (int i = 0; i < z.size(); ++i) z[i] += 0.05 * noise(rng) * (1.0 + std::abs(z[i]));
     Vec lambda(nlp->num_constraints());
@@ -616,6 +632,51 @@ TEST(RiccatiIpSolver, ReachesIpoptsOptimumOnTheEulerNlp) {
               << std::abs(f_rip - f_ip) / std::max(1.0, std::abs(f_ip)) << ", max |dz| " << dz
               << ", regularizations " << rip.stats.at("riccati_ip_regularizations") << ", f "
               << f_rip << " (Ipopt " << f_ip << ")\n";
+  }
+}
+
+// The trapezoid (since 2026-12-07): the recursion's state is (x_k, u_k) and the defects are
+// solved for x_{k+1}; its steps are the NLP's Newton steps, so it takes Ipopt's path, and the
+// defect multipliers it hands back (M_k^-T times the recursion's) are Ipopt's.
+TEST(RiccatiIpSolver, ReachesIpoptsOptimumOnTheTrapezoidNlp) {
+  const std::vector<AgreementCase> cases = {
+      {"lqr", {}, 20},
+      {"bryson-denham", {}, 20},         // a path constraint at every node
+      {"bryson-denham-bounds", {}, 20},  // the same bound as a state bound
+      {"vanderpol", {}, 20},
+      {"robot-arm", {}, 20},
+      {"goddard", {}, 20},
+      {"catmix", {}, 20},
+      {"comm-path2d", {"channel=0"}, 20},  // a ball of controls and path rows
+      {"free-start", {}, 20},              // a free x_0 with an initial cost, its bound active
+      {"double-integrator-time-parameter", {}, 20},  // a static parameter
+      {"double-oscillator", {}, 20},                 // free initial velocities, u bounded
+  };
+  for (const AgreementCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    const auto ocp = MakeProblem(c.name, c.params, 1);
+    const auto nlp = NlpOf(*ocp, c.N, TerminalMode::kHard, "trapezoid");
+    const NlpSolution ip = SolveNlpWithIpopt(*nlp, nlp->StartingPoint(), IpoptOptions());
+    ASSERT_EQ(ip.status, SolveStatus::kConverged) << ip.solver_status;
+    const NlpSolution rip = SolveEulerNlpWithRiccatiIp(*nlp, RiccatiIpOptions());
+    ASSERT_EQ(rip.status, SolveStatus::kConverged) << rip.solver_status << " " << rip.message;
+    double f_ip = 0.0, f_rip = 0.0;
+    ASSERT_TRUE(nlp->Objective(ip.z, &f_ip));
+    ASSERT_TRUE(nlp->Objective(rip.z, &f_rip));
+    EXPECT_LE(std::abs(f_rip - f_ip), 1e-8 * std::max(1.0, std::abs(f_ip)));
+    const double dz = (ip.z - rip.z).lpNorm<Eigen::Infinity>();
+    EXPECT_LE(dz, c.z_tolerance);
+    EXPECT_LT(NlpViolation(*nlp, rip.z), 1e-8);
+    // The defect multipliers, mapped back from the recursion's.
+    const int rows = nlp->num_constraints();
+    ASSERT_EQ(rip.lambda.size(), rows);
+    const double dl = (ip.lambda - rip.lambda).lpNorm<Eigen::Infinity>();
+    EXPECT_LE(dl, 1e-4 * std::max(1.0, ip.lambda.lpNorm<Eigen::Infinity>()));
+    EXPECT_LE(std::abs(rip.iterations - ip.iterations), 3);
+    std::cout << "[ riccati-ip ] trapezoid " << c.name << " N=" << c.N << ": iterations "
+              << rip.iterations << " (Ipopt " << ip.iterations << "), |df|/|f| "
+              << std::abs(f_rip - f_ip) / std::max(1.0, std::abs(f_ip)) << ", max |dz| " << dz
+              << ", max |dlambda| " << dl << "\n";
   }
 }
 
@@ -1117,13 +1178,26 @@ TEST(RiccatiIpSolver, NotApplicableOutsideItsClass) {
   SolveRequest request;
   request.grid = TimeGrid::Uniform(lqr->t0(), lqr->tf(), 10);
   request.terminal = TerminalMode::kHard;
-  for (const std::string t : {"trapezoid", "hermite-simpson", "lgr", "single-shooting"}) {
+  for (const std::string t : {"hermite-simpson", "lgr", "single-shooting"}) {
     request.transcription = t;
     const SolveResult r = solver->Solve(*lqr, request);
     EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << t;
     EXPECT_EQ(r.solver_status, "not_applicable");
-    EXPECT_NE(r.message.find("euler"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("euler and trapezoid"), std::string::npos) << r.message;
   }
+  // The trapezoid takes neither a free final time nor boundary constraints yet (euler does).
+  request.transcription = "trapezoid";
+  for (const std::string name : {"double-integrator-free-time", "coupled-ends"}) {
+    const auto ocp = MakeProblem(name, {}, 1);
+    request.grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 10);
+    const SolveResult r = solver->Solve(*ocp, request);
+    EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << name;
+    EXPECT_NE(r.message.find("not yet on trapezoid"), std::string::npos) << r.message;
+    const auto nlp = NlpOf(*ocp, 10, TerminalMode::kHard, "trapezoid");
+    const NlpSolution direct = SolveEulerNlpWithRiccatiIp(*nlp, RiccatiIpOptions());
+    EXPECT_EQ(direct.status, SolveStatus::kNotApplicable) << name;
+  }
+  request.grid = TimeGrid::Uniform(lqr->t0(), lqr->tf(), 10);
   request.transcription = "euler";
   request.transcription_options = {{"objective_scale", 2.0}};
   EXPECT_EQ(solver->Solve(*lqr, request).status, SolveStatus::kNotApplicable);
