@@ -1,5 +1,6 @@
-// riccati-ip against Ipopt + MUMPS on the same Euler NLP (hard terminal form, the same start,
-// tol 1e-8): whole solves through the registered solvers, at N = 100, 400, 1600 and 6400.
+// riccati-ip against Ipopt + MUMPS on the same NLP, Euler's or the trapezoid's (hard terminal
+// form, the same start, tol 1e-8): whole solves through the registered solvers, at N = 100, 400,
+// 1600 and 6400.
 // Results and command: solvers/README-riccati-ip.md.
 #include <benchmark/benchmark.h>
 
@@ -31,6 +32,7 @@ const std::vector<BenchProblem>& BenchProblems() {
 }
 
 const char* const kSolverNames[] = {"ipopt", "riccati-ip"};
+const char* const kSchemes[] = {"euler", "trapezoid"};
 
 void BM_RiccatiIpVsIpopt(benchmark::State& state) {
   const BenchProblem& p = BenchProblems()[state.range(0)];
@@ -44,7 +46,7 @@ void BM_RiccatiIpVsIpopt(benchmark::State& state) {
   SolveRequest request;
   request.grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), static_cast<int>(state.range(1)));
   request.terminal = TerminalMode::kHard;
-  request.transcription = "euler";
+  request.transcription = kSchemes[state.range(3)];
   const std::string solver_name = kSolverNames[state.range(2)];
   const auto solver = FindSolver(solver_name).make();
   SolveResult r;
@@ -63,11 +65,12 @@ void BM_RiccatiIpVsIpopt(benchmark::State& state) {
     state.counters["callback_cpu_s"] = stat("riccati_ip_callback_cpu_seconds");
     state.counters["regularizations"] = stat("riccati_ip_regularizations");
   }
-  state.SetLabel(std::string(p.name) + " " + solver_name + " " + r.solver_status);
+  state.SetLabel(std::string(p.name) + " " + solver_name + " " + request.transcription + " " +
+                 r.solver_status);
 }
 BENCHMARK(BM_RiccatiIpVsIpopt)
-    ->ArgNames({"problem", "N", "solver"})
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {100, 400, 1600, 6400}, {0, 1}})
+    ->ArgNames({"problem", "N", "solver", "scheme"})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {100, 400, 1600, 6400}, {0, 1}, {0, 1}})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -8,7 +8,9 @@ suites), every method family that may take it.
 library.json (the main job's): per problem, one group in the hard terminal form:
   - Ipopt on euler, trapezoid, hermite-simpson and lgr (degree 3) at N = min(the problem's
     default N (`ocpbench describe problem P`), 100), the families a user compares first;
-  - riccati-ip (Euler NLP, the stage-structured interior point) at the same N;
+  - riccati-ip (the stage-structured interior point) on the Euler and trapezoid NLPs at the
+    same N (not_applicable on the trapezoid where a problem has a free final time or boundary
+    constraints);
   - NLopt SLSQP on Hermite-Simpson at N = 20 where the problem has at most 6 states (SLSQP's
     dense quasi-Newton matrix grows with the square of the NLP's size);
   - hamiltonian-polish (on forward Euler, and on classical RK4: `scheme=rk4`) and
@@ -87,6 +89,7 @@ def with_time_limit(method, seconds):
 def family_methods(n, nx):
     methods = [{"solver": "ipopt", "transcription": s, "N": n} for s in SCHEMES]
     methods.append({"solver": "riccati-ip", "transcription": "euler", "N": n})
+    methods.append({"solver": "riccati-ip", "transcription": "trapezoid", "N": n})
     if nx <= 6:
         methods.append({"solver": "nlopt", "transcription": "hermite-simpson",
                         "algorithm": "LD_SLSQP", "N": 20})
@@ -152,7 +155,7 @@ def main():
             "description": (
                 "The reference library (docs/problems.md): every registered problem but the "
                 "paper's, in the hard terminal form, with Ipopt on the four collocation schemes "
-                "and riccati-ip at N = min(the problem's default N, 100), NLopt SLSQP "
+                "and riccati-ip (euler, trapezoid) at N = min(the problem's default N, 100), NLopt SLSQP "
                 "(Hermite-Simpson, N = 20) on problems of at most 6 states, hamiltonian-polish "
                 "(on Euler and on classical RK4: scheme=rk4) and indirect-newton (not_applicable where they do not take the problem), and "
                 "Ipopt on each peer's published NLP up to N = 200 for the 'NLP vs peer' column "
