@@ -663,6 +663,15 @@ SolveResult IndirectNewton::Solve(const Ocp& original, const SolveRequest& reque
   r.solver_stats["reformulated"] = target.reformulated ? 1.0 : 0.0;
   Mat X, P;
   SolveRequest newton_request = request;  // its grid: the start's (stretched to its T)
+  if (o.warm_start == Options::WarmStart::kHamiltonian && ocp.HasFreeInitialState()) {
+    // The descent starts every trajectory from x0: it would refuse, and the warm start fail.
+    return NotApplicableResult(
+        kName,
+        target.NotePrefix() +
+            "warm_start=hamiltonian: the Hamiltonian descent does not take the "
+            "free initial state of problem '" +
+            original.name() + "'; use warm_start=none or warm_start=ipopt");
+  }
   if (o.warm_start != Options::WarmStart::kNone) {
     const bool descent = o.warm_start == Options::WarmStart::kHamiltonian;
     const std::string warm_name = descent ? "hamiltonian" : "ipopt";

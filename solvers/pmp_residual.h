@@ -50,10 +50,11 @@ namespace ocpb {
 /// costate row p' = -H_p with p(tf) = d Phi / dp makes p(t0) = -int H_p dt the cost's derivative
 /// in the parameter (its adjoint), so the row is the parameter's stationarity (Bryson and Ho,
 /// Sec. 2.7; the same row for both schemes: Euler's p_0 is the discrete cost's exact gradient in
-/// x_0). Where the clip switches the row is semismooth like u*'s, with the active side's
-/// derivative at the switch. The initial rows are then dense over (x_0, p_0) (phi0's Hessian and
-/// p_0's identity) where a fixed initial state has the identity on x_0, and the discrete cost
-/// gains phi0(x_0) (Ocp::InitialCost).
+/// x_0). Where the clip switches the row is semismooth like u*'s: exactly at the switch
+/// (x_0,i - (p_0,i + d phi0/dx_0,i) equal to the bound) it takes the inactive side's derivative.
+/// The initial rows are then dense over (x_0, p_0) (phi0's Hessian and p_0's identity) where a
+/// fixed initial state has the identity on x_0, and the discrete cost gains phi0(x_0)
+/// (Ocp::InitialCost).
 ///
 /// Free final time: the request's grid fixes the nodes' relative positions s_k = (t_k - t0) /
 /// (tf - t0) on [0, 1] (tf the problem's nominal final time); the unknown T moves them, t_k =

@@ -268,7 +268,7 @@ class EulerStages {
     Mat T;     // 1 x 1: the final time (free_time), else 0 x 0
     Vec V;     // nu (copy) or empty
     std::vector<Vec> s, y, v;
-    Mat zl, zu;    // nu x N (0 where no bound)
+    Mat zl, zu;    // nu x nctl() (0 where no bound)
     Mat zxl, zxu;  // nx x (N+1): x_0's initial-state bounds' in column 0, then the state
                    // bounds' (0 where unbounded or fixed; empty without either)
     Mat zTl, zTu;  // 1 x 1: T's bounds' (free_time; 0 where unbounded)
@@ -316,6 +316,12 @@ class EulerStages {
   double Step(const Iterate& it, int k) const {
     return free_time ? (it.T(0, 0) - t0) / duration * h[k] : h[k];
   }
+  // The factor r = (T - t0) / duration of a free final time (1 otherwise).
+  double Rate(const Iterate& it) const { return free_time ? (it.T(0, 0) - t0) / duration : 1.0; }
+  // Node k's running-cost weight at `it`: Euler's step h_k, the trapezoid's r wt_k.
+  double NodeWeight(const Iterate& it, int k) const {
+    return trapezoid ? Rate(it) * wt[k] : Step(it, k);
+  }
 
   // u at stage k, or v at stage N (for evaluations at t_N); the trapezoid's u_k at every node.
   Eigen::Ref<const Vec> StageControl(const Iterate& it, int k) const {
@@ -357,7 +363,9 @@ class EulerStages {
 std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::string* why_not) {
   const auto* nlp = dynamic_cast<const CollocationNlp*>(&tnlp);
   if (nlp == nullptr) {
-    *why_not = "riccati-ip takes the Euler transcription's NLP only (not a collocation NLP)";
+    *why_not =
+        "riccati-ip takes the Euler and trapezoid transcriptions' NLPs only (not a collocation "
+        "NLP)";
     return nullptr;
   }
   auto st = std::make_unique<EulerStages>(*nlp);
@@ -515,10 +523,10 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
   st->original = {
       st->lb, st->ub, st->xlb, st->xub, st->x0lb, st->x0ub, st->Tlb, st->Tub, st->sblo, st->sbhi};
   st->copy = st->nc > 0 && !st->trapezoid;
-  if (st->trapezoid && (st->free_time || st->nb > 0)) {
-    *why_not = std::string("riccati-ip on the trapezoid does not take ") +
-               (st->free_time ? "a free final time" : "boundary constraints") +
-               " yet (it does on euler)";
+  if (st->trapezoid && st->nb > 0) {
+    *why_not =
+        "riccati-ip on the trapezoid does not take boundary constraints yet (it does on "
+        "euler)";
     return nullptr;
   }
   return st;
@@ -577,12 +585,13 @@ void EulerStages::EvalValues(const Iterate& it, Values* out) const {
   double J = 0.0;
   if (trapezoid) {  // node by node: f_k enters defects k - 1 and k
     Vec& f_prev = lam_scratch_;
+    const double r = Rate(it);
     for (int k = 0; k <= N; ++k) {
       const auto x = it.X.col(k);
       const auto u = it.U.col(k);
       ocp.Dynamics(t[k], x, u, f);
-      J += wt[k] * ocp.RunningCost(t[k], x, u);
-      if (k > 0) v.defects.col(k - 1) = x - it.X.col(k - 1) - 0.5 * h[k - 1] * (f_prev + f);
+      J += r * wt[k] * ocp.RunningCost(t[k], x, u);
+      if (k > 0) v.defects.col(k - 1) = x - it.X.col(k - 1) - 0.5 * r * h[k - 1] * (f_prev + f);
       f_prev = f;
       v.c[k].resize(ni(k));
       NodeInequalities(k, it, v.c[k], nullptr, nullptr);
@@ -666,7 +675,7 @@ bool EulerStages::EvalDerivatives(const Iterate& it,
       }
       ok = ok && RipAllFinite(s.f) && RipAllFinite(s.fx) && RipAllFinite(s.fu) && RipFinite(s.L) &&
            RipAllFinite(s.Lx) && RipAllFinite(s.Lu);
-      s.gT = free_time ? h[k] / duration * s.L : 0.0;
+      s.gT = free_time ? (trapezoid ? wt[k] : h[k]) / duration * s.L : 0.0;
     } else if (copy) {
       ocp.PathConstraintsJacobian(t[k], x, u, s.c, s.cx, s.cu);
       s.c.array() -= relax_path;
@@ -717,11 +726,18 @@ bool EulerStages::EvalHessians(const Iterate& it,
     const auto x = it.X.col(k);
     const auto u = StageControl(it, k);
     const auto mu_path = it.y[k].head(nc);
-    if (trapezoid) {  // f_k enters defects k - 1 and k with weights h/2
-      lam_f.setZero(nx);
+    if (trapezoid) {      // f_k enters defects k - 1 and k with weights r h/2
+      lam_f.setZero(nx);  // -(h_k/2 lam_k + h_{k-1}/2 lam_{k-1}), f_k's multiplier (unscaled)
       if (k < N) lam_f -= 0.5 * h[k] * it.lam.col(k);
       if (k > 0) lam_f -= 0.5 * h[k - 1] * it.lam.col(k - 1);
-      ocp.PointHessian(t[k], x, u, sigma * wt[k], lam_f, mu_path, s.H);
+      if (free_time) {  // (1 / duration) (sigma wt_k L_k + lam_f^T f_k) differentiated in (x, u)
+        s.HT.resize(nx + nu);
+        s.HT.head(nx).noalias() = (sigma * wt[k] * s.Lx + s.fx.transpose() * lam_f) / duration;
+        s.HT.tail(nu).noalias() = (sigma * wt[k] * s.Lu + s.fu.transpose() * lam_f) / duration;
+      }
+      const double r = Rate(it);
+      lam_f *= r;
+      ocp.PointHessian(t[k], x, u, sigma * r * wt[k], lam_f, mu_path, s.H);
       for (int b = 0; b < nball; ++b) {
         const auto& B = balls[b];
         s.H.diagonal().segment(nx + B.offset, B.size).array() += 2.0 * it.y[k][nc + b];
@@ -783,16 +799,18 @@ void EulerStages::LagrangianGradient(const Iterate& it,
   *rT = 0.0;
   if (trapezoid) {
     rv->resize(0);
-    Vec& m = lam_scratch_;  // h_k/2 lam_k + h_{k-1}/2 lam_{k-1}: f_k's multiplier
+    Vec& m = lam_scratch_;  // h_k/2 lam_k + h_{k-1}/2 lam_{k-1}: f_k's multiplier (unscaled)
+    const double r = Rate(it);
     for (int k = 0; k <= N; ++k) {
       const StageEval& s = st[k];
       m.setZero(nx);
       if (k < N) m += 0.5 * h[k] * it.lam.col(k);
       if (k > 0) m += 0.5 * h[k - 1] * it.lam.col(k - 1);
+      if (free_time) *rT += sigma * s.gT - s.f.dot(m) / duration;
       auto gx = rx->col(k);
       auto gu = ru->col(k);
-      gx.noalias() = sigma * wt[k] * s.Lx - s.fx.transpose() * m;
-      gu.noalias() = sigma * wt[k] * s.Lu - s.fu.transpose() * m;
+      gx.noalias() = r * (sigma * wt[k] * s.Lx - s.fx.transpose() * m);
+      gu.noalias() = r * (sigma * wt[k] * s.Lu - s.fu.transpose() * m);
       if (k < N) gx -= it.lam.col(k);
       if (k > 0) gx += it.lam.col(k - 1);
       if (ni(k) > 0) {
@@ -956,7 +974,8 @@ class RiccatiInteriorPoint {
   NlpSolution Run(const Vec& z0);
 
  private:
-  // The simple bounds, one Box per kind of bounded variable: the controls u_k (nodes 0..N-1, at
+  // The simple bounds, one Box per kind of bounded variable: the controls u_k (nodes 0..N-1, the
+  // trapezoid's 0..N, at
   // offset nx of stage k's (x_k, u_k)), x_0's free components (node 0: the initial-state
   // bounds) and the states x_k (nodes 1..N, offset 0; x_N's block is the terminal one), each
   // entry with a lower and an upper multiplier in z (zl, zu or zxl,
@@ -1022,7 +1041,8 @@ class RiccatiInteriorPoint {
   }
   // Adds node k's bound terms (Sigma = z / distance to H's diagonal, the barrier gradient
   // -+ mu / distance, and kappa_d mu for one-sided bounds to g) at their offsets in the node's
-  // block: stage k's (x_k, u_k) for k < N, x_N for k = N.
+  // block: stage k's (x_k, u_k) for k < N, x_N for k = N (the trapezoid's node blocks (x_k, u_k)
+  // for every k).
   void AddBoundTerms(int k, double mu, Mat* H, Vec* g) const;
   double Theta(const Values& v, const std::vector<Vec>& s) const;
   double BarrierObjective(const Values& v, const Iterate& it) const;
@@ -1100,12 +1120,18 @@ class RiccatiInteriorPoint {
   // and one negative eigenvalue with its copy row). node_H_, node_g_ hold the nodes' (x, u)
   // blocks (condensed inequalities and bound terms included); `defects` the right-hand side's
   // defects (nullptr: zero).
-  void TrapezoidQp(double mu, const Residuals& r, bool feasibility, bool relaxed);
-  void TrapezoidStagesFromNodes(const Mat* defects);
-  // The step's dX, dU (nodes 0..N) and defect multipliers from sol_ (the trapezoid's QP).
-  void TrapezoidPrimalDual(Mat* dX, Mat* dU, Mat* lam) const;
+  // False with the reason in *failure when an M_k is singular (f_x with an eigenvalue near
+  // 2 / h: the step cannot be computed this way; Ipopt's factorization would not need M_k).
+  bool TrapezoidQp(
+      double mu, const Residuals& r, bool feasibility, bool relaxed, std::string* failure);
+  // With a free final time xi also carries T (xi = (x, u, T), T_{k+1} = T_k, the defect's T
+  // column h / (2 duration) (f_k + f_{k+1})), T being stage 0's control with the diagonal hTT
+  // and gradient gT there (its barrier terms, or the least-squares problem's identity).
+  bool TrapezoidStagesFromNodes(const Mat* defects, double hTT, double gT, std::string* failure);
+  // The step's dX, dU (nodes 0..N), dT and defect multipliers from sol_ (the trapezoid's QP).
+  void TrapezoidPrimalDual(Mat* dX, Mat* dU, Mat* dT, Mat* lam) const;
   // LeastSquaresMultipliers' QP for the trapezoid (node blocks I + J^T J).
-  void TrapezoidLeastSquaresQp();
+  bool TrapezoidLeastSquaresQp();  // false where an M_k is singular
   // u_k's step from a stage's solved "controls" (their last nuf entries are the free control
   // components): scattered into du, 0 for the fixed components.
   void ScatterControls(const Vec& stage_controls, Eigen::Ref<Vec> du) const;
@@ -1334,7 +1360,10 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   const int N = S_.N, nx = S_.nx, nu = S_.nu;
   const double cpu0 = CpuSeconds();
   if (S_.trapezoid) {
-    TrapezoidQp(mu, r, feasibility, relaxed);
+    if (!TrapezoidQp(mu, r, feasibility, relaxed, failure)) {
+      kkt_cpu_ += CpuSeconds() - cpu0;
+      return false;
+    }
   } else {
     qp_.stages.resize(N);
     for (int k = 0; k < N; ++k) {
@@ -1456,7 +1485,7 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   d->dU.resize(nu, S_.nctl());
   d->lam.resize(nx, N);
   if (S_.trapezoid) {
-    TrapezoidPrimalDual(&d->dX, &d->dU, &d->lam);
+    TrapezoidPrimalDual(&d->dX, &d->dU, &d->dT, &d->lam);
   } else {
     for (int i = 0; i < S_.nw(); ++i) d->dX(S_.free0[i], 0) = sol_.u[0][ne + i];
     if (S_.free_time) d->dT(0, 0) = sol_.u[0][ne + S_.nw()];
@@ -1928,25 +1957,26 @@ bool RiccatiInteriorPoint::StageBlocks(int k, const Mat& H, const Vec& g, Riccat
   return last_copy;
 }
 
-void RiccatiInteriorPoint::TrapezoidQp(double mu,
-                                       const Residuals& r,
-                                       bool feasibility,
-                                       bool relaxed) {
-  const int N = S_.N, nx = S_.nx, nu = S_.nu;
+bool RiccatiInteriorPoint::TrapezoidQp(
+    double mu, const Residuals& r, bool feasibility, bool relaxed, std::string* failure) {
+  const int N = S_.N, nx = S_.nx, nu = S_.nu, nT = S_.nT();
+  const double rate = S_.Rate(it_);
   node_H_.resize(N + 1);
   node_g_.resize(N + 1);
   for (int k = 0; k <= N; ++k) {
+    // Node k's (x, u[, T]) block: T's row is the Lagrangian's d/dT in (x, u) (L and the
+    // dynamics are linear in T: no T-T entry), its gradient entry sigma dJ_k/dT.
     Mat& H = node_H_[k];
     Vec& g = node_g_[k];
     const StageEval& e = st_[k];
+    H.setZero(nx + nu + nT, nx + nu + nT);
+    g.setZero(nx + nu + nT);
     if (feasibility) {
-      H.setIdentity(nx + nu, nx + nu);
-      g.setZero(nx + nu);
+      H.topLeftCorner(nx + nu, nx + nu).setIdentity();
     } else {
-      H = e.H;
-      g.resize(nx + nu);
-      g.head(nx) = sigma_ * S_.wt[k] * e.Lx;
-      g.tail(nu) = sigma_ * S_.wt[k] * e.Lu;
+      H.topLeftCorner(nx + nu, nx + nu) = e.H;
+      g.head(nx) = sigma_ * rate * S_.wt[k] * e.Lx;
+      g.segment(nx, nu) = sigma_ * rate * S_.wt[k] * e.Lu;
       if (k == 0 && S_.initial_cost) {
         H.topLeftCorner(nx, nx) += te_.H0;
         g.head(nx) += sigma_ * te_.grad0;
@@ -1955,37 +1985,57 @@ void RiccatiInteriorPoint::TrapezoidQp(double mu,
         H.topLeftCorner(nx, nx) += te_.H;
         g.head(nx) += sigma_ * te_.grad;
       }
+      if (nT > 0) {
+        H.row(nx + nu).head(nx + nu) = e.HT.transpose();
+        H.col(nx + nu).head(nx + nu) = e.HT;
+        g[nx + nu] = sigma_ * e.gT;
+      }
     }
     if (it_.s[k].size() > 0) CondenseInequalities(k, mu, r.ineq[k], nx + nu, &H, &g);
     AddBoundTerms(k, mu, &H, &g);
   }
-  TrapezoidStagesFromNodes(&r.defects);
+  // T is a variable once, of stage 0: its barrier terms (and the restoration's identity) there.
+  double hTT = feasibility ? 1.0 : 0.0, gT = 0.0;
+  TimeBoundTerms(mu, &hTT, &gT);
+  if (!TrapezoidStagesFromNodes(&r.defects, hTT, gT, failure)) return false;
   for (int j = 1; relaxed && j <= N; ++j) RelaxDefects(&qp_.stages[j]);
   qp_.c = r.psi;
   SlackTerms(mu, feasibility ? 1.0 : 0.0, true);
+  return true;
 }
 
-void RiccatiInteriorPoint::TrapezoidStagesFromNodes(const Mat* defects) {
-  const int N = S_.N, nx = S_.nx, nf = S_.nuf(), nw = S_.nw(), nxi = nx + nf;
+bool RiccatiInteriorPoint::TrapezoidStagesFromNodes(const Mat* defects,
+                                                    double hTT,
+                                                    double gT,
+                                                    std::string* failure) {
+  const int N = S_.N, nx = S_.nx, nu = S_.nu, nf = S_.nuf(), nw = S_.nw(), nT = S_.nT();
+  const int nxi = nx + nf + nT;  // xi = (x, free u, T)
   trap_sel_.resize(nxi);
   for (int i = 0; i < nx; ++i) trap_sel_[i] = i;
   for (int j = 0; j < nf; ++j) trap_sel_[nx + j] = nx + S_.ufree[j];
+  if (nT > 0) trap_sel_[nx + nf] = nx + nu;
   qp_.stages.resize(N + 1);
   trap_m_.resize(N);
-  RiccatiStage& q0 = qp_.stages[0];  // (w, u_0) -> xi_1 = (x_0, u_0)
-  q0.Q.setZero(nw + nf, nw + nf);
-  q0.q.setZero(nw + nf);
+  RiccatiStage& q0 = qp_.stages[0];  // (w, u_0, T) -> xi_1 = (x_0, u_0, T)
+  q0.Q.setZero(nw + nf + nT, nw + nf + nT);
+  q0.q.setZero(nw + nf + nT);
   q0.A.setZero(nxi, 0);
-  q0.B.setZero(nxi, nw + nf);
+  q0.B.setZero(nxi, nw + nf + nT);
   for (int i = 0; i < nw; ++i) q0.B(S_.free0[i], i) = 1.0;
   for (int j = 0; j < nf; ++j) q0.B(nx + j, nw + j) = 1.0;
+  if (nT > 0) {
+    q0.B(nx + nf, nw + nf) = 1.0;
+    q0.Q(nw + nf, nw + nf) = hTT;
+    q0.q[nw + nf] = gT;
+  }
   q0.b.setZero(nxi);
-  Mat M(nx, nx), rhs(nx, nxi + nf);
+  const double rate = S_.Rate(it_);
+  Mat M(nx, nx), rhs(nx, nx + 2 * nf + nT);
   for (int k = 0; k < N; ++k) {
     RiccatiStage& q = qp_.stages[k + 1];
     const StageEval& a = st_[k];
     const StageEval& c = st_[k + 1];
-    const double hh = 0.5 * S_.h[k];
+    const double hh = 0.5 * rate * S_.h[k];
     q.Q.setZero(nxi + nf, nxi + nf);
     q.Q.topLeftCorner(nxi, nxi) = node_H_[k](trap_sel_, trap_sel_);
     q.q.setZero(nxi + nf);
@@ -1993,19 +2043,29 @@ void RiccatiInteriorPoint::TrapezoidStagesFromNodes(const Mat* defects) {
     M = -hh * c.fx;
     M.diagonal().array() += 1.0;
     trap_m_[k].compute(M);
-    // [I + h/2 f_x,k, h/2 f_u,k (free), h/2 f_u,k+1 (free)], then M_k^-1 times it.
+    if (!(trap_m_[k].rcond() > 1e-12)) {  // (NaN too)
+      if (failure != nullptr) {
+        *failure = "I - h/2 f_x is singular at node " + std::to_string(k + 1) +
+                   " (the trapezoid's defect cannot be solved for x_{k+1} there)";
+      }
+      return false;
+    }
+    // [I + h/2 f_x,k, h/2 f_u,k, (dT: h / (2 duration) (f_k + f_k+1)), h/2 f_u,k+1] (free u),
+    // then M_k^-1 times it.
     rhs.leftCols(nx) = hh * a.fx;
     rhs.leftCols(nx).diagonal().array() += 1.0;
     for (int j = 0; j < nf; ++j) {
       rhs.col(nx + j) = hh * a.fu.col(S_.ufree[j]);
       rhs.col(nxi + j) = hh * c.fu.col(S_.ufree[j]);
     }
+    if (nT > 0) rhs.col(nx + nf) = 0.5 * S_.h[k] / S_.duration * (a.f + c.f);
     rhs = trap_m_[k].solve(rhs).eval();
     q.A.setZero(nxi, nxi);
     q.A.topRows(nx) = rhs.leftCols(nxi);
+    if (nT > 0) q.A(nx + nf, nx + nf) = 1.0;  // T_{k+1} = T_k
     q.B.setZero(nxi, nf);
     q.B.topRows(nx) = rhs.rightCols(nf);
-    q.B.bottomRows(nf).setIdentity();
+    q.B.block(nx, 0, nf, nf).setIdentity();
     q.b.setZero(nxi);
     if (defects != nullptr) q.b.head(nx) = -trap_m_[k].solve(defects->col(k));
   }
@@ -2015,44 +2075,53 @@ void RiccatiInteriorPoint::TrapezoidStagesFromNodes(const Mat* defects) {
   if (S_.npsi > 0) qp_.C.topLeftCorner(S_.npsi, nx) = te_.psix;
   qp_.x0.resize(0);
   qp_.joint_first_stage = false;
+  return true;
 }
 
-void RiccatiInteriorPoint::TrapezoidPrimalDual(Mat* dX, Mat* dU, Mat* lam) const {
+void RiccatiInteriorPoint::TrapezoidPrimalDual(Mat* dX, Mat* dU, Mat* dT, Mat* lam) const {
   const int N = S_.N, nx = S_.nx;
   for (int k = 0; k <= N; ++k) {
     dX->col(k) = sol_.x[k + 1].head(nx);
-    ScatterControls(sol_.x[k + 1], dU->col(k));
+    ScatterControls(sol_.x[k + 1].head(nx + S_.nuf()), dU->col(k));
   }
+  dT->resize(S_.nT(), S_.nT());
+  if (S_.free_time) (*dT)(0, 0) = sol_.x[1][nx + S_.nuf()];
   for (int k = 0; k < N; ++k) {
     lam->col(k) = trap_m_[k].transpose().solve(sol_.lambda[k + 1].head(nx));
   }
 }
 
-void RiccatiInteriorPoint::TrapezoidLeastSquaresQp() {
-  const int N = S_.N, nx = S_.nx, nu = S_.nu;
+bool RiccatiInteriorPoint::TrapezoidLeastSquaresQp() {
+  const int N = S_.N, nx = S_.nx, nu = S_.nu, nT = S_.nT();
+  const double rate = S_.Rate(it_);
   node_H_.resize(N + 1);
   node_g_.resize(N + 1);
   for (int k = 0; k <= N; ++k) {
     const StageEval& e = st_[k];
     Mat& H = node_H_[k];
     Vec& g = node_g_[k];
-    H.setIdentity(nx + nu, nx + nu);
-    g.resize(nx + nu);
-    g.head(nx) = sigma_ * S_.wt[k] * e.Lx;
-    g.tail(nu) = sigma_ * S_.wt[k] * e.Lu - it_.zl.col(k) + it_.zu.col(k);
+    H.setZero(nx + nu + nT, nx + nu + nT);
+    H.topLeftCorner(nx + nu, nx + nu).setIdentity();
+    g.setZero(nx + nu + nT);
+    g.head(nx) = sigma_ * rate * S_.wt[k] * e.Lx;
+    g.segment(nx, nu) = sigma_ * rate * S_.wt[k] * e.Lu - it_.zl.col(k) + it_.zu.col(k);
     if (S_.has_state_multipliers()) g.head(nx) += it_.zxu.col(k) - it_.zxl.col(k);
     if (k == 0 && S_.initial_cost) g.head(nx) += sigma_ * te_.grad0;
     if (k == N) g.head(nx) += sigma_ * te_.grad;
+    if (nT > 0) g[nx + nu] = sigma_ * e.gT;
     if (S_.ni(k) > 0) {
       Mat J(S_.ni(k), nx + nu);
       J << e.cx, e.cu;
-      H.noalias() += J.transpose() * J;
-      g.noalias() += J.transpose() * it_.v[k];
+      H.topLeftCorner(nx + nu, nx + nu).noalias() += J.transpose() * J;
+      g.head(nx + nu).noalias() += J.transpose() * it_.v[k];
     }
   }
-  TrapezoidStagesFromNodes(nullptr);
+  // The identity on T once (the NLP's one variable), at stage 0, with its bound multipliers.
+  const double gT = S_.free_time ? it_.zTu(0, 0) - it_.zTl(0, 0) : 0.0;
+  if (!TrapezoidStagesFromNodes(nullptr, 1.0, gT, nullptr)) return false;
   qp_.c.setZero(S_.nterm());
   SlackTerms(mu_, 1.0, false);
+  return true;
 }
 
 void RiccatiInteriorPoint::ScatterControls(const Vec& stage_controls, Eigen::Ref<Vec> du) const {
@@ -2188,12 +2257,12 @@ void RiccatiInteriorPoint::LeastSquaresMultipliers() {
   const int N = S_.N, nx = S_.nx, nu = S_.nu;
   const double cpu0 = CpuSeconds();
   if (S_.trapezoid) {
-    TrapezoidLeastSquaresQp();
     ++factorizations_;
-    if (riccati_.Solve(qp_, 0.0, 0.0, &sol_) == RiccatiOutcome::kSolved) {
+    if (TrapezoidLeastSquaresQp() &&
+        riccati_.Solve(qp_, 0.0, 0.0, &sol_) == RiccatiOutcome::kSolved) {
       Iterate trial = it_;
-      Mat dX(nx, N + 1), dU(nu, N + 1);
-      TrapezoidPrimalDual(&dX, &dU, &trial.lam);
+      Mat dX(nx, N + 1), dU(nu, N + 1), dT;
+      TrapezoidPrimalDual(&dX, &dU, &dT, &trial.lam);
       double largest = trial.lam.lpNorm<Eigen::Infinity>();
       trial.nu = sol_.nu;
       if (S_.nterm() > 0) largest = std::max(largest, trial.nu.lpNorm<Eigen::Infinity>());
@@ -2382,8 +2451,11 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
   if (o_.nlp_scaling_method == "gradient-based") {
     double gmax = 0.0;
     for (int k = 0; k < S_.nctl(); ++k) {
-      const double hk = S_.trapezoid ? S_.wt[k] : S_.Step(it_, k);
-      if (k > 0) gmax = std::max(gmax, hk * st_[k].Lx.lpNorm<Eigen::Infinity>());
+      const double hk = S_.NodeWeight(it_, k);
+      if (k > 0 && k < N) gmax = std::max(gmax, hk * st_[k].Lx.lpNorm<Eigen::Infinity>());
+      if (k == N) {  // the trapezoid's x_N: its running and terminal parts are one entry
+        gmax = std::max(gmax, (hk * st_[N].Lx + te_.grad).lpNorm<Eigen::Infinity>());
+      }
       for (int i = 0; k == 0 && i < S_.nw(); ++i) {
         const int j = S_.free0[i];
         const double g0 = hk * st_[0].Lx[j] + (S_.initial_cost ? te_.grad0[j] : 0.0);
@@ -2391,12 +2463,12 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
       }
       for (int j : S_.ufree) gmax = std::max(gmax, hk * std::abs(st_[k].Lu[j]));
     }
-    if (S_.free_time) {  // dJ/dT = sum_k h_k L_k / duration
+    if (S_.free_time) {  // dJ/dT = sum_k h_k L_k / duration (trapezoid: wt_k)
       double gT = 0.0;
-      for (int k = 0; k < N; ++k) gT += st_[k].gT;
+      for (int k = 0; k < S_.nctl(); ++k) gT += st_[k].gT;
       gmax = std::max(gmax, std::abs(gT));
     }
-    gmax = std::max(gmax, te_.grad.lpNorm<Eigen::Infinity>());
+    if (!S_.trapezoid) gmax = std::max(gmax, te_.grad.lpNorm<Eigen::Infinity>());
     if (gmax > o_.nlp_scaling_max_gradient) sigma_ = o_.nlp_scaling_max_gradient / gmax;
   }
   LeastSquaresMultipliers();
@@ -2484,7 +2556,7 @@ NlpSolution RiccatiInteriorPoint::Run(const Vec& z0) {
     double gphi = 0.0;
     for (int k = 0; k < S_.nctl(); ++k) {
       const StageEval& e = st_[k];
-      const double weight = S_.trapezoid ? S_.wt[k] : S_.Step(it_, k);
+      const double weight = S_.NodeWeight(it_, k);
       gphi += sigma_ * weight * (e.Lx.dot(d.dX.col(k)) + e.Lu.dot(d.dU.col(k)));
       if (S_.free_time) gphi += sigma_ * e.gT * d.dT(0, 0);
     }
@@ -2752,11 +2824,11 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
   ProblemFeatures takes;      // x(t0)'s free components and T are stage-0 variables (T carried as
   takes.state_bounds = true;  // an augmented state); states have bounds
   takes.free_initial_state = true;
-  takes.free_final_time = euler;
+  takes.free_final_time = true;
   takes.boundary_constraints = euler;  // equalities and inequalities (slacks)
   if (std::string why = UnsupportedFeature(ocp, "riccati-ip", takes); !why.empty()) {
-    if (!euler && (ocp.free_final_time() || ocp.num_boundary() > 0)) {
-      why += " (riccati-ip takes it on euler, not yet on trapezoid)";
+    if (!euler && ocp.num_boundary() > 0) {
+      why += " (riccati-ip takes them on euler, not yet on trapezoid)";
     }
     return why;
   }

@@ -78,16 +78,16 @@ struct RiccatiIpOptions {
 
 /// Why riccati-ip cannot solve `request` on `ocp` (empty when it can): a transcription other
 /// than "euler" and "trapezoid" (since 2026-12-07), a transcription scaling other than the
-/// identity, or mesh refinement; on the trapezoid also a free final time or boundary
-/// constraints (not yet). A free or partly free initial state, static parameters, state bounds
-/// and fixed control components (lower == upper: no variables) are in its class on both, a free
-/// final time and boundary equalities and inequalities (since 2026-12-07) on euler. An empty or
+/// identity, or mesh refinement; on the trapezoid also boundary constraints (not yet). A free
+/// or partly free initial state, static parameters, state bounds, a free final time and fixed
+/// control components (lower == upper: no variables) are in its class on both, boundary
+/// equalities and inequalities (since 2026-12-07) on euler. An empty or
 /// unknown transcription name is not a reason: Solve throws std::invalid_argument for it, as
 /// every NLP solver does.
 std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request);
 
 /// Runs the interior-point method on a TranscribedNlp made by the Euler or the trapezoid
-/// transcription (with the identity scaling; a free final time, on Euler, is its last variable),
+/// transcription (with the identity scaling; a free final time is its last variable),
 /// from its StartingPoint (the name is kept from when Euler was the only scheme). The NLP's own
 /// callbacks are not used for the iterations: the stage structure is read off its layout and every
 /// value and derivative comes from its Ocp, one pass per node. The solution is in the NLP's

@@ -8,7 +8,8 @@ std::string FreeFinalTimeReason(const Ocp& ocp, const std::string& solver) {
   return "problem '" + ocp.name() + "' has a free final time, which " + solver +
          " does not take (it keeps the horizon fixed): indirect-newton (H(tf) = 0) and the "
          "NLP solvers on a collocation transcription (T a variable) solve it, and so does "
-         "riccati-ip on euler; the time-scaled problems (brachistochrone, zermelo, steering, "
+         "riccati-ip on euler and trapezoid; the time-scaled problems (brachistochrone, zermelo, "
+         "steering, "
          "goddard, robot-arm) "
          "pose free time on a fixed horizon for every method";
 }
@@ -22,8 +23,7 @@ constexpr const char* kCollocationSolvers =
 // 2026-12-07 boundary inequalities too).
 std::string WhoSolvesIt() {
   return std::string(kCollocationSolvers) +
-         ", and so does riccati-ip on euler (on trapezoid too, but for a free final time and "
-         "boundary constraints)";
+         ", and so does riccati-ip on euler (on trapezoid too, but for boundary constraints)";
 }
 
 }  // namespace

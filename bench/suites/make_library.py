@@ -9,8 +9,7 @@ library.json (the main job's): per problem, one group in the hard terminal form:
   - Ipopt on euler, trapezoid, hermite-simpson and lgr (degree 3) at N = min(the problem's
     default N (`ocpbench describe problem P`), 100), the families a user compares first;
   - riccati-ip (the stage-structured interior point) on the Euler and trapezoid NLPs at the
-    same N (not_applicable on the trapezoid where a problem has a free final time or boundary
-    constraints);
+    same N (not_applicable on the trapezoid where a problem has boundary constraints);
   - NLopt SLSQP on Hermite-Simpson at N = 20 where the problem has at most 6 states (SLSQP's
     dense quasi-Newton matrix grows with the square of the NLP's size);
   - hamiltonian-polish (on forward Euler, and on classical RK4: `scheme=rk4`) and

@@ -210,6 +210,34 @@ void ExpectMinimizerIsExact(const Ocp& ocp,
   }
 }
 
+// free-start's and double-integrator-time-parameter's minimizers exist only where H is convex in
+// u (p2 > 0; T > 0): there u* beats every perturbation, elsewhere they answer NaN.
+TEST(ReferenceProblems, MinimizersWhereHIsConvexAreExactAndNaNElsewhere) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const std::string name : {"free-start", "double-integrator-time-parameter"}) {
+    const auto ocp = MakeProblem(name, {}, 0);
+    const int convex_index = name == "free-start" ? 1 : 2;  // p2, or the state T
+    for (int trial = 0; trial < 20; ++trial) {
+      Vec x(ocp->nx()), p(ocp->nx()), u(1);
+      for (int i = 0; i < ocp->nx(); ++i) {
+        x[i] = 2.0 * unit(rng);
+        p[i] = 3.0 * unit(rng);
+      }
+      Vec& v = name == "free-start" ? p : x;
+      v[convex_index] = 0.1 + std::abs(v[convex_index]);
+      ocp->MinimizeHamiltonian(0.5, x, p, u);
+      const double h_star = ocp->Hamiltonian(0.5, x, u, p);
+      for (const double d : {-10.0, -1.0, -1e-3, 1e-3, 1.0, 10.0}) {
+        EXPECT_LE(h_star, ocp->Hamiltonian(0.5, x, u + Vec::Constant(1, d), p)) << name;
+      }
+      v[convex_index] = -v[convex_index];
+      ocp->MinimizeHamiltonian(0.5, x, p, u);
+      EXPECT_TRUE(std::isnan(u[0])) << name;
+    }
+  }
+}
+
 TEST(ReferenceProblems, HamiltonianMinimizersAreExact) {
   std::mt19937_64 rng(3);
   for (const std::string& name : kNames) {

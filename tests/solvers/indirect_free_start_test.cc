@@ -40,7 +40,7 @@ SolveResult SolveIndirect(const Ocp& ocp,
 // ---- the residual ------------------------------------------------------------------------------
 
 // A point of free-start on 5 intervals with p2 > 0 (u* = -p1/p2 defined) where
-// x1(0) - (p1(0) + w x1(0)) = 0.3 - (-1 + 0.3) = 1: inside [-10, 10], beyond hi = 0.5.
+// x1(0) - (p1(0) + w x1(0)) = 0.3 - (-1 + 0.3) = 1: inside [lo, hi] = [-1, 10], beyond hi = 0.5.
 Vec FreeStartPoint(const PmpResidual& pmp) {
   Mat X(2, 6), P(2, 6);
   for (int k = 0; k < 6; ++k) {
