@@ -523,12 +523,6 @@ std::unique_ptr<EulerStages> EulerStages::From(const TranscribedNlp& tnlp, std::
   st->original = {
       st->lb, st->ub, st->xlb, st->xub, st->x0lb, st->x0ub, st->Tlb, st->Tub, st->sblo, st->sbhi};
   st->copy = st->nc > 0 && !st->trapezoid;
-  if (st->trapezoid && st->nb > 0) {
-    *why_not =
-        "riccati-ip on the trapezoid does not take boundary constraints yet (it does on "
-        "euler)";
-    return nullptr;
-  }
   return st;
 }
 
@@ -822,6 +816,10 @@ void EulerStages::LagrangianGradient(const Iterate& it,
     auto gN = rx->col(N);
     gN += sigma * te.grad;
     if (hard && npsi > 0) gN.noalias() += te.psix.transpose() * it.nu.head(npsi);
+    if (nb > 0) {
+      rx->col(0).noalias() += te.bx0.transpose() * it.nu.tail(nb);
+      gN.noalias() += te.bxN.transpose() * it.nu.tail(nb);
+    }
     return;
   }
   for (int k = 0; k < N; ++k) {
@@ -1124,10 +1122,14 @@ class RiccatiInteriorPoint {
   // 2 / h: the step cannot be computed this way; Ipopt's factorization would not need M_k).
   bool TrapezoidQp(
       double mu, const Residuals& r, bool feasibility, bool relaxed, std::string* failure);
+  // With boundary constraints xi also carries x_0's free components w (xi = (x, u, T, w),
+  // w_{k+1} = w_k, b's x_0 part on w in the terminal rows and its Hessian on the terminal
+  // block, unless !boundary_hessian: the restoration's and least-squares identity).
   // With a free final time xi also carries T (xi = (x, u, T), T_{k+1} = T_k, the defect's T
   // column h / (2 duration) (f_k + f_{k+1})), T being stage 0's control with the diagonal hTT
   // and gradient gT there (its barrier terms, or the least-squares problem's identity).
-  bool TrapezoidStagesFromNodes(const Mat* defects, double hTT, double gT, std::string* failure);
+  bool TrapezoidStagesFromNodes(
+      const Mat* defects, double hTT, double gT, bool boundary_hessian, std::string* failure);
   // The step's dX, dU (nodes 0..N), dT and defect multipliers from sol_ (the trapezoid's QP).
   void TrapezoidPrimalDual(Mat* dX, Mat* dU, Mat* dT, Mat* lam) const;
   // LeastSquaresMultipliers' QP for the trapezoid (node blocks I + J^T J).
@@ -1144,8 +1146,9 @@ class RiccatiInteriorPoint {
   // The terminal rows' Jacobian in the terminal block (x_N, T, w, v): psi_x on x_N; b's on x_N
   // and on the carried w.
   void TerminalRows(Mat* C) const;
-  // Adds the Hessian of nu_b^T b(x_0, x_N) to the terminal block, x_0's part on the carried w.
-  void AddBoundaryHessian(Mat* QN) const;
+  // Adds the Hessian of nu_b^T b(x_0, x_N) to the terminal block, x_0's part on the carried w
+  // (which starts at w0: Euler's (x_N, T, w, v), the trapezoid's (x_N, u_N, T, w)).
+  void AddBoundaryHessian(Mat* QN, int w0) const;
   // Adds T's barrier terms (its Sigma and barrier gradient, kappa_d for a one-sided bound) to
   // hTT and gT, as AddBoundTerms does for the other variables.
   void TimeBoundTerms(double mu, double* hTT, double* gT) const;
@@ -1421,7 +1424,7 @@ bool RiccatiInteriorPoint::BuildAndSolve(
       qp_.QN.swap(Ha_);
       qp_.qN.swap(ga_);
     }
-    if (!feasibility) AddBoundaryHessian(&qp_.QN);
+    if (!feasibility) AddBoundaryHessian(&qp_.QN, nx + S_.nT());
     TerminalRows(&qp_.C);
     qp_.c = r.psi;
     qp_.x0.resize(0);
@@ -1484,12 +1487,12 @@ bool RiccatiInteriorPoint::BuildAndSolve(
   d->dSB.resize(S_.nbi(), 1);
   d->dU.resize(nu, S_.nctl());
   d->lam.resize(nx, N);
+  for (int i = 0; i < S_.nbi(); ++i) d->dSB(i, 0) = sol_.s[S_.npsi + S_.bineq[i]];
   if (S_.trapezoid) {
     TrapezoidPrimalDual(&d->dX, &d->dU, &d->dT, &d->lam);
   } else {
     for (int i = 0; i < S_.nw(); ++i) d->dX(S_.free0[i], 0) = sol_.u[0][ne + i];
     if (S_.free_time) d->dT(0, 0) = sol_.u[0][ne + S_.nw()];
-    for (int i = 0; i < S_.nbi(); ++i) d->dSB(i, 0) = sol_.s[S_.npsi + S_.bineq[i]];
     for (int k = 0; k < N; ++k) {
       ScatterControls(sol_.u[k], d->dU.col(k));
       d->dX.col(k + 1) = sol_.x[k + 1].head(nx);
@@ -1997,31 +2000,31 @@ bool RiccatiInteriorPoint::TrapezoidQp(
   // T is a variable once, of stage 0: its barrier terms (and the restoration's identity) there.
   double hTT = feasibility ? 1.0 : 0.0, gT = 0.0;
   TimeBoundTerms(mu, &hTT, &gT);
-  if (!TrapezoidStagesFromNodes(&r.defects, hTT, gT, failure)) return false;
+  if (!TrapezoidStagesFromNodes(&r.defects, hTT, gT, !feasibility, failure)) return false;
   for (int j = 1; relaxed && j <= N; ++j) RelaxDefects(&qp_.stages[j]);
   qp_.c = r.psi;
   SlackTerms(mu, feasibility ? 1.0 : 0.0, true);
   return true;
 }
 
-bool RiccatiInteriorPoint::TrapezoidStagesFromNodes(const Mat* defects,
-                                                    double hTT,
-                                                    double gT,
-                                                    std::string* failure) {
+bool RiccatiInteriorPoint::TrapezoidStagesFromNodes(
+    const Mat* defects, double hTT, double gT, bool boundary_hessian, std::string* failure) {
   const int N = S_.N, nx = S_.nx, nu = S_.nu, nf = S_.nuf(), nw = S_.nw(), nT = S_.nT();
-  const int nxi = nx + nf + nT;  // xi = (x, free u, T)
-  trap_sel_.resize(nxi);
+  // xi = (x, free u, T, w): w the carried copies of x_0's free components (boundary rows).
+  const int nxi0 = nx + nf + nT, ncw = S_.ncw(), nxi = nxi0 + ncw;
+  trap_sel_.resize(nxi0);
   for (int i = 0; i < nx; ++i) trap_sel_[i] = i;
   for (int j = 0; j < nf; ++j) trap_sel_[nx + j] = nx + S_.ufree[j];
   if (nT > 0) trap_sel_[nx + nf] = nx + nu;
   qp_.stages.resize(N + 1);
   trap_m_.resize(N);
-  RiccatiStage& q0 = qp_.stages[0];  // (w, u_0, T) -> xi_1 = (x_0, u_0, T)
+  RiccatiStage& q0 = qp_.stages[0];  // (w, u_0, T) -> xi_1 = (x_0, u_0, T, w)
   q0.Q.setZero(nw + nf + nT, nw + nf + nT);
   q0.q.setZero(nw + nf + nT);
   q0.A.setZero(nxi, 0);
   q0.B.setZero(nxi, nw + nf + nT);
   for (int i = 0; i < nw; ++i) q0.B(S_.free0[i], i) = 1.0;
+  for (int i = 0; i < ncw; ++i) q0.B(nxi0 + i, i) = 1.0;
   for (int j = 0; j < nf; ++j) q0.B(nx + j, nw + j) = 1.0;
   if (nT > 0) {
     q0.B(nx + nf, nw + nf) = 1.0;
@@ -2037,9 +2040,9 @@ bool RiccatiInteriorPoint::TrapezoidStagesFromNodes(const Mat* defects,
     const StageEval& c = st_[k + 1];
     const double hh = 0.5 * rate * S_.h[k];
     q.Q.setZero(nxi + nf, nxi + nf);
-    q.Q.topLeftCorner(nxi, nxi) = node_H_[k](trap_sel_, trap_sel_);
+    q.Q.topLeftCorner(nxi0, nxi0) = node_H_[k](trap_sel_, trap_sel_);
     q.q.setZero(nxi + nf);
-    q.q.head(nxi) = node_g_[k](trap_sel_);
+    q.q.head(nxi0) = node_g_[k](trap_sel_);
     M = -hh * c.fx;
     M.diagonal().array() += 1.0;
     trap_m_[k].compute(M);
@@ -2056,25 +2059,36 @@ bool RiccatiInteriorPoint::TrapezoidStagesFromNodes(const Mat* defects,
     rhs.leftCols(nx).diagonal().array() += 1.0;
     for (int j = 0; j < nf; ++j) {
       rhs.col(nx + j) = hh * a.fu.col(S_.ufree[j]);
-      rhs.col(nxi + j) = hh * c.fu.col(S_.ufree[j]);
+      rhs.col(nxi0 + j) = hh * c.fu.col(S_.ufree[j]);
     }
     if (nT > 0) rhs.col(nx + nf) = 0.5 * S_.h[k] / S_.duration * (a.f + c.f);
     rhs = trap_m_[k].solve(rhs).eval();
     q.A.setZero(nxi, nxi);
-    q.A.topRows(nx) = rhs.leftCols(nxi);
-    if (nT > 0) q.A(nx + nf, nx + nf) = 1.0;  // T_{k+1} = T_k
+    q.A.topLeftCorner(nx, nxi0) = rhs.leftCols(nxi0);
+    if (nT > 0) q.A(nx + nf, nx + nf) = 1.0;                      // T_{k+1} = T_k
+    for (int i = 0; i < ncw; ++i) q.A(nxi0 + i, nxi0 + i) = 1.0;  // w_{k+1} = w_k
     q.B.setZero(nxi, nf);
     q.B.topRows(nx) = rhs.rightCols(nf);
     q.B.block(nx, 0, nf, nf).setIdentity();
     q.b.setZero(nxi);
     if (defects != nullptr) q.b.head(nx) = -trap_m_[k].solve(defects->col(k));
   }
-  qp_.QN = node_H_[N](trap_sel_, trap_sel_);
-  qp_.qN = node_g_[N](trap_sel_);
+  qp_.QN.setZero(nxi, nxi);
+  qp_.QN.topLeftCorner(nxi0, nxi0) = node_H_[N](trap_sel_, trap_sel_);
+  qp_.qN.setZero(nxi);
+  qp_.qN.head(nxi0) = node_g_[N](trap_sel_);
+  if (boundary_hessian) AddBoundaryHessian(&qp_.QN, nxi0);
+  // The terminal rows: psi on x_N; b on x_N and, through the carried w, on x_0's free part.
   qp_.C.setZero(S_.nterm(), nxi);
   if (S_.npsi > 0) qp_.C.topLeftCorner(S_.npsi, nx) = te_.psix;
+  if (S_.nb > 0) {
+    qp_.C.block(S_.npsi, 0, S_.nb, nx) = te_.bxN;
+    for (int i = 0; i < ncw; ++i) qp_.C.col(nxi0 + i).tail(S_.nb) = te_.bx0.col(S_.free0[i]);
+  }
   qp_.x0.resize(0);
-  qp_.joint_first_stage = false;
+  // As Euler's: the first stage is solved jointly with the terminal rows where boundary rows
+  // link x(t0)'s free components.
+  qp_.joint_first_stage = S_.nb > 0;
   return true;
 }
 
@@ -2118,7 +2132,7 @@ bool RiccatiInteriorPoint::TrapezoidLeastSquaresQp() {
   }
   // The identity on T once (the NLP's one variable), at stage 0, with its bound multipliers.
   const double gT = S_.free_time ? it_.zTu(0, 0) - it_.zTl(0, 0) : 0.0;
-  if (!TrapezoidStagesFromNodes(nullptr, 1.0, gT, nullptr)) return false;
+  if (!TrapezoidStagesFromNodes(nullptr, 1.0, gT, false, nullptr)) return false;
   qp_.c.setZero(S_.nterm());
   SlackTerms(mu_, 1.0, false);
   return true;
@@ -2163,9 +2177,9 @@ void RiccatiInteriorPoint::TerminalRows(Mat* C) const {
   }
 }
 
-void RiccatiInteriorPoint::AddBoundaryHessian(Mat* QN) const {
+void RiccatiInteriorPoint::AddBoundaryHessian(Mat* QN, int w0) const {
   if (S_.nb == 0) return;
-  const int nx = S_.nx, w0 = nx + S_.nT();
+  const int nx = S_.nx;
   const Mat& Hb = te_.Hb;  // order (x_0, x_N)
   QN->topLeftCorner(nx, nx) += Hb.bottomRightCorner(nx, nx);
   for (int i = 0; i < S_.ncw(); ++i) {
@@ -2820,18 +2834,12 @@ std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request) 
     return "riccati-ip solves the euler and trapezoid transcriptions only in this version (not '" +
            info.name + "'); use ipopt for the others";
   }
-  const bool euler = info.name == "euler";
   ProblemFeatures takes;      // x(t0)'s free components and T are stage-0 variables (T carried as
   takes.state_bounds = true;  // an augmented state); states have bounds
   takes.free_initial_state = true;
   takes.free_final_time = true;
-  takes.boundary_constraints = euler;  // equalities and inequalities (slacks)
-  if (std::string why = UnsupportedFeature(ocp, "riccati-ip", takes); !why.empty()) {
-    if (!euler && ocp.num_boundary() > 0) {
-      why += " (riccati-ip takes them on euler, not yet on trapezoid)";
-    }
-    return why;
-  }
+  takes.boundary_constraints = true;  // equalities and inequalities (slacks)
+  if (std::string why = UnsupportedFeature(ocp, "riccati-ip", takes); !why.empty()) return why;
   const TranscriptionOptions options = TranscriptionOptionsFor(request);
   if (!options.scaling.IsIdentity()) {
     return "riccati-ip works in the problem's units: the transcription options objective_scale, "

@@ -78,10 +78,9 @@ struct RiccatiIpOptions {
 
 /// Why riccati-ip cannot solve `request` on `ocp` (empty when it can): a transcription other
 /// than "euler" and "trapezoid" (since 2026-12-07), a transcription scaling other than the
-/// identity, or mesh refinement; on the trapezoid also boundary constraints (not yet). A free
-/// or partly free initial state, static parameters, state bounds, a free final time and fixed
-/// control components (lower == upper: no variables) are in its class on both, boundary
-/// equalities and inequalities (since 2026-12-07) on euler. An empty or
+/// identity, or mesh refinement. A free or partly free initial state, static parameters, state
+/// bounds, a free final time, boundary equalities and inequalities and fixed control
+/// components (lower == upper: no variables) are in its class on both. An empty or
 /// unknown transcription name is not a reason: Solve throws std::invalid_argument for it, as
 /// every NLP solver does.
 std::string RiccatiIpNotApplicable(const Ocp& ocp, const SolveRequest& request);

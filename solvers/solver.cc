@@ -22,8 +22,7 @@ constexpr const char* kCollocationSolvers =
 // kCollocationSolvers, and riccati-ip, which takes every feature of the problem class (since
 // 2026-12-07 boundary inequalities too).
 std::string WhoSolvesIt() {
-  return std::string(kCollocationSolvers) +
-         ", and so does riccati-ip on euler (on trapezoid too, but for boundary constraints)";
+  return std::string(kCollocationSolvers) + ", and so does riccati-ip on euler and trapezoid";
 }
 
 }  // namespace

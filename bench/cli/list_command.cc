@@ -91,7 +91,7 @@ void DescribeProblem(const std::string& name) {
                     ? "none (fixed horizon, fixed x(t0), no state bounds or boundary constraints)"
                     : features +
                           " (ipopt and nlopt on a collocation transcription take them, and "
-                          "riccati-ip on euler (on trapezoid but for boundary constraints); "
+                          "riccati-ip on euler and trapezoid; "
                           "indirect-newton a free initial state and a free final time where the "
                           "problem has a closed-form Hamiltonian minimizer; methods that do not "
                           "say not_applicable)")

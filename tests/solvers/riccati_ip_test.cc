@@ -540,6 +540,9 @@ TEST(RiccatiIpStages, LagrangianDerivativesMatchFiniteDifferencesAndTheNlp) {
       {"chain", {}, TerminalMode::kHard, "trapezoid"},
       {"double-integrator-free-time", {}, TerminalMode::kHard, "trapezoid"},  // T's row
       {"moonlander", {}, TerminalMode::kHard, "trapezoid"},  // free time, controls in f
+      {"two-phase-double-integrator", {}, TerminalMode::kHard, "trapezoid"},  // boundary rows
+      {"coupled-ends", {}, TerminalMode::kHard, "trapezoid"},
+      {"mountain-car", {}, TerminalMode::kHard, "trapezoid"},
   };
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0.0, 1.0);
@@ -662,6 +665,10 @@ TEST(RiccatiIpSolver, ReachesIpoptsOptimumOnTheTrapezoidNlp) {
       {"dielectrophoretic-particle", {}, 20},
       {"balanced-field", {}, 20},  // with state bounds
       {"double-integrator-min-time", {}, 20},
+      // Boundary rows: x_0's free components carried in the recursion's state (x_k, u_k, T, w);
+      // the multi-phase problems at tol 1e-10 in BoundaryEqualitiesReachIpoptsOptimum (at tol
+      // 1e-8 two-phase-double-integrator's two stops are 1e-5 apart, both within tol).
+      {"coupled-ends", {}, 20},  // an inequality row, active
   };
   for (const AgreementCase& c : cases) {
     SCOPED_TRACE(c.name);
@@ -1003,12 +1010,18 @@ TEST(RiccatiIpSolver, FreeFinalTimeReachesIpoptsOptimum) {
 TEST(RiccatiIpSolver, BoundaryEqualitiesReachIpoptsOptimum) {
   // goddard-three-phase's coast phase has its thrust fixed at 0 (lower == upper: no variable,
   // as Ipopt's make_parameter treats it).
-  for (const std::string name :
-       {"two-phase-double-integrator", "launch-vehicle", "goddard-three-phase"}) {
-    SCOPED_TRACE(name);
+  for (const auto& [name, scheme] : std::vector<std::pair<std::string, std::string>>{
+           {"two-phase-double-integrator", "euler"},
+           {"launch-vehicle", "euler"},
+           {"goddard-three-phase", "euler"},
+           // The trapezoid (since 2026-12-07): w in the recursion's state (x_k, u_k, T, w).
+           {"two-phase-double-integrator", "trapezoid"},
+           {"launch-vehicle", "trapezoid"},
+           {"goddard-three-phase", "trapezoid"}}) {
+    SCOPED_TRACE(name + " on " + scheme);
     const auto ocp = MakeProblem(name, {}, 1);
     ASSERT_GT(ocp->num_boundary(), 0);
-    const auto nlp = EulerNlp(*ocp, name == "launch-vehicle" ? 10 : 40, TerminalMode::kHard);
+    const auto nlp = NlpOf(*ocp, name == "launch-vehicle" ? 10 : 40, TerminalMode::kHard, scheme);
     NlpSolution ip, rip;
     ASSERT_NO_FATAL_FAILURE(BothConvergeToOneOptimum(*nlp, 1e-10, &ip, &rip));
     EXPECT_LT((rip.z - ip.z).lpNorm<Eigen::Infinity>(),
@@ -1029,8 +1042,9 @@ TEST(RiccatiIpSolver, BoundaryEqualitiesReachIpoptsOptimum) {
     const double multiplier_tolerance = name == "goddard-three-phase" ? 1e-4 : 1e-5;
     EXPECT_LT((rb - lb).lpNorm<Eigen::Infinity>(),
               multiplier_tolerance * (1.0 + lb.lpNorm<Eigen::Infinity>()));
-    std::cout << "[ riccati-ip ] " << name << " (boundary equalities): iterations "
-              << rip.iterations << " (Ipopt " << ip.iterations << "), |df|/|f| "
+    std::cout << "[ riccati-ip ] " << name << " on " << scheme
+              << " (boundary equalities): iterations " << rip.iterations << " (Ipopt "
+              << ip.iterations << "), |df|/|f| "
               << std::abs(rip.objective - ip.objective) / std::max(1.0, std::abs(ip.objective))
               << ", boundary multipliers max |diff| " << (rb - lb).lpNorm<Eigen::Infinity>()
               << "\n";
@@ -1238,18 +1252,6 @@ TEST(RiccatiIpSolver, NotApplicableOutsideItsClass) {
     EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << t;
     EXPECT_EQ(r.solver_status, "not_applicable");
     EXPECT_NE(r.message.find("euler and trapezoid"), std::string::npos) << r.message;
-  }
-  // The trapezoid does not take boundary constraints yet (euler does).
-  request.transcription = "trapezoid";
-  for (const std::string name : {"coupled-ends", "two-phase-double-integrator"}) {
-    const auto ocp = MakeProblem(name, {}, 1);
-    request.grid = TimeGrid::Uniform(ocp->t0(), ocp->tf(), 10);
-    const SolveResult r = solver->Solve(*ocp, request);
-    EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << name;
-    EXPECT_NE(r.message.find("not yet on trapezoid"), std::string::npos) << r.message;
-    const auto nlp = NlpOf(*ocp, 10, TerminalMode::kHard, "trapezoid");
-    const NlpSolution direct = SolveEulerNlpWithRiccatiIp(*nlp, RiccatiIpOptions());
-    EXPECT_EQ(direct.status, SolveStatus::kNotApplicable) << name;
   }
   request.grid = TimeGrid::Uniform(lqr->t0(), lqr->tf(), 10);
   request.transcription = "euler";
