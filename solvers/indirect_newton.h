@@ -170,6 +170,10 @@ const char* ToString(IndirectNewtonOptions::Costates costates);
 ///  - H_uu singular on the free directions        -> kNumericalFailure "singular_minimizer"
 ///  - (a trial step to a final time outside its bounds is a failed Armijo test)
 ///  - the warm start produced no states/costates  -> kError            "warm_start_failed"
+///  - warm_start = hamiltonian on a problem with a free initial state (the descent does not
+///    take it), before any work                   -> kNotApplicable    "not_applicable"
+///  A free initial state and static parameters are solved through the transversality rows
+///  (PmpResidual; the record's initial_state is x(t0)).
 /// A trial point whose residual is not finite counts as a failed Armijo test.
 ///
 /// Result: controls = u*(t_k, x_k, p_k) at the nodes, piecewise linear on state_grid (what the

@@ -2046,9 +2046,13 @@ bool RiccatiInteriorPoint::TrapezoidStagesFromNodes(
     M = -hh * c.fx;
     M.diagonal().array() += 1.0;
     trap_m_[k].compute(M);
-    if (!(trap_m_[k].rcond() > 1e-12)) {  // (NaN too)
+    // 1 / ||M^-1||_1 (Eigen's rcond is relative, 1 / (||M|| ||M^-1||): 1 for any 1 x 1 M, and
+    // ~1 for M ~ eps I); M = I + O(h) has the scale 1, so the absolute measure is the one that
+    // says how much the solve amplifies (found in review).
+    const double m_norm = M.cwiseAbs().colwise().sum().maxCoeff();
+    if (!(trap_m_[k].rcond() * m_norm > 1e-12)) {  // (NaN too)
       if (failure != nullptr) {
-        *failure = "I - h/2 f_x is singular at node " + std::to_string(k + 1) +
+        *failure = "I - r h/2 f_x is singular at node " + std::to_string(k + 1) +
                    " (the trapezoid's defect cannot be solved for x_{k+1} there)";
       }
       return false;

@@ -143,6 +143,22 @@ TEST(IndirectNewtonFreeStart, RiccatiLinearSolverHandsEveryStepToTheSparseLu) {
   EXPECT_NEAR(riccati.initial_state[0], klu.initial_state[0], 1e-14);
 }
 
+// warm_start=hamiltonian would run a descent that refuses a free initial state: refused up
+// front, with the reason; warm_start=ipopt starts from Ipopt's trapezoid solution and converges.
+TEST(IndirectNewtonFreeStart, HamiltonianWarmStartIsRefusedIpoptsWorks) {
+  const auto ocp = FreeStartWith(2.0);
+  const SolveResult refused =
+      SolveIndirect(*ocp, Request(*ocp, 20, TerminalMode::kHard, {{"warm_start", "hamiltonian"}}));
+  EXPECT_EQ(refused.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(refused.message.find("warm_start=hamiltonian"), std::string::npos) << refused.message;
+  const SolveResult warm =
+      SolveIndirect(*ocp, Request(*ocp, 20, TerminalMode::kHard, {{"warm_start", "ipopt"}}));
+  ExpectConverged(warm);
+  EXPECT_NEAR(warm.initial_state[0],
+              dynamic_cast<const FreeStart&>(*ocp).AnalyticOptimum().x1_start,
+              1e-10);
+}
+
 // T as a static parameter (its adjoint: p_T(0) = 0) is the free-final-time problem with t = T s:
 // the same trapezoidal discretization, so the same discrete optimum as H(T) = 0 gives, second
 // order in h towards T* = 18^(1/4).

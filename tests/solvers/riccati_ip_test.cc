@@ -700,9 +700,10 @@ TEST(RiccatiIpSolver, ReachesIpoptsOptimumOnTheTrapezoidNlp) {
   }
 }
 
-// x' = a x + u with a = 2 / h: the trapezoid's I - h/2 f_x is singular at every node, and the
-// defects cannot be solved for x_{k+1}. Reported (Error_In_Step_Computation, the node named),
-// never a step made of NaN.
+// x' = a x + u with a = 2 / h: the trapezoid's I - h/2 f_x is singular (0 at the first
+// interval, +-2e-16 at others where h rounds differently), and the defects cannot be solved for
+// x_{k+1}. Reported (Error_In_Step_Computation, the node named), never a step made of NaN; a
+// 1 x 1 M of 1e-14 too (a relative condition estimate would call it perfectly conditioned).
 class StiffLinear final : public AutoDiffOcp<StiffLinear, 1, 1> {
  public:
   explicit StiffLinear(double a) : a_(a) {
@@ -730,7 +731,11 @@ TEST(RiccatiIpSolver, SingularTrapezoidDefectIsReported) {
   const NlpSolution r = SolveEulerNlpWithRiccatiIp(*nlp, RiccatiIpOptions());
   EXPECT_EQ(r.status, SolveStatus::kNumericalFailure);
   EXPECT_EQ(r.solver_status, "Error_In_Step_Computation");
-  EXPECT_NE(r.message.find("I - h/2 f_x is singular at node"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("I - r h/2 f_x is singular at node"), std::string::npos) << r.message;
+  const StiffLinear nearly(2.0 / 0.1 * (1.0 + 1e-13));  // M = -1e-13 on every interval
+  const auto nlp_nearly = NlpOf(nearly, N, TerminalMode::kPenalty, "trapezoid");
+  const NlpSolution rn = SolveEulerNlpWithRiccatiIp(*nlp_nearly, RiccatiIpOptions());
+  EXPECT_EQ(rn.solver_status, "Error_In_Step_Computation") << rn.message;
   // The same problem with a = 5 (M = 0.75 on every interval) solves to Ipopt's optimum.
   const StiffLinear regular(5.0);
   const auto nlp2 = NlpOf(regular, N, TerminalMode::kPenalty, "trapezoid");
