@@ -972,18 +972,25 @@ TEST(RiccatiIpSolver, FreeFinalTimeReachesIpoptsOptimum) {
   struct Case {
     std::string name;
     std::vector<std::string> params;
+    std::string scheme = "euler";
   };
+  // Euler's cases, then the trapezoid's (T in the recursion's state (x_k, u_k, T), since
+  // 2026-12-07), T on its bound with its multiplier among them.
   for (const Case& c : {Case{"double-integrator-free-time", {}},
                         Case{"double-integrator-free-time", {"tf_max=1.5"}},  // T on its bound
                         Case{"brachistochrone-free-time", {}},
                         Case{"double-integrator-min-time", {}},
                         Case{"moonlander", {}},
-                        Case{"f8-aircraft", {}}}) {
+                        Case{"f8-aircraft", {}},
+                        Case{"double-integrator-free-time", {}, "trapezoid"},
+                        Case{"double-integrator-free-time", {"tf_max=1.5"}, "trapezoid"},
+                        Case{"brachistochrone-free-time", {}, "trapezoid"},
+                        Case{"moonlander", {}, "trapezoid"}}) {
     const std::string& name = c.name;
-    SCOPED_TRACE(name + (c.params.empty() ? "" : " " + c.params[0]));
+    SCOPED_TRACE(name + (c.params.empty() ? "" : " " + c.params[0]) + " on " + c.scheme);
     const auto ocp = MakeProblem(name, c.params, 1);
     ASSERT_TRUE(ocp->free_final_time().has_value());
-    const auto nlp = EulerNlp(*ocp, 50, TerminalMode::kHard);
+    const auto nlp = NlpOf(*ocp, 50, TerminalMode::kHard, c.scheme);
     ASSERT_TRUE(nlp->HasFinalTimeVariable());
     NlpSolution ip, rip;
     ASSERT_NO_FATAL_FAILURE(BothConvergeToOneOptimum(*nlp, 1e-10, &ip, &rip));
@@ -1002,8 +1009,8 @@ TEST(RiccatiIpSolver, FreeFinalTimeReachesIpoptsOptimum) {
     // 7/8, 10/10, 12/12, 29/29, 31/29); a wrong T row in the stage blocks costs the fast local
     // convergence, not the optimum.
     EXPECT_LE(rip.iterations, ip.iterations + 2);
-    std::cout << "[ riccati-ip ] " << name << " N=50 (free T): iterations " << rip.iterations
-              << " (Ipopt " << ip.iterations << "), |df|/|f| "
+    std::cout << "[ riccati-ip ] " << name << " on " << c.scheme << " N=50 (free T): iterations "
+              << rip.iterations << " (Ipopt " << ip.iterations << "), |df|/|f| "
               << std::abs(rip.objective - ip.objective) / std::max(1.0, std::abs(ip.objective))
               << ", T " << rip.z[T] << " (Ipopt " << ip.z[T] << ")\n";
   }
