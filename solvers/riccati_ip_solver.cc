@@ -1237,6 +1237,8 @@ class RiccatiInteriorPoint {
   std::vector<Mat> node_H_;
   std::vector<Vec> node_g_;
   std::vector<Eigen::PartialPivLU<Mat>> trap_m_;
+  Mat trap_scratch_m_, trap_scratch_rhs_, trap_scratch_solved_;
+  Vec trap_scratch_defect_;
   std::vector<int> trap_sel_;
   double delta_last_ = 0.0;
   int iterations_ = 0, regularizations_ = 0, factorizations_ = 0, trials_ = 0;
@@ -2033,7 +2035,15 @@ bool RiccatiInteriorPoint::TrapezoidStagesFromNodes(
   }
   q0.b.setZero(nxi);
   const double rate = S_.Rate(it_);
-  Mat M(nx, nx), rhs(nx, nx + 2 * nf + nT);
+  // Scratch sized once per call; the solves write into it (no temporaries per interval).
+  Mat& M = trap_scratch_m_;
+  Mat& rhs = trap_scratch_rhs_;
+  Mat& solved = trap_scratch_solved_;
+  Vec& defect = trap_scratch_defect_;
+  M.resize(nx, nx);
+  rhs.resize(nx, nx + 2 * nf + nT);
+  solved.resize(nx, nx + 2 * nf + nT);
+  defect.resize(nx);
   for (int k = 0; k < N; ++k) {
     RiccatiStage& q = qp_.stages[k + 1];
     const StageEval& a = st_[k];
@@ -2066,16 +2076,19 @@ bool RiccatiInteriorPoint::TrapezoidStagesFromNodes(
       rhs.col(nxi0 + j) = hh * c.fu.col(S_.ufree[j]);
     }
     if (nT > 0) rhs.col(nx + nf) = 0.5 * S_.h[k] / S_.duration * (a.f + c.f);
-    rhs = trap_m_[k].solve(rhs).eval();
+    solved.noalias() = trap_m_[k].solve(rhs);
     q.A.setZero(nxi, nxi);
-    q.A.topLeftCorner(nx, nxi0) = rhs.leftCols(nxi0);
+    q.A.topLeftCorner(nx, nxi0) = solved.leftCols(nxi0);
     if (nT > 0) q.A(nx + nf, nx + nf) = 1.0;                      // T_{k+1} = T_k
     for (int i = 0; i < ncw; ++i) q.A(nxi0 + i, nxi0 + i) = 1.0;  // w_{k+1} = w_k
     q.B.setZero(nxi, nf);
-    q.B.topRows(nx) = rhs.rightCols(nf);
+    q.B.topRows(nx) = solved.rightCols(nf);
     q.B.block(nx, 0, nf, nf).setIdentity();
     q.b.setZero(nxi);
-    if (defects != nullptr) q.b.head(nx) = -trap_m_[k].solve(defects->col(k));
+    if (defects != nullptr) {
+      defect.noalias() = trap_m_[k].solve(defects->col(k));
+      q.b.head(nx) = -defect;
+    }
   }
   qp_.QN.setZero(nxi, nxi);
   qp_.QN.topLeftCorner(nxi0, nxi0) = node_H_[N](trap_sel_, trap_sel_);
