@@ -653,20 +653,7 @@ bool EulerStages::EvalDerivatives(const Iterate& it,
       s.Lu.resize(nu);
       ocp.DynamicsJacobian(t[k], x, u, s.f, s.fx, s.fu);
       ocp.RunningCostGradient(t[k], x, u, &s.L, s.Lx, s.Lu);
-      if (nc > 0) {
-        ocp.PathConstraintsJacobian(t[k], x, u, s.c.head(nc), s.cx.topRows(nc), s.cu.topRows(nc));
-        s.c.head(nc).array() -= relax_path;
-      }
-      for (int b = 0; b < nball; ++b) {
-        const auto& B = balls[b];
-        double d2 = 0.0;
-        for (int i = 0; i < B.size; ++i) {
-          const double d = u[B.offset + i] - B.center[i];
-          d2 += d * d;
-          s.cu(nc + b, B.offset + i) = 2.0 * d;
-        }
-        s.c[nc + b] = d2 - B.radius * B.radius - relax_ball[b];
-      }
+      NodeInequalities(k, it, s.c, &s.cx, &s.cu);
       ok = ok && RipAllFinite(s.f) && RipAllFinite(s.fx) && RipAllFinite(s.fu) && RipFinite(s.L) &&
            RipAllFinite(s.Lx) && RipAllFinite(s.Lu);
       s.gT = free_time ? (trapezoid ? wt[k] : h[k]) / duration * s.L : 0.0;

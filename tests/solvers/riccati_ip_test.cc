@@ -600,6 +600,26 @@ struct AgreementCase {
   double z_tolerance = 1e-6;  // on every variable (states and controls)
 };
 
+// Ipopt's and riccati-ip's solves of `nlp` from its starting point at the default tol: both
+// converged, objectives within 1e-8 relative, every variable within c.z_tolerance (*dz).
+void ExpectIpoptsPoint(const TranscribedNlp& nlp,
+                       const AgreementCase& c,
+                       NlpSolution* ip,
+                       NlpSolution* rip,
+                       double* f_ip,
+                       double* f_rip,
+                       double* dz) {
+  *ip = SolveNlpWithIpopt(nlp, nlp.StartingPoint(), IpoptOptions());
+  ASSERT_EQ(ip->status, SolveStatus::kConverged) << ip->solver_status;
+  *rip = SolveEulerNlpWithRiccatiIp(nlp, RiccatiIpOptions());
+  ASSERT_EQ(rip->status, SolveStatus::kConverged) << rip->solver_status << " " << rip->message;
+  ASSERT_TRUE(nlp.Objective(ip->z, f_ip));
+  ASSERT_TRUE(nlp.Objective(rip->z, f_rip));
+  EXPECT_LE(std::abs(*f_rip - *f_ip), 1e-8 * std::max(1.0, std::abs(*f_ip)));
+  *dz = (ip->z - rip->z).lpNorm<Eigen::Infinity>();
+  EXPECT_LE(*dz, c.z_tolerance);
+}
+
 TEST(RiccatiIpSolver, ReachesIpoptsOptimumOnTheEulerNlp) {
   const std::vector<AgreementCase> cases = {
       {"lqr", {}, 20},
@@ -620,18 +640,9 @@ TEST(RiccatiIpSolver, ReachesIpoptsOptimumOnTheEulerNlp) {
     SCOPED_TRACE(c.name);
     const auto ocp = MakeProblem(c.name, c.params, 1);
     const auto nlp = EulerNlp(*ocp, c.N, TerminalMode::kHard);
-    const IpoptOptions ipopt_options;
-    const RiccatiIpOptions rip_options;
-    const NlpSolution ip = SolveNlpWithIpopt(*nlp, nlp->StartingPoint(), ipopt_options);
-    ASSERT_EQ(ip.status, SolveStatus::kConverged) << ip.solver_status;
-    const NlpSolution rip = SolveEulerNlpWithRiccatiIp(*nlp, rip_options);
-    ASSERT_EQ(rip.status, SolveStatus::kConverged) << rip.solver_status << " " << rip.message;
-    double f_ip = 0.0, f_rip = 0.0;
-    ASSERT_TRUE(nlp->Objective(ip.z, &f_ip));
-    ASSERT_TRUE(nlp->Objective(rip.z, &f_rip));
-    EXPECT_LE(std::abs(f_rip - f_ip), 1e-8 * std::max(1.0, std::abs(f_ip)));
-    const double dz = (ip.z - rip.z).lpNorm<Eigen::Infinity>();
-    EXPECT_LE(dz, c.z_tolerance);
+    NlpSolution ip, rip;
+    double f_ip = 0.0, f_rip = 0.0, dz = 0.0;
+    ASSERT_NO_FATAL_FAILURE(ExpectIpoptsPoint(*nlp, c, &ip, &rip, &f_ip, &f_rip, &dz));
     EXPECT_LT(NlpViolation(*nlp, rip.z), 1e-8);
     std::cout << "[ riccati-ip ] " << c.name << " N=" << c.N << ": iterations " << rip.iterations
               << " (Ipopt " << ip.iterations << "), |df|/|f| "
@@ -674,16 +685,9 @@ TEST(RiccatiIpSolver, ReachesIpoptsOptimumOnTheTrapezoidNlp) {
     SCOPED_TRACE(c.name);
     const auto ocp = MakeProblem(c.name, c.params, 1);
     const auto nlp = NlpOf(*ocp, c.N, TerminalMode::kHard, "trapezoid");
-    const NlpSolution ip = SolveNlpWithIpopt(*nlp, nlp->StartingPoint(), IpoptOptions());
-    ASSERT_EQ(ip.status, SolveStatus::kConverged) << ip.solver_status;
-    const NlpSolution rip = SolveEulerNlpWithRiccatiIp(*nlp, RiccatiIpOptions());
-    ASSERT_EQ(rip.status, SolveStatus::kConverged) << rip.solver_status << " " << rip.message;
-    double f_ip = 0.0, f_rip = 0.0;
-    ASSERT_TRUE(nlp->Objective(ip.z, &f_ip));
-    ASSERT_TRUE(nlp->Objective(rip.z, &f_rip));
-    EXPECT_LE(std::abs(f_rip - f_ip), 1e-8 * std::max(1.0, std::abs(f_ip)));
-    const double dz = (ip.z - rip.z).lpNorm<Eigen::Infinity>();
-    EXPECT_LE(dz, c.z_tolerance);
+    NlpSolution ip, rip;
+    double f_ip = 0.0, f_rip = 0.0, dz = 0.0;
+    ASSERT_NO_FATAL_FAILURE(ExpectIpoptsPoint(*nlp, c, &ip, &rip, &f_ip, &f_rip, &dz));
     // Bounds are relaxed by 1e-8 max(1, |bound|) for both solvers (Ipopt's bound_relax_factor):
     // at the same point the violation is Ipopt's (balanced-field's 1.06e-8 for both).
     EXPECT_LE(NlpViolation(*nlp, rip.z), std::max(1e-8, 1.01 * NlpViolation(*nlp, ip.z)));
