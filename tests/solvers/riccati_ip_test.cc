@@ -1067,6 +1067,58 @@ TEST(RiccatiIpSolver, BoundaryEqualitiesReachIpoptsOptimum) {
   }
 }
 
+// Nonlinear boundary rows on a free x(t0): b = (x1(0)^2 + x1(1)^2, x1(0) x1(1)) in
+// ({1}, (-inf, 0.3]), so their Hessian has x(t0)-x(t0), x(t0)-x(tf) and x(tf)-x(tf) parts (the
+// library's boundary rows are all linear). Both schemes reach Ipopt's point with Ipopt's row
+// multipliers: a misplaced boundary Hessian would cost the iterations and the multipliers.
+class NonlinearEnds final : public AutoDiffOcp<NonlinearEnds, 2, 1> {
+ public:
+  NonlinearEnds() {
+    const double inf = std::numeric_limits<double>::infinity();
+    SetHorizon(0.0, 1.0);
+    SetInitialState(Eigen::Vector2d(0.5, 0.0));
+    SetInitialStateBounds(Eigen::Vector2d(-2.0, 0.0), Eigen::Vector2d(2.0, 0.0));
+    SetBoundaryConstraints(Eigen::Vector2d(1.0, -inf), Eigen::Vector2d(1.0, 0.3));
+  }
+  std::string name() const override { return "nonlinear-ends"; }
+  template <class T>
+  void EvalDynamics(double, const VecT<T, 2>& x, const VecT<T, 1>& u, VecT<T, 2>* f) const {
+    (*f)[0] = x[1];
+    (*f)[1] = u[0];
+  }
+  template <class T>
+  T EvalRunningCost(double, const VecT<T, 2>&, const VecT<T, 1>& u) const {
+    return u[0] * u[0];
+  }
+  template <class T>
+  void EvalBoundaryConstraints(const VecT<T, 2>& x0,
+                               const VecT<T, 2>& xf,
+                               VecT<T, Eigen::Dynamic>* b) const {
+    (*b)[0] = x0[0] * x0[0] + xf[0] * xf[0];
+    (*b)[1] = x0[0] * xf[0];
+  }
+};
+
+TEST(RiccatiIpSolver, NonlinearBoundaryRowsOnAFreeStartReachIpoptsOptimum) {
+  const NonlinearEnds ocp;
+  for (const std::string scheme : {"euler", "trapezoid"}) {
+    SCOPED_TRACE(scheme);
+    const auto nlp = NlpOf(ocp, 30, TerminalMode::kHard, scheme);
+    NlpSolution ip, rip;
+    ASSERT_NO_FATAL_FAILURE(BothConvergeToOneOptimum(*nlp, 1e-10, &ip, &rip));
+    EXPECT_LT((rip.z - ip.z).lpNorm<Eigen::Infinity>(), 1e-6);
+    const int b0 = dynamic_cast<const CollocationNlp&>(*nlp).boundary_row_begin();
+    const Vec lb = ip.lambda.segment(b0, 2), rb = rip.lambda.segment(b0, 2);
+    EXPECT_GT(std::abs(lb[0]), 1e-3);  // the equality row carries a multiplier
+    EXPECT_LT((rb - lb).lpNorm<Eigen::Infinity>(), 1e-6 * (1.0 + lb.lpNorm<Eigen::Infinity>()));
+    EXPECT_LE(std::abs(rip.iterations - ip.iterations), 2);
+    std::cout << "[ riccati-ip ] nonlinear-ends on " << scheme << ": iterations " << rip.iterations
+              << " (Ipopt " << ip.iterations << "), x1(0) "
+              << rip.z[dynamic_cast<const CollocationNlp&>(*nlp).layout().states[0].offset]
+              << ", row multipliers " << rb.transpose() << " (Ipopt " << lb.transpose() << ")\n";
+  }
+}
+
 // pinene (COPS' alpha-pinene: 8 phases between observations, no controls, the rate constants
 // as static parameters): stage 0's variables are the 75 free initial components, whose H_uu is
 // singular for the recursion (the phase links, terminal rows, fix them); the joint solve of the
