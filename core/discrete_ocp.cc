@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace ocpb {
 
@@ -20,7 +21,20 @@ DiscreteOcp::DiscreteOcp(const Ocp& ocp,
                          const TimeGrid& grid,
                          Integrator integrator,
                          TerminalMode mode)
-    : ocp_(ocp), grid_(grid), integrator_(integrator), mode_(mode) {}
+    : ocp_(ocp), grid_(grid), integrator_(integrator), mode_(mode), x0_(ocp.x0()) {}
+
+void DiscreteOcp::SetInitialState(ConstVecRef x0) {
+  if (x0.size() != ocp_.nx()) {
+    throw std::invalid_argument(
+        "DiscreteOcp::SetInitialState: x0 must have nx = " + std::to_string(ocp_.nx()) +
+        " entries, has " + std::to_string(x0.size()));
+  }
+  x0_ = x0;
+}
+
+double DiscreteOcp::InitialObjective(ConstVecRef x0) const {
+  return ocp_.HasFreeInitialState() && ocp_.HasInitialCost() ? ocp_.InitialCost(x0) : 0.0;
+}
 
 void DiscreteOcp::Rk4Step(int k, const Vec& x, const Vec& u, Vec* x_next, double* ell) const {
   const int nx = ocp_.nx();
@@ -84,7 +98,7 @@ double DiscreteOcp::Simulate(const Mat& U, Mat* X, double* running) const {
   if (U.rows() != ocp_.nu() || U.cols() != N) {
     throw std::invalid_argument("DiscreteOcp::Simulate: U must be nu x N");
   }
-  Vec x = ocp_.x0(), xn(nx), f(nx);
+  Vec x = x0_, xn(nx), f(nx);
   if (X) {
     X->resize(nx, N + 1);
     X->col(0) = x;
@@ -105,13 +119,17 @@ double DiscreteOcp::Simulate(const Mat& U, Mat* X, double* running) const {
     if (X) X->col(k + 1) = x;
   }
   if (running) *running = sum;
-  const double J = sum + ocp_.TerminalObjective(x, mode_);
+  const double J = InitialObjective(x0_) + sum + ocp_.TerminalObjective(x, mode_);
   return std::isfinite(J) && x.allFinite() ? J : std::numeric_limits<double>::quiet_NaN();
 }
 
-void DiscreteOcp::SimulateStates(const Mat& U, Mat* X) const {
+void DiscreteOcp::SimulateStates(const Mat& U, Mat* X) const { SimulateStatesFrom(x0_, U, X); }
+
+void DiscreteOcp::SimulateStatesFrom(ConstVecRef x0, const Mat& U, Mat* X) const {
   if (integrator_ != Integrator::kEuler) {
-    Simulate(U, X);
+    DiscreteOcp from(*this);
+    from.SetInitialState(x0);
+    from.Simulate(U, X);
     return;
   }
   const int nx = ocp_.nx(), N = grid_.intervals();
@@ -120,7 +138,7 @@ void DiscreteOcp::SimulateStates(const Mat& U, Mat* X) const {
   }
   Vec f(nx);
   X->resize(nx, N + 1);
-  X->col(0) = ocp_.x0();
+  X->col(0) = x0;
   for (int k = 0; k < N; ++k) {
     ocp_.Dynamics(grid_.t(k), X->col(k), U.col(k), f);
     X->col(k + 1).noalias() = X->col(k) + grid_.h(k) * f;  // Simulate's x += h f

@@ -62,6 +62,8 @@ DescentPasses::DescentPasses(const DiscreteOcp& docp,
   Lu_.resize(nu_);
   fx_.resize(nx_, nx_);
   fu_.resize(nx_, nu_);
+  x0_ = docp.initial_state();
+  trial_x0_ = x0_;
 }
 
 void DescentPasses::ConstantBound(const TimeGrid& grid) {
@@ -99,6 +101,61 @@ void DescentPasses::EnableFreeFinalTime(double lower,
   affine_final_state_ = false;
 }
 
+void DescentPasses::EnableFreeInitialState(const Vec& lower,
+                                           const Vec& upper,
+                                           double initial_fraction,
+                                           double growth) {
+  if (!euler()) {
+    throw std::invalid_argument(
+        "DescentPasses: a free initial state needs forward Euler (its gradient is Euler's "
+        "lambda_0)");
+  }
+  if (lower.size() != nx_ || upper.size() != nx_ || (lower.array() > upper.array()).any()) {
+    throw std::invalid_argument(
+        "DescentPasses: the initial-state bounds need nx entries each and lower <= upper");
+  }
+  if (!(initial_fraction > 0.0) || !(growth >= 1.0) || !std::isfinite(growth)) {
+    throw std::invalid_argument("DescentPasses: initial_fraction > 0 and growth >= 1");
+  }
+  free_initial_ = true;
+  x0_lower_ = lower;
+  x0_upper_ = upper;
+  x0_ = x0_.cwiseMax(lower).cwiseMin(upper);
+  trial_x0_ = x0_;
+  g0_ = Vec::Zero(nx_);
+  d0_ = Vec::Zero(nx_);
+  initial_fraction0_ = initial_fraction;
+  growth0_ = growth;
+  // x_N is affine in (x_0, U), but the shortcut's one simulation moves U alone.
+  affine_final_state_ = false;
+}
+
+void DescentPasses::SpectralInitialStep() {
+  // sigma_0 from the last accepted move of x_0: s = Delta x_0, y = Delta g_0, sigma_0 = s^T s /
+  // s^T y (Barzilai and Borwein's step, the spectral projected gradient method of Birgin,
+  // Martinez and Raydan), where s^T y > 0; otherwise sigma_0 grows. Changed by at most a factor
+  // 10 per iteration: y also holds the controls' move, which can make one quotient meaningless.
+  // (The joint Armijo step scales x_0's move with the controls' at every iteration; the final
+  // time's rule, sigma shrunk to each accepted step, would shrink sigma_0 geometrically on a
+  // problem whose controls need a short step every time.)
+  if (have_previous0_ && std::isfinite(sigma0_)) {
+    const double ss = (x0_ - previous_x0_).squaredNorm();
+    const double sy = (x0_ - previous_x0_).dot(g0_ - previous_g0_);
+    if (ss > 0.0) {
+      const double next = sy > 0.0 ? ss / sy : growth0_ * sigma0_;
+      sigma0_ = std::clamp(next, sigma0_ / 10.0, 10.0 * sigma0_);
+    }
+  }
+  previous_x0_ = x0_;
+  previous_g0_ = g0_;
+  have_previous0_ = true;
+}
+
+double DescentPasses::TrialEnds() const {
+  const double phi = ocp_.TerminalObjective(X_trial_.col(N_), docp_->terminal_mode());
+  return free_initial_ ? docp_->InitialObjective(trial_x0_) + phi : phi;
+}
+
 double DescentPasses::Start(const Mat& U) {
   if (U.rows() != nu_ || U.cols() != N_) {
     throw std::invalid_argument("DescentPasses::Start: U must be nu x N");
@@ -111,9 +168,10 @@ double DescentPasses::Start(const Mat& U) {
   }
   trial_docp_ = docp_;
   trial_U_ = U_;
+  trial_x0_ = x0_;
   TrialStates();
   double sum = 0.0;
-  const double phi = ocp_.TerminalObjective(X_trial_.col(N_), docp_->terminal_mode());
+  const double phi = TrialEnds();
   TrialRunningCost(phi, std::numeric_limits<double>::infinity(), &sum);
   const double J = sum + phi;
   J_ = std::isfinite(J) && X_trial_.col(N_).allFinite() ? J
@@ -147,10 +205,10 @@ bool DescentPasses::TrialRunningCost(double phi, double exit_above, double* sum)
 
 void DescentPasses::TrialStates() {
   if (!model_) {
-    trial_docp_->SimulateStates(trial_U_, &X_trial_);
+    trial_docp_->SimulateStatesFrom(trial_x0_, trial_U_, &X_trial_);
     return;
   }
-  X_trial_.col(0) = ocp_.x0();
+  X_trial_.col(0) = trial_x0_;
   model_->EulerStates(trial_docp_->grid(), nx_, nu_, trial_U_.data(), X_trial_.data());
 }
 
@@ -175,7 +233,7 @@ bool DescentPasses::EvaluateTrial(double step, double threshold, double* J) {
   }
   trial_U_.noalias() = U_ + step * D_;
   TrialStates();
-  const double phi = ocp_.TerminalObjective(X_trial_.col(N_), mode);
+  const double phi = TrialEnds();
   if (bound_ && !affine_final_state_ && running_bound_ + phi > exit_above) {
     ++work_.constant_bound_rejections;
     ++work_.rejections;
@@ -221,13 +279,26 @@ int DescentPasses::Armijo(const ArmijoRule& rule, double theta, const CpuLimit& 
     dT = std::clamp(T - sigma_ * dJdT_, T_lower_, T_upper_) - T;
     theta += dJdT_ * dT;
   }
+  // Free initial state: the same projected gradient step on x_0.
+  if (free_initial_) {
+    if (!std::isfinite(sigma0_)) {
+      const double g =
+          g0_.cwiseProduct((x0_upper_ - x0_lower_).cwiseSign()).lpNorm<Eigen::Infinity>();
+      sigma0_ =
+          g > 0.0 ? initial_fraction0_ * std::max(1.0, x0_.lpNorm<Eigen::Infinity>()) / g : 1.0;
+    }
+    d0_ = (x0_ - sigma0_ * g0_).cwiseMax(x0_lower_).cwiseMin(x0_upper_) - x0_;
+    theta += g0_.dot(d0_);
+  }
   double step = 1.0;
   for (int j = 0; j <= rule.max_exponent; ++j, step *= rule.beta) {
     if (j > 0 && limit.Reached()) {
       trial_docp_ = docp_;
+      trial_x0_ = x0_;
       if (free_time_) ConstantBound(docp_->grid());
       return kOutOfTime;
     }
+    if (free_initial_) trial_x0_ = (x0_ + step * d0_).cwiseMax(x0_lower_).cwiseMin(x0_upper_);
     if (free_time_) {
       const double T_trial = std::clamp(docp_->grid().tf() + step * dT, T_lower_, T_upper_);
       owned_trial_ = std::make_unique<DiscreteOcp>(
@@ -248,11 +319,13 @@ int DescentPasses::Armijo(const ArmijoRule& rule, double theta, const CpuLimit& 
         docp_ = owned_.get();
         sigma_ = j == 0 ? growth_ * sigma_ : std::pow(rule.beta, j) * sigma_;
       }
+      if (free_initial_) x0_ = trial_x0_;  // sigma_0 moves in Backward
       trial_docp_ = docp_;
       return j;
     }
   }
   trial_docp_ = docp_;
+  trial_x0_ = x0_;
   if (free_time_) ConstantBound(docp_->grid());
   return -1;
 }
@@ -273,6 +346,25 @@ double DescentPasses::Backward(double* theta_scale, double eps) {
       // saw the controls only and stopped at a non-stationary T.
       const double T = grid.tf();
       stationarity_theta_ += std::min(dJdT_ * (T_lower_ - T), dJdT_ * (T_upper_ - T));
+    }
+    if (free_initial_) {
+      // g_0 = lambda_0 + grad phi0(x_0), and x_0's share of the stationarity measure (the class
+      // comment): the best first-order decrease within the bounds, or within max(1, |x_0,i|)
+      // of x_0,i where a bound is infinite (an unbounded direction would make it -inf).
+      g0_ = Lambda_.col(0);
+      if (ocp_.HasInitialCost()) {
+        double phi0 = 0.0;
+        ocp_.InitialCostGradient(x0_, &phi0, tmp_x_);
+        g0_ += tmp_x_;
+      }
+      SpectralInitialStep();
+      for (int i = 0; i < nx_; ++i) {
+        if (!(x0_lower_[i] < x0_upper_[i]) || g0_[i] == 0.0) continue;
+        const double reach = std::max(1.0, std::abs(x0_[i]));
+        const double lo = std::isfinite(x0_lower_[i]) ? x0_lower_[i] : x0_[i] - reach;
+        const double hi = std::isfinite(x0_upper_[i]) ? x0_upper_[i] : x0_[i] + reach;
+        stationarity_theta_ += std::min(g0_[i] * (lo - x0_[i]), g0_[i] * (hi - x0_[i]));
+      }
     }
     return theta;
   }

@@ -79,6 +79,20 @@ struct DescentWork {
 /// accepts J(U + s D, T + s d_T) - J <= alpha s (theta + dJ/dT d_T); dJ/dT d_T <= -d_T^2 / sigma
 /// <= 0, so this is a descent test on the joint variable. sigma follows the proximal schedule's
 /// rule (grow after a full step, shrink to the accepted step).
+///
+/// Free initial state (EnableFreeInitialState, forward Euler only; static parameters are such
+/// components, Ocp::SetStaticParameters): x_0 is a variable in the initial-state bounds
+/// [l0, u0] too, and J counts phi0(x_0) (DiscreteOcp). The exact gradient is
+///   g_0 = dJ/dx_0 = lambda_0 + grad phi0(x_0)
+/// (lambda_0 from the sweep's recursion; for a static parameter it sums h_k H_p along the
+/// grid, its adjoint), and x_0 moves as T does: d_0 = P_[l0, u0](x_0 - sigma_0 g_0) - x_0, its
+/// share g_0^T d_0 <= -|d_0|^2 / sigma_0 of the Armijo test's bound; its first sigma_0 moves x_0
+/// by at most `initial_fraction` of max(1, |x_0|_inf), then sigma_0 is Barzilai and Borwein's
+/// spectral step from the last move of x_0 and of g_0 (SpectralInitialStep). At a
+/// stationary x_0 the transversality conditions hold: p(t0) = -grad phi0 on the free components
+/// inside their bounds. The stationarity measure gains min over x' in the bounds, within
+/// max(1, |x_0,i|) of x_0,i where a bound is infinite, of g_0^T (x' - x_0) (<= 0, 0 exactly where
+/// x_0 is stationary).
 class DescentPasses {
  public:
   /// `docp` must outlive this object. `prefilter`: use the lower bounds above (Euler only).
@@ -101,6 +115,19 @@ class DescentPasses {
                            double initial_fraction = 0.1,
                            double growth = 2.0);
   bool free_final_time() const { return free_time_; }
+  /// Makes x_0 a variable in [lower, upper] (nx entries each; lower == upper fixes a component),
+  /// starting at docp's initial_state() projected onto them. `initial_fraction` > 0, `growth`
+  /// >= 1 as for the final time. Throws std::invalid_argument unless the integrator is Euler,
+  /// lower <= upper and the sizes match. Call before Start.
+  void EnableFreeInitialState(const Vec& lower,
+                              const Vec& upper,
+                              double initial_fraction = 0.1,
+                              double growth = 2.0);
+  bool free_initial_state() const { return free_initial_; }
+  /// The current x_0 (docp's initial_state() for a fixed one).
+  const Vec& x0() const { return x0_; }
+  /// dJ/dx_0 at the iterate (the last Backward; free initial state only).
+  const Vec& dJdx0() const { return g0_; }
   /// The current final time (the grid's tf for a fixed horizon).
   double T() const { return docp_->grid().tf(); }
   /// dJ/dT at the iterate (the last Backward; free final time only).
@@ -166,8 +193,13 @@ class DescentPasses {
                       double* h_star,
                       double* h_now,
                       double* h_min);
-  // The Euler states of trial_U_ into X_trial_ (the model's EulerStates, or SimulateStates).
+  // The Euler states of trial_U_ from trial_x0_ into X_trial_ (the model's EulerStates, or
+  // SimulateStatesFrom).
   void TrialStates();
+  // J of the trial's ends: Phi(x_N) of X_trial_ plus phi0(trial_x0_) where it counts.
+  double TrialEnds() const;
+  // sigma_0 from the last move of x_0 (Backward, after g0_).
+  void SpectralInitialStep();
   // nx_ doubles from `from` to `to` (a costate column).
   void CopyCostate(const double* from, double* to) const;
 
@@ -202,6 +234,12 @@ class DescentPasses {
   double T_lower_ = 0.0, T_upper_ = 0.0, sigma_ = NAN, initial_fraction_ = 0.1, growth_ = 2.0;
   double dJdT_ = 0.0;
   std::vector<double> nows_;  // H(x_k, u_k, lambda_{k+1}) of the last sweep
+
+  // Free initial state (x0_, trial_x0_ are docp's initial_state() otherwise).
+  bool free_initial_ = false;
+  Vec x0_, trial_x0_, x0_lower_, x0_upper_, g0_, d0_, previous_x0_, previous_g0_;
+  bool have_previous0_ = false;
+  double sigma0_ = NAN, initial_fraction0_ = 0.1, growth0_ = 2.0;
 };
 
 }  // namespace ocpb
