@@ -133,6 +133,7 @@ HamiltonianTarget ResolveFamilyTarget(const std::string& name,
   };
   ProblemFeatures takes;
   takes.free_final_time = true;
+  takes.free_initial_state = true;  // forward Euler only (below)
   if (const std::string why = UnsupportedFeature(original, name, takes); !why.empty()) {
     return refuse(why);
   }
@@ -161,6 +162,16 @@ HamiltonianTarget ResolveFamilyTarget(const std::string& name,
                     "scheme=euler (the loop's path multipliers pair with the grid's "
                     "intervals; path = reformulation runs)");
     }
+  }
+  if (original.HasFreeInitialState() && o.scheme != HamiltonianFamilyOptions::Scheme::kEuler) {
+    return refuse(std::string("scheme=") + SchemeName(o.scheme) +
+                  ": a free initial state (or static parameters) needs scheme=euler (x(t0)'s "
+                  "gradient is the Euler sweep's lambda_0)");
+  }
+  if (original.HasFreeInitialState() && request.integrator != Integrator::kEuler) {
+    return refuse(
+        "a free initial state (or static parameters) needs forward Euler (x(t0)'s gradient is "
+        "the Euler sweep's lambda_0)");
   }
   if (t.ocp->free_final_time() && request.integrator != Integrator::kEuler) {
     return refuse("a free final time needs forward Euler (the exact dJ/dT is Euler's)");
@@ -263,6 +274,16 @@ void TakeNewtonSolution(const SolveResult& n, SolveResult* r) {
   if (final_time != n.solver_stats.end()) r->solver_stats["final_time"] = final_time->second;
 }
 
+// J of `problem` in the request's terminal form (hard: no penalty, no multiplier terms) at the
+// passes' iterate: its controls, and its x(t0) for a free initial state.
+double DiscreteObjective(const Ocp& problem,
+                         const SolveRequest& request,
+                         const DescentPasses& passes) {
+  DiscreteOcp docp(problem, passes.grid(), request.integrator, request.terminal);
+  docp.SetInitialState(passes.x0());
+  return docp.Simulate(passes.U(), nullptr);
+}
+
 // The polish stage after the descent: fitted costates, Newton on the Euler maximum principle,
 // and on failure more descent and another attempt (polish_attempts). Updates *r and keeps the
 // last attempt's result in *last_newton; true when Newton converged.
@@ -350,8 +371,7 @@ bool Polish(const FamilyRun& run,
     r->state_grid = passes->grid();
     r->states = passes->X();
     r->costates = passes->Lambda();
-    r->objective = DiscreteOcp(problem, passes->grid(), request.integrator, request.terminal)
-                       .Simulate(passes->U(), nullptr);
+    r->objective = DiscreteObjective(problem, request, *passes);
     r->iterations = descent_iterations + newton_iterations;
   }
 }
@@ -587,6 +607,10 @@ GridSolve SolveOnGrid(const FamilyRun& run, const SolveRequest& request) {
                                problem.free_final_time()->upper,
                                o.free_time_initial_fraction);
   }
+  if (problem.HasFreeInitialState()) {
+    const VectorBounds bounds = problem.InitialNodeBounds();
+    passes.EnableFreeInitialState(bounds.lower, bounds.upper);
+  }
   Mat U0 = request.initial_guess ? request.initial_guess->SampleIntervals(request.grid)
                                  : DefaultInitialGuess(problem, request.grid).values();
   for (int k = 0; k < U0.cols(); ++k) problem.control_set().Project(U0.col(k));
@@ -632,6 +656,9 @@ GridSolve SolveOnGrid(const FamilyRun& run, const SolveRequest& request) {
     stats["final_time"] = passes.T();
     stats["dJdT"] = passes.dJdT();
   }
+  if (passes.free_initial_state()) {
+    stats["dJdx0_inf"] = passes.dJdx0().lpNorm<Eigen::Infinity>();
+  }
 
   const TimeGrid grid = passes.grid();
   r.status = stop.status;
@@ -642,9 +669,7 @@ GridSolve SolveOnGrid(const FamilyRun& run, const SolveRequest& request) {
   r.state_grid = grid;
   r.states = passes.X();
   if (have_costates) r.costates = passes.Lambda();
-  // J of the problem in the request's terminal form (hard: no penalty, no multiplier terms).
-  r.objective = DiscreteOcp(problem, grid, request.integrator, request.terminal)
-                    .Simulate(passes.U(), nullptr);
+  r.objective = DiscreteObjective(problem, request, passes);
 
   // No Newton attempt once the CPU limit is reached (the descent's stop says so).
   if (o.polish && clock.cpu() < o.max_cpu_seconds) {
@@ -737,8 +762,12 @@ SolveResult SolveSequenced(const FamilyRun& run, const SolveRequest& request, in
         std::to_string(best.state_grid.intervals()) + "-interval grid's controls";
     r = std::move(coarse.result);
     Mat X;
-    r.objective =
-        DiscreteOcp(*run.target.ocp, grid, request.integrator, request.terminal).Simulate(U, &X);
+    DiscreteOcp docp(*run.target.ocp, grid, request.integrator, request.terminal);
+    // A free initial state starts where the solution the controls come from starts.
+    if (run.original.HasFreeInitialState() && best.states.cols() > 0) {
+      docp.SetInitialState(best.states.col(0));
+    }
+    r.objective = docp.Simulate(U, &X);
     r.controls = ControlTrajectory::PiecewiseConstant(grid, U);
     r.state_grid = grid;
     r.states = X;
@@ -845,6 +874,10 @@ SolveResult HamiltonianFamily::Solve(const Ocp& original, const SolveRequest& re
     r = ResultOf(SolveOnGrid(run, request));
   }
   if (std::isfinite(r.objective)) r.message += "; final J = " + MessageNumber(r.objective);
+  // The x(t0) the result's states start from (the judge re-simulates from it).
+  if (original.HasFreeInitialState() && r.states.rows() == original.nx() && r.states.cols() > 0) {
+    r.initial_state = r.states.col(0);
+  }
   r.cpu_seconds = clock.cpu();
   r.wall_seconds = clock.wall();
   return r;

@@ -60,9 +60,11 @@ std::string UnsupportedFeature(const Ocp& ocp,
                                const ProblemFeatures& takes) {
   const ProblemFeatures uses = ProblemFeatures::Of(ocp);
   if (uses.free_final_time && !takes.free_final_time) return FreeFinalTimeReason(ocp, solver);
-  // indirect-newton takes these two too (transversality rows), where it applies at all.
+  // indirect-newton and the Hamiltonian family take these two too (transversality rows, a
+  // gradient step on x(t0)), where they apply at all.
   const std::string and_newton =
-      "; indirect-newton too, where the problem has a closed-form Hamiltonian minimizer";
+      "; indirect-newton and the Hamiltonian family (forward Euler) too, where the problem has "
+      "a closed-form Hamiltonian minimizer";
   if (uses.free_initial_state && !takes.free_initial_state && ocp.num_static_parameters() > 0) {
     return "problem '" + ocp.name() +
            "' has static parameters (constant decisions, posed as a "

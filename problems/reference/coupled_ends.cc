@@ -34,8 +34,8 @@ ProblemInfo CoupledEndsProblemInfo() {
   p.reference_value = CoupledEnds(Parameters(CoupledEnds::ParameterSpecs())).OptimalCost();
   p.reference_source = "analytic J* = 1.53 (derived in problems/reference/coupled_ends.h)";
   p.hamiltonian_note =
-      "not applicable: a free initial state and a boundary constraint (the family starts every "
-      "trajectory from x0)";
+      "not applicable: a boundary constraint b(x(t0), x(tf)) (the family's descent and polish "
+      "have no rows for it; they take the free initial state alone)";
   p.reference_costate = [](double) {
     return Vec::Constant(1,
                          -CoupledEnds(Parameters(CoupledEnds::ParameterSpecs())).OptimalControl());

@@ -70,8 +70,10 @@ ProblemInfo FreeStartProblemInfo() {
       "analytic J* = 1.025 (derived in problems/reference/free_start.h from the transversality "
       "conditions of a free initial state, Bryson-Ho Sec. 2.7)";
   p.hamiltonian_note =
-      "not applicable: a free initial state (the family starts every trajectory from x0); "
-      "indirect-newton takes it (transversality p(t0) = -grad phi0, clipped by the bounds)";
+      "not applicable: a free initial state (the paper's descent keeps x0 fixed); the family "
+      "(hamiltonian-proximal, -al, -polish) on forward Euler takes it (a projected gradient "
+      "step on x1(0) along lambda_0 + grad phi0, the polish's transversality rows), as "
+      "indirect-newton does (p(t0) = -grad phi0, clipped by the bounds)";
   p.reference_costate = [](double) {
     return FreeStart(Parameters(FreeStart::ParameterSpecs())).OptimalCostate();
   };

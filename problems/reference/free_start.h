@@ -29,8 +29,9 @@ namespace ocpb {
 ///
 /// H = p1 u + p2 u^2/2 has the closed-form minimizer u* = -p1 / p2 (p2 = 1 on every costate of
 /// the problem), so indirect-newton solves it with the transversality rows of a free initial
-/// state (solvers/pmp_residual.h). Not for the Hamiltonian family or single shooting (they start
-/// every trajectory from a fixed x0: not_applicable).
+/// state (solvers/pmp_residual.h), and so does the Hamiltonian family on forward Euler (x1(0) a
+/// variable of its descent, solvers/descent_passes.h). Not for the paper's `hamiltonian` or single
+/// shooting (they start every trajectory from a fixed x0: not_applicable).
 class FreeStart final : public AutoDiffOcp<FreeStart, 2, 1> {
  public:
   /// Parameters: w, a (initial cost), q, b (terminal cost), lo, hi (bounds of x1(0); need

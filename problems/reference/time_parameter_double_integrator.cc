@@ -40,8 +40,9 @@ ProblemInfo TimeParameterDoubleIntegratorProblemInfo() {
   p.reference_source =
       "analytic J* = 4 T*/3, T* = 18^(1/4) (as double-integrator-free-time: T + 6/T^3 minimized)";
   p.hamiltonian_note =
-      "not applicable: a static parameter (the family starts every trajectory from x0); "
-      "indirect-newton takes it through T's adjoint (transversality p_T(0) = 0)";
+      "not applicable: a static parameter (the paper's descent keeps x0 fixed); the family "
+      "(hamiltonian-proximal, -al, -polish) on forward Euler takes it (its gradient is T's "
+      "adjoint lambda_T(0)), as indirect-newton does (transversality p_T(0) = 0)";
   p.tags = {"smooth", "free-time", "static-parameters"};
   return p;
 }

@@ -464,10 +464,14 @@ TEST(ProblemClass, MethodsThatDoNotTakeAFeatureAreNotApplicableWithTheReason) {
       // and FreeInitialStatesAndStaticParametersReachIpoptsOptimum): through the registry it
       // must solve, not refuse.
       // indirect-newton takes a free initial state (transversality rows; checked against the
-      // analytic optimum by solvers_test's IndirectNewtonFreeStart tests), not state bounds.
+      // analytic optimum by solvers_test's IndirectNewtonFreeStart tests), not state bounds, and
+      // so does the Hamiltonian family on forward Euler (FamilyFreeStart tests); the paper's
+      // hamiltonian keeps x0 fixed.
       SCOPED_TRACE(problem + " / " + c.solver + " " + c.transcription);
-      if (c.solver == "riccati-ip" ||
-          (c.solver == "indirect-newton" && feature == "a free initial state")) {
+      const bool takes_free_start = c.solver == "indirect-newton" ||
+                                    c.solver == "hamiltonian-proximal" ||
+                                    c.solver == "hamiltonian-polish";
+      if (c.solver == "riccati-ip" || (takes_free_start && feature == "a free initial state")) {
         const SolveResult r =
             SolveWith(c.solver, *ocp, Request(*ocp, 10, TerminalMode::kPenalty, c.transcription));
         EXPECT_EQ(r.status, SolveStatus::kConverged) << r.message;

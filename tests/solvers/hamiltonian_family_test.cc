@@ -20,29 +20,12 @@
 #include "solvers/forwarding_ocp.h"
 #include "solvers/hamiltonian_descent.h"
 #include "solvers/registry.h"
+#include "tests/solvers/family_test_support.h"
 
 namespace ocpb {
 namespace {
 
 using Options = HamiltonianFamilyOptions;
-
-SolveRequest FamilyRequest(const Ocp& ocp, int N, TerminalMode mode = TerminalMode::kPenalty) {
-  SolveRequest r;
-  r.grid = TimeGrid::Uniform(ocp.t0(), ocp.tf(), N);
-  r.terminal = mode;
-  return r;
-}
-
-SolveResult IpoptEuler(const Ocp& ocp, int N, TerminalMode mode) {
-  SolveRequest r = FamilyRequest(ocp, N, mode);
-  r.transcription = "euler";
-  return FindSolver("ipopt").make()->Solve(ocp, r);
-}
-
-double Stat(const SolveResult& r, const std::string& key) {
-  const auto it = r.solver_stats.find(key);
-  return it == r.solver_stats.end() ? NAN : it->second;
-}
 
 // ---- options ------------------------------------------------------------------------------------
 
