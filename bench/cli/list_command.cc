@@ -92,9 +92,10 @@ void DescribeProblem(const std::string& name) {
                     : features +
                           " (ipopt and nlopt on a collocation transcription take them, and "
                           "riccati-ip on euler and trapezoid; "
-                          "indirect-newton a free initial state and a free final time where the "
-                          "problem has a closed-form Hamiltonian minimizer; methods that do not "
-                          "say not_applicable)")
+                          "indirect-newton and the Hamiltonian family (forward Euler) a free "
+                          "initial state and a free final time where the problem has a "
+                          "closed-form Hamiltonian minimizer; methods that do not say "
+                          "not_applicable)")
             << "\n";
   std::cout << "parameters (--set key=value, suite \"set\"):\n" << parameters.Describe();
 }
