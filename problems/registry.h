@@ -38,12 +38,33 @@ struct TruthJudgement {
 /// (CTBenchmarks' trapezoid objectives at N = 200, 500, 1000, 2000; COPS' values at its nh), which
 /// OCPBench's transcription of the same scheme and grid must reproduce at the NLP level, or a
 /// second continuous value from another source.
+///
+/// Written {value, quantity, scheme, intervals, source} or with the options as a sixth entry
+/// (the constructor keeps the five-entry form of before working without a missing-initializer
+/// warning).
 struct ProblemReference {
+  ProblemReference() = default;
+  ProblemReference(double value,
+                   std::string quantity,
+                   std::string scheme,
+                   int intervals,
+                   std::string source,
+                   std::vector<std::pair<std::string, std::string>> options = {})
+      : value(value),
+        quantity(std::move(quantity)),
+        scheme(std::move(scheme)),
+        intervals(intervals),
+        source(std::move(source)),
+        options(std::move(options)) {}
+
   double value = NAN;
   std::string quantity = "J";         ///< "J" (the cost as posed) or "tf"
   std::string scheme = "continuous";  ///< "continuous", or the transcription whose NLP it solves
   int intervals = 0;                  ///< the grid of a discrete value (0 when continuous)
   std::string source;                 ///< where the value is published
+  /// Ipopt options ("key", "value") this discrete value needs to be reproduced (as
+  /// ProblemInfo::reference_options for the primary one); empty: OCPBench's defaults.
+  std::vector<std::pair<std::string, std::string>> options;
 };
 
 /// The tags a problem may carry (`ocpbench list problems --tag T`), each with what it means.
@@ -83,7 +104,9 @@ struct ProblemInfo {
   int reference_intervals = 0;  ///< the grid of a discrete reference (0 when continuous)
   /// Ipopt options ("key", "value") a discrete primary reference needs to be reproduced
   /// (another barrier strategy where the NLP has several stationary points close together);
-  /// empty: OCPBench's defaults. The NLP-level test adds them to a tight tol.
+  /// empty: OCPBench's defaults. The NLP-level test adds them to a tight tol. An additional
+  /// reference names its own (ProblemReference::options): what one grid needs, another may not
+  /// (insurance: the adaptive barrier reproduces N = 200 and 1000, but not 500).
   std::vector<std::pair<std::string, std::string>> reference_options;
   /// Further published values (see ProblemReference); the primary one above is not repeated.
   std::vector<ProblemReference> additional_references;

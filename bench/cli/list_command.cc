@@ -45,28 +45,27 @@ void DescribeProblem(const std::string& name) {
                                   double value,
                                   const std::string& scheme,
                                   int intervals,
-                                  const std::string& source) {
+                                  const std::string& source,
+                                  const std::vector<std::pair<std::string, std::string>>& options) {
     std::cout << "reference " << quantity << " = " << fmt::format("{:.12g}", value) << " ("
               << (scheme == "continuous" ? scheme
                                          : fmt::format("{} NLP at N = {}", scheme, intervals))
               << "; " << source << ")\n";
+    if (options.empty()) return;
+    std::string line;
+    for (const auto& [key, v] : options) line += (line.empty() ? "" : " ") + key + "=" + v;
+    std::cout << "  ipopt options its NLP needs: " << line << "\n";
   };
   if (p.reference_value) {
     print_reference(p.reference_quantity,
                     *p.reference_value,
                     p.reference_scheme,
                     p.reference_intervals,
-                    p.reference_source);
+                    p.reference_source,
+                    p.reference_options);
   }
   for (const ProblemReference& r : p.additional_references)
-    print_reference(r.quantity, r.value, r.scheme, r.intervals, r.source);
-  if (!p.reference_options.empty()) {
-    std::string options;
-    for (const auto& [key, value] : p.reference_options) {
-      options += (options.empty() ? "" : " ") + key + "=" + value;
-    }
-    std::cout << "ipopt options of the first reference (its NLP needs them): " << options << "\n";
-  }
+    print_reference(r.quantity, r.value, r.scheme, r.intervals, r.source, r.options);
   if (!p.hamiltonian_note.empty()) std::cout << "hamiltonian: " << p.hamiltonian_note << "\n";
   // The problem as its defaults build it (make_for_checks: without its expensive parts): its
   // sizes and which parts of the problem class it uses, which decide the methods that take it.

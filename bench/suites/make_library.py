@@ -19,7 +19,7 @@ library.json (the main job's): per problem, one group in the hard terminal form:
     has, as its own case, so
     the summary's "NLP vs peer" column checks OCPBench's transcription against it.
 library-peers.json (a sweep): Ipopt on every peer's NLP at every published N, at tol 1e-10
-(PEERS_NLP_TOL) with the options the problem's first reference names, and on Hermite-Simpson and
+(PEERS_NLP_TOL) with the options each reference names, and on Hermite-Simpson and
 LGR at the problem's default N.
 Methods that do not take a problem are recorded as not_applicable (with the reason), which
 costs nothing, so the generator does not need to know the rules. Every case has a time limit
@@ -41,15 +41,13 @@ def describe(ocpbench, name):
     nx = int(re.search(r"^sizes: nx = (\d+)", text, re.M).group(1))
     peers = [(m.group(2), int(m.group(3))) for m in
              re.finditer(r"^reference (\S+) = \S+ \((\S+) NLP at N = (\d+);", text, re.M)]
-    # The Ipopt options the first (primary) reference's NLP needs, when it is a discrete one.
-    first = re.search(r"^reference \S+ = \S+ \((\S+) NLP at N = (\d+);", text, re.M)
-    first_any = re.search(r"^reference \S+ = ", text, re.M)
-    options = re.search(r"^ipopt options of the first reference \([^)]*\): (.*)$", text, re.M)
-    primary_options = {}
-    if options and first and first.start() == first_any.start():
-        primary_options[(first.group(1), int(first.group(2)))] = dict(
-            item.split("=", 1) for item in options.group(1).split())
-    return n, nx, peers, tags, primary_options
+    # The Ipopt options a discrete reference's NLP needs: the indented line after it.
+    peer_options = {}
+    for m in re.finditer(r"^reference \S+ = \S+ \((\S+) NLP at N = (\d+);.*\n"
+                         r"  ipopt options its NLP needs: (.*)$", text, re.M):
+        peer_options[(m.group(1), int(m.group(2)))] = dict(
+            item.split("=", 1) for item in m.group(3).split())
+    return n, nx, peers, tags, peer_options
 
 
 MAIN_JOB_N = 100       # the families' grid in the main job's suite (at most)
@@ -113,7 +111,7 @@ def main():
                              capture_output=True, text=True).stdout.split()
     groups = []
     for name in names:
-        n, nx, peers, tags, primary_options = describe(ocpbench, name)
+        n, nx, peers, tags, peer_options = describe(ocpbench, name)
         if "paper" in tags:
             continue  # the paper's problems have their own suites (bench/suites/paper.json)
         # A peer's scheme OCPBench does not have (COPS' Gauss-Legendre) is left out.
@@ -130,7 +128,7 @@ def main():
             case = {"solver": "ipopt", "transcription": scheme, "N": n_peer}
             if peers_suite:
                 case["options"] = {"tol": PEERS_NLP_TOL,
-                                   **primary_options.get((scheme, n_peer), {})}
+                                   **peer_options.get((scheme, n_peer), {})}
             if case not in methods:
                 methods.append(case)
         limit = PEERS_LIMIT_S if peers_suite else MAIN_JOB_LIMIT_S

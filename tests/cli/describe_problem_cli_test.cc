@@ -62,14 +62,23 @@ TEST(DescribeProblemCli, TagsSelectAndDescribe) {
   EXPECT_NE(goddard.out.find("reference J = -1.01283 (trapezoid NLP at N = 400;"),
             std::string::npos)
       << goddard.out;
-  // The Ipopt options a reference's NLP needs (make_library.py --peers reads this line), only
-  // where the problem names some.
+  // The Ipopt options a reference's NLP needs, on the line under that reference
+  // (make_library.py --peers reads it), only where the reference names some: jackson's N = 200
+  // and 500, not its N = 2000.
   EXPECT_EQ(goddard.out.find("ipopt options"), std::string::npos) << goddard.out;
   const ProgramRun jackson = RunOcpbenchProgram({"describe", "problem", "jackson"});
-  EXPECT_NE(jackson.out.find("\nipopt options of the first reference (its NLP needs them): "
-                             "mu_strategy=adaptive\n"),
-            std::string::npos)
+  // The line under the reference at trapezoid N = n.
+  const auto line_under = [&](const std::string& n) {
+    const std::size_t at = jackson.out.find("(trapezoid NLP at N = " + n + ";");
+    if (at == std::string::npos) return std::string("(no such reference)");
+    const std::size_t begin = jackson.out.find('\n', at) + 1;
+    return jackson.out.substr(begin, jackson.out.find('\n', begin) - begin);
+  };
+  EXPECT_EQ(line_under("200"), "  ipopt options its NLP needs: mu_strategy=adaptive")
       << jackson.out;
+  EXPECT_EQ(line_under("500"), "  ipopt options its NLP needs: mu_strategy=adaptive")
+      << jackson.out;
+  EXPECT_EQ(line_under("2000").find("ipopt options"), std::string::npos) << jackson.out;
 }
 
 }  // namespace

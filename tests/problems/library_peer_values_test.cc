@@ -42,7 +42,9 @@ TEST(LibraryPeerValues, TranscriptionsReproduceThePeersNlpOptima) {
     // Each discrete reference with the Ipopt options it needs (the primary one may name some).
     std::vector<std::pair<ProblemReference, std::vector<std::pair<std::string, std::string>>>>
         discrete;
-    for (const ProblemReference& r : info.additional_references) discrete.push_back({r, {}});
+    for (const ProblemReference& r : info.additional_references) {
+      discrete.push_back({r, r.options});
+    }
     if (info.reference_value && info.reference_scheme != "continuous" &&
         !PrintedToSixDigits().count(info.name)) {
       discrete.push_back({{*info.reference_value,
