@@ -39,24 +39,10 @@ struct TruthJudgement {
 /// OCPBench's transcription of the same scheme and grid must reproduce at the NLP level, or a
 /// second continuous value from another source.
 ///
-/// Written {value, quantity, scheme, intervals, source} or with the options as a sixth entry
-/// (the constructor keeps the five-entry form of before working without a missing-initializer
-/// warning).
+/// Written {value, quantity, scheme, intervals, source}, with the options as a sixth entry
+/// where a value needs some (a default member initializer: the five-entry form stays free of
+/// missing-initializer warnings).
 struct ProblemReference {
-  ProblemReference() = default;
-  ProblemReference(double value,
-                   std::string quantity,
-                   std::string scheme,
-                   int intervals,
-                   std::string source,
-                   std::vector<std::pair<std::string, std::string>> options = {})
-      : value(value),
-        quantity(std::move(quantity)),
-        scheme(std::move(scheme)),
-        intervals(intervals),
-        source(std::move(source)),
-        options(std::move(options)) {}
-
   double value = NAN;
   std::string quantity = "J";         ///< "J" (the cost as posed) or "tf"
   std::string scheme = "continuous";  ///< "continuous", or the transcription whose NLP it solves
@@ -64,7 +50,7 @@ struct ProblemReference {
   std::string source;                 ///< where the value is published
   /// Ipopt options ("key", "value") this discrete value needs to be reproduced (as
   /// ProblemInfo::reference_options for the primary one); empty: OCPBench's defaults.
-  std::vector<std::pair<std::string, std::string>> options;
+  std::vector<std::pair<std::string, std::string>> options = {};
 };
 
 /// The tags a problem may carry (`ocpbench list problems --tag T`), each with what it means.
