@@ -119,7 +119,10 @@ DescentLoopOutcome RunDescentLoop(const DescentLoopOptions& opt,
     }
     stop = StopTest(opt, out.iterations, passes->J(), out.theta, theta_scale, clock.cpu());
     if (stop) break;
-    if (!(direction_theta < 0.0)) {
+    // A free final time or initial state that is not stationary moves even where the controls'
+    // theta is 0 (their direction then adds nothing to the Armijo bound).
+    const bool others_move = passes->others_theta() < 0.0;
+    if (!(direction_theta < 0.0) && !others_move) {
       stop = DescentStop{SolveStatus::kError,
                          "theta_positive",
                          "the proximal theta " + MessageNumber(direction_theta) +
@@ -127,7 +130,9 @@ DescentLoopOutcome RunDescentLoop(const DescentLoopOptions& opt,
       break;
     }
     const int accepted =
-        passes->Armijo(opt.armijo, direction_theta, CpuLimit{&clock, opt.max_cpu_seconds});
+        passes->Armijo(opt.armijo,
+                       others_move ? std::min(direction_theta, 0.0) : direction_theta,
+                       CpuLimit{&clock, opt.max_cpu_seconds});
     if (accepted == Passes::kOutOfTime) {
       stop = DescentStop{SolveStatus::kMaxTime,
                          "max_cpu_seconds",

@@ -151,6 +151,10 @@ void DescentPasses::SpectralInitialStep() {
   have_previous0_ = true;
 }
 
+double DescentPasses::InitialStateStationarity() const {
+  return ((x0_ - g0_).cwiseMax(x0_lower_).cwiseMin(x0_upper_) - x0_).lpNorm<Eigen::Infinity>();
+}
+
 double DescentPasses::TrialEnds() const {
   const double phi = ocp_.TerminalObjective(X_trial_.col(N_), docp_->terminal_mode());
   return free_initial_ ? docp_->InitialObjective(trial_x0_) + phi : phi;
@@ -281,13 +285,16 @@ int DescentPasses::Armijo(const ArmijoRule& rule, double theta, const CpuLimit& 
   }
   // Free initial state: the same projected gradient step on x_0.
   if (free_initial_) {
-    if (!std::isfinite(sigma0_)) {
-      const double g =
-          g0_.cwiseProduct((x0_upper_ - x0_lower_).cwiseSign()).lpNorm<Eigen::Infinity>();
+    const Vec free = (x0_upper_ - x0_lower_).cwiseSign();  // 1 on a free component, 0 else
+    const double g = g0_.cwiseProduct(free).lpNorm<Eigen::Infinity>();
+    if (!std::isfinite(sigma0_) && g > 0.0) {
       sigma0_ =
-          g > 0.0 ? initial_fraction0_ * std::max(1.0, x0_.lpNorm<Eigen::Infinity>()) / g : 1.0;
+          initial_fraction0_ * std::max(1.0, x0_.cwiseProduct(free).lpNorm<Eigen::Infinity>()) / g;
     }
-    d0_ = (x0_ - sigma0_ * g0_).cwiseMax(x0_lower_).cwiseMin(x0_upper_) - x0_;
+    // Until x(t0) has a gradient, it stays (sigma_0 is then set at the first one).
+    d0_ = std::isfinite(sigma0_)
+              ? Vec((x0_ - sigma0_ * g0_).cwiseMax(x0_lower_).cwiseMin(x0_upper_) - x0_)
+              : Vec::Zero(nx_);
     theta += g0_.dot(d0_);
   }
   double step = 1.0;
@@ -332,6 +339,7 @@ int DescentPasses::Armijo(const ArmijoRule& rule, double theta, const CpuLimit& 
 
 double DescentPasses::Backward(double* theta_scale, double eps) {
   if (!(eps > 0.0)) throw std::invalid_argument("DescentPasses::Backward: eps must be > 0");
+  others_theta_ = 0.0;
   if (euler()) {
     const double theta = BackwardEuler(theta_scale, eps);
     if (free_time_) {
@@ -345,14 +353,14 @@ double DescentPasses::Backward(double* theta_scale, double eps) {
       // dJ/dT = 0, or a bound with dJ/dT pointing out of the box). Without it the stopping tests
       // saw the controls only and stopped at a non-stationary T.
       const double T = grid.tf();
-      stationarity_theta_ += std::min(dJdT_ * (T_lower_ - T), dJdT_ * (T_upper_ - T));
+      others_theta_ += std::min(dJdT_ * (T_lower_ - T), dJdT_ * (T_upper_ - T));
     }
     if (free_initial_) {
       // g_0 = lambda_0 + grad phi0(x_0), and x_0's share of the stationarity measure (the class
       // comment): the best first-order decrease within the bounds, or within max(1, |x_0,i|)
       // of x_0,i where a bound is infinite (an unbounded direction would make it -inf).
       g0_ = Lambda_.col(0);
-      if (ocp_.HasInitialCost()) {
+      if (ocp_.HasFreeInitialState() && ocp_.HasInitialCost()) {  // as J counts it
         double phi0 = 0.0;
         ocp_.InitialCostGradient(x0_, &phi0, tmp_x_);
         g0_ += tmp_x_;
@@ -363,9 +371,10 @@ double DescentPasses::Backward(double* theta_scale, double eps) {
         const double reach = std::max(1.0, std::abs(x0_[i]));
         const double lo = std::isfinite(x0_lower_[i]) ? x0_lower_[i] : x0_[i] - reach;
         const double hi = std::isfinite(x0_upper_[i]) ? x0_upper_[i] : x0_[i] + reach;
-        stationarity_theta_ += std::min(g0_[i] * (lo - x0_[i]), g0_[i] * (hi - x0_[i]));
+        others_theta_ += std::min(g0_[i] * (lo - x0_[i]), g0_[i] * (hi - x0_[i]));
       }
     }
+    stationarity_theta_ += others_theta_;
     return theta;
   }
   docp_->Adjoint(U_, X_, &Lambda_, &G_);

@@ -126,8 +126,12 @@ class DescentPasses {
   bool free_initial_state() const { return free_initial_; }
   /// The current x_0 (docp's initial_state() for a fixed one).
   const Vec& x0() const { return x0_; }
-  /// dJ/dx_0 at the iterate (the last Backward; free initial state only).
+  /// dJ/dx_0 at the iterate (the last Backward; free initial state only; every component, the
+  /// fixed ones included).
   const Vec& dJdx0() const { return g0_; }
+  /// max_i |P_[l0, u0](x_0 - g_0)_i - x_0,i|: 0 exactly where x_0 is stationary (the projected
+  /// gradient's norm; fixed components count 0). Free initial state only.
+  double InitialStateStationarity() const;
   /// The current final time (the grid's tf for a fixed horizon).
   double T() const { return docp_->grid().tf(); }
   /// dJ/dT at the iterate (the last Backward; free final time only).
@@ -153,6 +157,11 @@ class DescentPasses {
   /// share, min over T' in [lower, upper] of dJ/dT (T' - T) <= 0 (0 only at a stationary T).
   double Backward(double* theta_scale, double eps = std::numeric_limits<double>::infinity());
   double stationarity_theta() const { return stationarity_theta_; }
+  /// The share of stationarity_theta() that is not the controls': a free final time's and a
+  /// free initial state's (<= 0; 0 when neither is free or both are stationary). The loop
+  /// goes on while it is negative, whatever the controls' theta (they may be stationary while
+  /// T or x(t0) are not).
+  double others_theta() const { return others_theta_; }
   /// The Armijo search along D (Backward first). Returns the accepted exponent, or -1 when no
   /// exponent <= rule.max_exponent gives sufficient decrease, or kOutOfTime when `limit` was
   /// reached before a trial after the first (checked before each one: the search ends within
@@ -223,7 +232,7 @@ class DescentPasses {
   std::vector<double> suffix_;  // suffix_[k] = sum_{j>=k} h_j m_j of the current trial
   std::vector<double> bounds_;  // m_k of the current trial (the pointwise bound)
   std::vector<double> terms_, scales_, mins_;  // mins_: h_k (H(u*_k) - H(u_k)) (proximal)
-  double stationarity_theta_ = NAN;
+  double stationarity_theta_ = NAN, others_theta_ = 0.0;
   Vec lam_, tmp_x_, f_, Lx_, Lu_;
   Mat fx_, fu_;
   DescentWork work_;

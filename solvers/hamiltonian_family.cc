@@ -657,7 +657,7 @@ GridSolve SolveOnGrid(const FamilyRun& run, const SolveRequest& request) {
     stats["dJdT"] = passes.dJdT();
   }
   if (passes.free_initial_state()) {
-    stats["dJdx0_inf"] = passes.dJdx0().lpNorm<Eigen::Infinity>();
+    stats["initial_state_stationarity"] = passes.InitialStateStationarity();
   }
 
   const TimeGrid grid = passes.grid();

@@ -177,7 +177,10 @@ struct HamiltonianFamilyOptions {
 /// the outer loop's and the continuations' between Newton attempts included), "final_theta",
 /// "simulations", "prefilter_rejections", "reformulated"; AL: "outer_iterations",
 /// "terminal_residual", "path_violation", "penalty", "nu_<i>" (the final terminal multipliers,
-/// those of psi_i = 0 in the Lagrangian J + nu^T psi); free time: "final_time", "dJdT"; polish:
+/// those of psi_i = 0 in the Lagrangian J + nu^T psi); free time: "final_time", "dJdT"; free
+/// initial state (forward Euler): "initial_state_stationarity" (at the descent's end,
+/// DescentPasses::InitialStateStationarity), and the result's initial_state is x(t0) of its
+/// states (the descent's, or Newton's when the polish converged); polish:
 /// "newton_iterations", "newton_cpu_seconds", "newton_residual_inf" and Newton's own stats prefixed
 /// "newton_", "start_adjoint_fallback" (last attempt: 1 when the fit was degenerate, a Mayer cost
 /// L = 0, and Newton started from the descent's adjoint sweep instead, FitEulerCostates; else 0);

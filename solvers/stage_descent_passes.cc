@@ -75,13 +75,15 @@ double StageDescentPasses::Backward(double* theta_scale, double eps) {
   }
   if (theta_scale) *theta_scale = scale;
   stationarity_theta_ = stationarity;
+  others_theta_ = 0.0;
   if (free_time_) {
     const TimeGrid& grid = srk_->grid();
     const double duration = grid.tf() - grid.t0(), T = grid.tf();
     dJdT_ = 0.0;
     for (int k = 0; k < N; ++k) dJdT_ += grid.h(k) / duration * dJdh_[k];
     // T's share: min over T' in [lower, upper] of dJ/dT (T' - T) (DescentPasses::Backward).
-    stationarity_theta_ += std::min(dJdT_ * (T_lower_ - T), dJdT_ * (T_upper_ - T));
+    others_theta_ = std::min(dJdT_ * (T_lower_ - T), dJdT_ * (T_upper_ - T));
+    stationarity_theta_ += others_theta_;
   }
   return theta;
 }

@@ -54,6 +54,8 @@ class StageDescentPasses {
   double Start(const Mat& U);
   double Backward(double* theta_scale, double eps = std::numeric_limits<double>::infinity());
   double stationarity_theta() const { return stationarity_theta_; }
+  /// A free final time's share of stationarity_theta() (DescentPasses::others_theta).
+  double others_theta() const { return others_theta_; }
   int Armijo(const ArmijoRule& rule, double theta, const CpuLimit& limit = {});
   static constexpr int kOutOfTime = DescentPasses::kOutOfTime;
 
@@ -84,7 +86,7 @@ class StageDescentPasses {
   std::unique_ptr<ConvexPointMinimizer> generic_;
   Mat U_, X_, Lambda_, Y_, P_, G_, D_, trial_U_, X_trial_;
   double J_ = 0.0;
-  double stationarity_theta_ = NAN;
+  double stationarity_theta_ = NAN, others_theta_ = 0.0;
   Vec f_;
   DescentWork work_;
 };

@@ -46,7 +46,8 @@ double DiscreteJ(
 }
 
 // dJ/dx0 of the descent (lambda_0 + grad phi0 from the sweep) against central differences of the
-// discrete J, with and without the problem's fast paths, in both terminal forms.
+// discrete J, in both terminal forms (the generic sweep: neither problem has an EulerStageModel),
+// and the stationarity measure's share of x(t0).
 TEST(FamilyFreeStart, InitialStateGradientMatchesFiniteDifferences) {
   for (const char* name : kProblems) {
     const auto ocp = MakeProblem(name, {}, 0);
@@ -76,6 +77,9 @@ TEST(FamilyFreeStart, InitialStateGradientMatchesFiniteDifferences) {
             (2.0 * d);
         EXPECT_NEAR(passes.dJdx0()[i], fd, 1e-6 * (1.0 + std::abs(fd))) << "component " << i;
       }
+      // A random x(t0) inside its bounds is not stationary: it has a share of the measure.
+      EXPECT_LT(passes.others_theta(), 0.0);
+      EXPECT_GT(passes.InitialStateStationarity(), 0.0);
     }
   }
 }
@@ -138,7 +142,6 @@ TEST(FamilyFreeStart, PolishReachesIpoptEulersPointWithTheInitialState) {
                                 .Solve(*ocp, FamilyRequest(*ocp, N, mode));
       ASSERT_EQ(r.status, SolveStatus::kConverged) << r.message;
       ASSERT_EQ(r.initial_state.size(), ocp->nx());
-      EXPECT_EQ(r.initial_state, r.states.col(0));
       const SolveResult ipopt = IpoptEuler(*ocp, N, mode, 1e-12);
       ASSERT_EQ(ipopt.status, SolveStatus::kConverged) << ipopt.message;
       const double tol = active_bound ? 1e-7 : 1e-9;
@@ -163,6 +166,32 @@ TEST(FamilyFreeStart, OuterLoopReachesTheAnalyticOptimum) {
   ASSERT_EQ(r.status, SolveStatus::kConverged) << r.message;
   EXPECT_NEAR(r.initial_state[0], 0.5, 1e-6);
   EXPECT_NEAR(r.objective, 1.025, 1e-8);
+  EXPECT_LT(Stat(r, "initial_state_stationarity"), 1e-6);
+}
+
+// Controls already optimal for the starting x(t0) while x(t0) is not: free-start with q = 1 on
+// 16 intervals (every number exact in binary) from x1(0) = 0 and u = 1, where lambda_1 = q (x1(T)
+// - b) = -1 and u* = -lambda_1 = u exactly, so the controls' theta is exactly 0 and x(t0)'s
+// gradient -1. The descent must move x(t0) (to its bound 0.5: the analytic optimum), not stop
+// with theta_positive.
+TEST(FamilyFreeStart, StationaryControlsDoNotStopANonStationaryInitialState) {
+  const auto ocp = MakeProblem("free-start", {"q=1"}, 0);
+  Parameters params(FreeStart::ParameterSpecs());
+  params.Set("q", {1.0});
+  const FreeStart::Optimum opt = FreeStart(params).AnalyticOptimum();
+  ASSERT_EQ(opt.x1_start, 0.5);
+  for (const bool proximal : {false, true}) {
+    SCOPED_TRACE(proximal ? "proximal" : "paper's direction");
+    SolveRequest request = FamilyRequest(*ocp, 16);
+    request.initial_guess = ControlTrajectory::Constant(request.grid, Vec::Constant(1, 1.0));
+    const SolveResult r =
+        HamiltonianFamily(proximal ? HamiltonianFamily::Proximal() : HamiltonianFamilyOptions())
+            .Solve(*ocp, request);
+    EXPECT_NE(r.status, SolveStatus::kError) << r.message;
+    ASSERT_EQ(r.initial_state.size(), 2);
+    EXPECT_NEAR(r.initial_state[0], opt.x1_start, 1e-6) << r.message;
+    EXPECT_NEAR(r.objective, opt.J, 1e-8) << r.message;
+  }
 }
 
 // Where the family cannot take a free initial state it says why, before any work: the stage

@@ -180,7 +180,9 @@ TEST(IndirectNewtonStaticParameter, FinalTimeAsAParameterMatchesTheFreeFinalTime
     EXPECT_LT((p.states.row(2).array() - p.initial_state[2]).abs().maxCoeff(), 1e-12);
     const double error = std::abs(p.initial_state[2] - T_star);
     EXPECT_LT(error, 2e-3);
-    if (last_error > 0.0) EXPECT_GT(last_error / error, 3.5);  // second order: about 4
+    if (last_error > 0.0) {
+      EXPECT_GT(last_error / error, 3.5);  // second order: about 4
+    }
     last_error = error;
   }
 }

@@ -348,7 +348,9 @@ TEST(RiccatiKkt, TerminalSlacksMatchADenseSolve) {
         const RiccatiSolution d = DenseSolve(p, dw, dc);
         EXPECT_LT(MaxDifference(z, d), 1e-10 * Scale(d)) << "dw " << dw;
         for (int i = 0; i < c.npsi; ++i) {
-          if (p.slack_hessian[i] == 0.0) EXPECT_EQ(z.s[i], 0.0);
+          if (p.slack_hessian[i] == 0.0) {
+            EXPECT_EQ(z.s[i], 0.0);
+          }
         }
         RiccatiRhs res;
         EXPECT_LT(RiccatiKktResidual(p, dw, dc, z, &res), 1e-11 * Scale(z));
@@ -899,7 +901,9 @@ TEST(RiccatiIpSolver, FreeInitialStatesAndStaticParametersReachIpoptsOptimum) {
       EXPECT_NEAR(rip.z_lower[x0 + i], ip.z_lower[x0 + i], 1e-4 * (1.0 + ip.z_lower[x0 + i]));
       EXPECT_NEAR(rip.z_upper[x0 + i], ip.z_upper[x0 + i], 1e-4 * (1.0 + ip.z_upper[x0 + i]));
     }
-    if (name == "free-start") EXPECT_GT(largest_z, 0.1);  // the active bound on x1(0)
+    if (name == "free-start") {
+      EXPECT_GT(largest_z, 0.1);  // the active bound on x1(0)
+    }
     // Newton's steps on the same KKT system (measured 7/7, 5/5, 7/7, 50/54): a wrong column of
     // the free components in stage 0's B costs the fast local convergence, not the optimum.
     EXPECT_LE(rip.iterations, ip.iterations + 2);
@@ -943,7 +947,9 @@ TEST(RiccatiIpSolver, BoundaryInequalitiesReachIpoptsOptimum) {
       largest = std::max(largest, std::abs(y));
       EXPECT_NEAR(rip.lambda[row + i], y, 1e-6 * (1.0 + std::abs(y))) << "row " << i;
     }
-    if (name == "coupled-ends") EXPECT_GT(largest, 0.1);  // the active upper bound's
+    if (name == "coupled-ends") {
+      EXPECT_GT(largest, 0.1);  // the active upper bound's
+    }
     Vec b(ocp->num_boundary());
     const Mat X = nlp->StateTrajectory(rip.z).values();
     ocp->BoundaryConstraints(X.col(0), X.col(X.cols() - 1), b);

@@ -50,7 +50,9 @@ TEST(StageNewton, ReachesTheDiscreteOptimumOfRk4) {
     EXPECT_LT(error, 1e-9);
     srk.Adjoint(U, X, &Lambda, &Y, &P, &G);
     EXPECT_LT(RelativeCostateError(Lambda, grid, info.reference_costate), N == 50 ? 5e-9 : 3e-10);
-    if (!std::isnan(previous_error)) EXPECT_GT(previous_error / error, 13.0);  // order 4
+    if (!std::isnan(previous_error)) {
+      EXPECT_GT(previous_error / error, 13.0);  // order 4
+    }
     previous_error = error;
   }
 }
