@@ -165,13 +165,13 @@ HamiltonianTarget ResolveFamilyTarget(const std::string& name,
   }
   if (original.HasFreeInitialState() && o.scheme != HamiltonianFamilyOptions::Scheme::kEuler) {
     return refuse(std::string("scheme=") + SchemeName(o.scheme) +
-                  ": a free initial state (or static parameters) needs scheme=euler (x(t0)'s "
-                  "gradient is the Euler sweep's lambda_0)");
+                  ": a free initial state (or static parameters) needs scheme=euler (the stage "
+                  "schemes' descent and polish do not carry x(t0) as a variable yet)");
   }
   if (original.HasFreeInitialState() && request.integrator != Integrator::kEuler) {
     return refuse(
-        "a free initial state (or static parameters) needs forward Euler (x(t0)'s gradient is "
-        "the Euler sweep's lambda_0)");
+        "a free initial state (or static parameters) needs forward Euler (the descent moves "
+        "x(t0) on the Euler grid only)");
   }
   if (t.ocp->free_final_time() && request.integrator != Integrator::kEuler) {
     return refuse("a free final time needs forward Euler (the exact dJ/dT is Euler's)");
